@@ -1,0 +1,64 @@
+# tds: build, test and benchmark. `make demo`, `make test` work on a fresh
+# Debian machine: missing packages are installed by scripts/deps.sh.
+
+CC ?= cc
+BUILD ?= build
+OPT ?= -O2
+SAN ?=
+CFLAGS_ALL = -std=c11 $(OPT) -g -Wall -Wextra -D_POSIX_C_SOURCE=200809L $(SAN) $(CFLAGS)
+# Evaluated when a recipe runs, so after `deps` has installed pkg-config/Lua.
+LUA_CFLAGS = $(shell pkg-config --cflags lua5.4)
+LUA_LIBS = $(shell pkg-config --libs lua5.4)
+LIBS = $(LUA_LIBS) -lreadline -lm
+
+BIND_SRC := $(wildcard src/lua_*.c) src/repl.c src/main.c
+CORE_SRC := $(filter-out $(BIND_SRC),$(wildcard src/*.c))
+LUA_SRC := $(sort $(wildcard lua/*.lua))
+CORE_OBJ := $(CORE_SRC:src/%.c=$(BUILD)/%.o)
+BIND_OBJ := $(BIND_SRC:src/%.c=$(BUILD)/%.o)
+UNIT_SRC := $(wildcard tests/unit/test_*.c)
+UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/%)
+TDS_BIN ?= tds
+
+.PHONY: all deps demo test test-asan unit bench bench-paper clean
+
+all: $(TDS_BIN)
+
+deps:
+	@sh scripts/deps.sh
+
+$(TDS_BIN): $(CORE_OBJ) $(BIND_OBJ) | deps
+	$(CC) $(CFLAGS_ALL) -o $@ $^ $(LIBS)
+
+$(BUILD)/%.o: src/%.c $(wildcard src/*.h) | deps $(BUILD)
+	$(CC) $(CFLAGS_ALL) $(if $(filter $(BIND_SRC),$<),$(LUA_CFLAGS)) -Isrc -I$(BUILD) -c -o $@ $<
+
+# The Lua prelude is embedded in the binary.
+$(BUILD)/lua_tds.o: $(BUILD)/prelude.inc
+$(BUILD)/prelude.inc: $(LUA_SRC) scripts/embed.sh | $(BUILD)
+	sh scripts/embed.sh $(LUA_SRC) > $@
+
+$(BUILD)/test_%: tests/unit/test_%.c tests/unit/*.h $(CORE_OBJ) | deps
+	$(CC) $(CFLAGS_ALL) -Isrc -Itests/unit -o $@ $< $(CORE_OBJ) -lm
+
+$(BUILD):
+	mkdir -p $(BUILD)
+
+unit: $(UNIT_BIN)
+
+test: $(TDS_BIN) unit
+	@sh tests/run.sh $(abspath $(TDS_BIN)) $(abspath $(BUILD))
+
+# The whole suite under AddressSanitizer and UndefinedBehaviorSanitizer.
+test-asan:
+	$(MAKE) BUILD=build-asan TDS_BIN=build-asan/tds OPT=-O1 \
+	  SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" test
+
+demo: $(TDS_BIN)
+	./$(TDS_BIN) scripts/demo.tds
+
+bench: $(TDS_BIN)
+	sh bench/cube.sh ./$(TDS_BIN)
+
+clean:
+	rm -rf build build-asan tds

@@ -1,0 +1,211 @@
+-- prelude.lua: the friendly tds API, built on the raw primitives in `tds`.
+-- Loaded into every tds session before the user's script. Declarations
+-- raise their errors at the user's line (the line that called
+-- vertices{...} etc.).
+
+local tds = tds
+local KIND = { vertex = tds.vertex, edge = tds.edge, facet = tds.facet, body = tds.body }
+local NAME = { [tds.vertex] = "vertex", [tds.edge] = "edge", [tds.facet] = "face",
+               [tds.body] = "body" }
+local DECL = { [tds.vertex] = tds.decl_vertex, [tds.edge] = tds.decl_edge,
+               [tds.facet] = tds.decl_face, [tds.body] = tds.decl_body }
+
+-- The ids of a declaration table: its positive integer keys, in order.
+local function sorted_ids(kind, t, level)
+  local ids = {}
+  for k in pairs(t) do
+    if math.type(k) ~= "integer" or k < 1 then
+      error(("%ss{}: key %s is not an id (use a list, or [id] = {...})")
+            :format(NAME[kind], tostring(k)), level)
+    end
+    ids[#ids + 1] = k
+  end
+  table.sort(ids)
+  return ids
+end
+
+local function declare(kind, t)
+  local level = 3 -- declare <- generator function <- user's line
+  local ids = sorted_ids(kind, t, level)
+  if kind == tds.facet and #ids > 0 then
+    -- Facets split off polygons are appended after every declared id.
+    tds.reserve(tds.facet, ids[#ids])
+  end
+  local decl = DECL[kind]
+  for _, id in ipairs(ids) do
+    local entry = t[id]
+    if type(entry) ~= "table" then
+      error(("%s %d: expected a table, got %s"):format(NAME[kind], id, type(entry)), level)
+    end
+    local h, err = decl(id, entry)
+    if not h then error(err, level) end
+  end
+end
+
+-- vertices{...} declares; vertices() and vertices(filter) iterate.
+local function generator(kind)
+  return function(arg)
+    if type(arg) == "table" then
+      declare(kind, arg) -- not a tail call: error levels count this frame
+      return
+    end
+    if arg ~= nil and type(arg) ~= "function" then
+      error("expected a declaration table or a filter function", 2)
+    end
+    local filter, i = arg, 0
+    return function()
+      while true do
+        local id, h = tds.next(kind, i)
+        if not id then return nil end
+        i = id
+        if not filter or filter(h) then return h end
+      end
+    end
+  end
+end
+
+vertices = generator(tds.vertex)
+edges = generator(tds.edge)
+faces = generator(tds.facet)
+facets = faces
+bodies = generator(tds.body)
+
+-- vertex[i], edge[i], facet[i], body[i]: handles by id (nil if absent).
+local function indexer(kind)
+  return setmetatable({}, {
+    __index = function(_, i)
+      if math.type(i) ~= "integer" then return nil end
+      return tds.get(kind, i)
+    end,
+    __newindex = function() error("elements are created by declarations", 2) end,
+    __len = function() return tds.count(kind) end,
+  })
+end
+vertex, edge, facet, body = indexer(tds.vertex), indexer(tds.edge),
+                            indexer(tds.facet), indexer(tds.body)
+face = facet
+
+-- Parameters: parameter{ name = value } creates live parameters; reading
+-- or assigning the global afterwards reads or sets the engine's value.
+function parameter(t)
+  if type(t) ~= "table" then error("parameter{ name = value, ... } expected", 2) end
+  for k, v in pairs(t) do
+    if type(k) ~= "string" or type(v) ~= "number" then
+      error(("parameter %s: expected name = number"):format(tostring(k)), 2)
+    end
+    rawset(_G, k, nil)
+    tds.param(k, v)
+  end
+end
+
+function gravity_constant(value)
+  if type(value) ~= "number" then error("gravity_constant(number) expected", 2) end
+  tds.gravity(value)
+end
+
+-- Commands, with Evolver's single letters and long names.
+function g(n)
+  if n ~= nil and math.type(n) ~= "integer" then
+    error("g(n): n must be a whole number of iterations", 2)
+  end
+  tds.iterate(n or 1)
+end
+iterate, go = g, g
+
+-- The counts are printed; these return nothing so the REPL stays quiet.
+function r(set) tds.refine(set) end
+refine = r
+
+function u(set) tds.equiangulate(set) end
+equiangulate = u
+
+function V(set) tds.vertex_average(set) end
+vertex_average = V
+
+-- m(scale): fixed scale factor; m() returns to the optimizing scale.
+function m(scale)
+  if scale == nil then
+    tds.optimize()
+    print("Optimizing scale.")
+  else
+    tds.scale(scale)
+    print(("Fixed scale %g."):format(scale))
+  end
+end
+function optimize(limit) tds.optimize(limit) end
+
+-- G(value) sets the gravitational constant and turns gravity on;
+-- G() toggles gravity.
+function G(value)
+  if value == nil then
+    local gval, on = tds.gravity()
+    tds.gravity(gval, not on)
+    print(("Gravity is %s, G = %g."):format(on and "off" or "on", gval))
+  else
+    tds.gravity(value, true)
+  end
+end
+
+-- v(): bodies' target volume, actual volume and pressure, like Evolver.
+function v()
+  tds.totals()
+  print("Body          target volume           actual volume          pressure")
+  for b in bodies() do
+    local target = b.target and ("%.15g"):format(b.target) or "-"
+    print(("%3d  %22s  %22.15g  %16.15g"):format(b.id, target, b.volume, b.pressure))
+  end
+end
+show_vol = v
+
+function q(code)
+  if code ~= nil and math.type(code) ~= "integer" then
+    error("q(code): code must be an integer", 2)
+  end
+  error({ tds_quit = code or 0 }, 0)
+end
+quit, bye, exit = q, q, q
+
+function check() return tds.check() end
+
+-- near(a, b, tol): |a - b| <= tol * max(1, |b|), for self-checking scripts.
+function near(a, b, tol)
+  tol = tol or 1e-9
+  return math.abs(a - b) <= tol * math.max(1, math.abs(b))
+end
+
+-- Values that read live from the surface as globals.
+local live = {
+  total_energy = function() return (tds.totals()) end,
+  total_area = function() local _, a = tds.totals(); return a end,
+  vertex_count = function() return tds.count(tds.vertex) end,
+  edge_count = function() return tds.count(tds.edge) end,
+  facet_count = function() return tds.count(tds.facet) end,
+  body_count = function() return tds.count(tds.body) end,
+  scale = function() return (tds.scale()) end,
+  iteration_counter = function() return tds.setting("iterations") end,
+}
+
+setmetatable(_G, {
+  __index = function(_, k)
+    local f = live[k]
+    if f then return f() end
+    if type(k) == "string" then return tds.param(k) end
+  end,
+  __newindex = function(t, k, val)
+    if type(k) == "string" and tds.param(k) ~= nil then
+      if type(val) ~= "number" then
+        error(("parameter %s must be a number"):format(k), 2)
+      end
+      tds.param(k, val)
+    elseif live[k] then
+      error(("%s is read-only"):format(k), 2)
+    else
+      rawset(t, k, val)
+    end
+  end,
+})
+
+-- The REPL's reader of Evolver-style lines (g 5; r; u).
+tds.translate = require("evolver")
+
+return true

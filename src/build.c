@@ -1,0 +1,162 @@
+/* build.c: building declared faces (polygons split around a centre). */
+#include "topo.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "motion.h"
+#include "vec3.h"
+
+static void apply_attr(tds_mesh *m, tds_id f, tds_id orig,
+                       const tds_face_attr *at) {
+  m->fflags[f] = at->flags;
+  m->fcon[f] = at->con;
+  m->ften[f] = at->tension;
+  m->fcolor[f] = at->color;
+  m->forig[f] = orig;
+}
+
+int tds_build_face(tds_ctx *ctx, tds_surf *s, tds_id f, int n,
+                   const int32_t *oe, const tds_face_attr *at) {
+  tds_mesh *m = &s->m;
+  if (n < 3) return tds_seterr(ctx, TDS_ETOPO, "face %d has %d edges; at least 3 are needed", f + 1, n);
+  for (int k = 0; k < n; k++) {
+    tds_id e = TDS_OID(oe[k]);
+    if (oe[k] < 0 || e >= m->ne || !tds_alive(m->eflags, e))
+      return tds_seterr(ctx, TDS_ERANGE, "face %d refers to edge %d, which does not exist",
+                        f + 1, e + 1);
+  }
+  for (int k = 0; k < n; k++)
+    if (tds_oe_head(m, oe[k]) != tds_oe_tail(m, oe[(k + 1) % n]))
+      return tds_seterr(ctx, TDS_ETOPO,
+                        "face %d: edge %s%d does not end where edge %s%d starts",
+                        f + 1, TDS_OREV(oe[k]) ? "-" : "", TDS_OID(oe[k]) + 1,
+                        TDS_OREV(oe[(k + 1) % n]) ? "-" : "",
+                        TDS_OID(oe[(k + 1) % n]) + 1);
+  if (f < m->nf && tds_alive(m->fflags, f))
+    return tds_seterr(ctx, TDS_ERANGE, "face %d is declared twice", f + 1);
+  /* Reserve everything first: nothing below may fail. */
+  if (tds_mesh_extend_dead(m, TDS_FACET, f + 1) ||
+      tds_mesh_reserve(m, TDS_FACET, m->nf + (n > 3 ? n - 1 : 0)) ||
+      tds_mesh_reserve(m, TDS_EDGE, m->ne + (n > 3 ? n : 0)) ||
+      tds_mesh_reserve(m, TDS_VERTEX, m->nv + 1))
+    return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+  tds_mesh_claim(m, TDS_FACET, f);
+  apply_attr(m, f, f, at);
+  if (n == 3) {
+    tds_mesh_set_facet(m, f, oe);
+    return TDS_OK;
+  }
+  double c[3] = {0, 0, 0};
+  for (int k = 0; k < n; k++) v3_add(c, c, m->x[tds_oe_tail(m, oe[k])]);
+  v3_scale(c, 1.0 / n);
+  tds_id cv = tds_mesh_add_vertex(m, c);
+  m->vflags[cv] = at->flags & TDS_FIXED;
+  m->vcon[cv] = at->con;
+  tds_id spoke0 = m->ne; /* spoke k runs from the tail of oe[k] to cv */
+  for (int k = 0; k < n; k++) {
+    tds_id e = tds_mesh_add_edge(m, tds_oe_tail(m, oe[k]), cv);
+    m->eflags[e] = at->flags & (TDS_FIXED | TDS_NO_REFINE);
+    m->econ[e] = at->con;
+  }
+  for (int k = 0; k < n; k++) {
+    tds_id in = spoke0 + (k + 1) % n, out = spoke0 + k;
+    if (k < n - 1) {
+      int32_t t[3] = {oe[k], TDS_OREF(in, 0), TDS_OREF(out, 1)};
+      tds_id nf = tds_mesh_add_facet(m, t);
+      apply_attr(m, nf, f, at);
+    } else { /* the last triangle keeps the face's slot, centre first */
+      int32_t t[3] = {TDS_OREF(out, 1), oe[k], TDS_OREF(in, 0)};
+      tds_mesh_set_facet(m, f, t);
+    }
+  }
+  if (at->con) tds_motion_enforce(s, cv);
+  m->coord_gen++;
+  return TDS_OK;
+}
+
+int tds_decl_vertex(tds_ctx *ctx, tds_surf *s, tds_id v, const double x[3],
+                    int32_t bdry, const double p[2], uint32_t flags,
+                    tds_cmask con) {
+  tds_mesh *m = &s->m;
+  int rc = tds_mesh_claim(m, TDS_VERTEX, v);
+  if (rc == TDS_ERANGE)
+    return tds_seterr(ctx, rc, "vertex %d is declared twice", v + 1);
+  if (rc != TDS_OK) return tds_seterr(ctx, rc, "out of memory");
+  v3_copy(m->x[v], x);
+  m->vflags[v] = flags;
+  m->vcon[v] = con;
+  m->vbdry[v] = bdry;
+  if (bdry != TDS_NONE) {
+    m->vp[v][0] = p[0];
+    m->vp[v][1] = p[1];
+  }
+  m->coord_gen++;
+  if (tds_motion_enforce(s, v) != TDS_OK)
+    tds_warnf(ctx, "vertex %d: projection onto its constraints did not "
+              "converge\n", v + 1);
+  if (!isfinite(m->x[v][0] + m->x[v][1] + m->x[v][2])) {
+    m->vflags[v] |= TDS_DEAD;
+    return tds_seterr(ctx, TDS_ERANGE, "vertex %d: coordinates are not finite", v + 1);
+  }
+  return TDS_OK;
+}
+
+int tds_decl_edge(tds_ctx *ctx, tds_surf *s, tds_id e, tds_id t, tds_id h,
+                  uint32_t flags, tds_cmask con, int32_t bdry, double tension,
+                  int16_t color) {
+  tds_mesh *m = &s->m;
+  tds_id ends[2] = {t, h};
+  for (int k = 0; k < 2; k++)
+    if (ends[k] < 0 || ends[k] >= m->nv || !tds_alive(m->vflags, ends[k]))
+      return tds_seterr(ctx, TDS_ERANGE,
+                        "edge %d refers to vertex %d, which does not exist", e + 1,
+                        ends[k] + 1);
+  if (t == h)
+    return tds_seterr(ctx, TDS_ETOPO, "edge %d starts and ends at vertex %d",
+                      e + 1, t + 1);
+  int rc = tds_mesh_claim(m, TDS_EDGE, e);
+  if (rc == TDS_ERANGE)
+    return tds_seterr(ctx, rc, "edge %d is declared twice", e + 1);
+  if (rc != TDS_OK) return tds_seterr(ctx, rc, "out of memory");
+  m->ev[e][0] = t;
+  m->ev[e][1] = h;
+  m->eflags[e] = flags;
+  m->econ[e] = con;
+  m->ebdry[e] = bdry;
+  m->eten[e] = tension;
+  m->ecolor[e] = color;
+  return TDS_OK;
+}
+
+int tds_decl_body(tds_ctx *ctx, tds_surf *s, tds_id b, int n,
+                  const int32_t *faces) {
+  tds_mesh *m = &s->m;
+  for (int i = 0; i < n; i++) {
+    int32_t fid = faces[i] < 0 ? -faces[i] : faces[i];
+    if (fid < 1 || fid > m->nf || !tds_alive(m->fflags, fid - 1) ||
+        m->forig[fid - 1] != fid - 1)
+      return tds_seterr(ctx, TDS_ERANGE,
+                        "body %d refers to face %d, which does not exist", b + 1, fid);
+  }
+  int rc = tds_mesh_claim(m, TDS_BODY, b);
+  if (rc == TDS_ERANGE)
+    return tds_seterr(ctx, rc, "body %d is declared twice", b + 1);
+  if (rc != TDS_OK) return tds_seterr(ctx, rc, "out of memory");
+  /* Sign of each face in the list, indexed by face slot. */
+  int8_t *sign = calloc((size_t)m->nf, 1);
+  if (!sign) {
+    m->bflags[b] |= TDS_DEAD;
+    return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+  }
+  for (int i = 0; i < n; i++)
+    sign[(faces[i] < 0 ? -faces[i] : faces[i]) - 1] = faces[i] < 0 ? -1 : 1;
+  for (tds_id f = 0; f < m->nf; f++) {
+    if (!tds_alive(m->fflags, f) || m->forig[f] == TDS_NONE) continue;
+    int8_t sg = sign[m->forig[f]];
+    if (sg) m->fb[f][sg > 0 ? 0 : 1] = b;
+  }
+  free(sign);
+  m->topo_gen++;
+  return TDS_OK;
+}

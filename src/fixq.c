@@ -1,0 +1,194 @@
+/* fixq.c: Lagrange-multiplier constraints (body volumes, fixed quantities). */
+#include "fixq.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void tds_fixq_free(tds_fixq *fq) {
+  free(fq->qbody);
+  free(fq->qquant);
+  free(fq->bq);
+  free(fq->value);
+  free(fq->target);
+  free(fq->mult);
+  free(fq->gram);
+  free(fq->start);
+  free(fq->eq);
+  free(fq->g);
+  memset(fq, 0, sizeof *fq);
+}
+
+/* Add q to the entry list of v (during the counting pass, only count). */
+static int has_q(const tds_fixq *fq, int32_t lo, int32_t hi, int32_t q) {
+  for (int32_t i = lo; i < hi; i++)
+    if (fq->eq[i] == q) return 1;
+  return 0;
+}
+
+int tds_fixq_build(tds_ctx *ctx, tds_surf *s, tds_fixq *fq) {
+  tds_mesh *m = &s->m;
+  tds_fixq_free(fq);
+  int32_t nq = 0, nglobal = 0;
+  for (tds_id b = 0; b < m->nb; b++)
+    if (tds_alive(m->bflags, b) && (m->bflags[b] & TDS_TARGET)) nq++;
+  for (int i = 0; i < s->nquant; i++)
+    if (s->quant[i].kind == TDS_Q_FIXED) nglobal++;
+  nq += nglobal;
+  fq->nq = nq;
+  fq->nv = m->nv;
+  fq->qbody = tds_calloc((size_t)nq, sizeof *fq->qbody);
+  fq->qquant = tds_calloc((size_t)nq, sizeof *fq->qquant);
+  fq->bq = tds_calloc((size_t)m->nb, sizeof *fq->bq);
+  fq->value = tds_calloc((size_t)nq, sizeof *fq->value);
+  fq->target = tds_calloc((size_t)nq, sizeof *fq->target);
+  fq->mult = tds_calloc((size_t)nq, sizeof *fq->mult);
+  fq->gram = tds_calloc((size_t)nq * (size_t)nq, sizeof *fq->gram);
+  fq->start = tds_calloc((size_t)m->nv + 1, sizeof *fq->start);
+  if (!fq->qbody || !fq->qquant || !fq->bq || !fq->value || !fq->target ||
+      !fq->mult || !fq->gram || !fq->start)
+    goto nomem;
+  int32_t q = 0;
+  for (tds_id b = 0; b < m->nb; b++) {
+    fq->bq[b] = -1;
+    if (tds_alive(m->bflags, b) && (m->bflags[b] & TDS_TARGET)) {
+      fq->qbody[q] = b;
+      fq->qquant[q] = -1;
+      fq->target[q] = m->btarget[b];
+      fq->bq[b] = q++;
+    }
+  }
+  int32_t qglobal0 = q;
+  for (int i = 0; i < s->nquant; i++)
+    if (s->quant[i].kind == TDS_Q_FIXED) {
+      fq->qbody[q] = TDS_NONE;
+      fq->qquant[q] = i;
+      fq->target[q] = s->quant[i].target;
+      q++;
+    }
+  if (nq == 0) return TDS_OK;
+  if (tds_mesh_adjacency(m) != TDS_OK) goto nomem;
+
+  /* Entries per vertex: its bodies with targets plus every global quantity.
+  ** Upper bound 2 per star facet + nglobal; compacted below. */
+  int64_t bound = 0;
+  for (tds_id v = 0; v < m->nv; v++)
+    bound += 2 * (int64_t)(m->vf_start[v + 1] - m->vf_start[v]) + nglobal;
+  if (bound > INT32_MAX) goto nomem;
+  fq->eq = tds_calloc((size_t)bound, sizeof *fq->eq);
+  if (!fq->eq) goto nomem;
+  int32_t n = 0;
+  for (tds_id v = 0; v < m->nv; v++) {
+    fq->start[v] = n;
+    if (!tds_alive(m->vflags, v)) continue;
+    for (int32_t i = m->vf_start[v]; i < m->vf_start[v + 1]; i++)
+      for (int j = 0; j < 2; j++) {
+        tds_id b = m->fb[m->vf[i]][j];
+        if (b == TDS_NONE || fq->bq[b] < 0) continue;
+        if (!has_q(fq, fq->start[v], n, fq->bq[b])) fq->eq[n++] = fq->bq[b];
+      }
+    for (int32_t k = qglobal0; k < nq; k++) fq->eq[n++] = k;
+  }
+  fq->start[m->nv] = n;
+  fq->nent = n;
+  fq->g = tds_calloc((size_t)n, sizeof *fq->g);
+  if (!fq->g) goto nomem;
+  return TDS_OK;
+nomem:
+  tds_fixq_free(fq);
+  return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+}
+
+void tds_fixq_clear(tds_fixq *fq) {
+  if (fq->nent) memset(fq->g, 0, (size_t)fq->nent * sizeof *fq->g);
+}
+
+void tds_fixq_add(tds_fixq *fq, tds_id v, int32_t q, const double gv[3]) {
+  for (int32_t i = fq->start[v]; i < fq->start[v + 1]; i++)
+    if (fq->eq[i] == q) {
+      fq->g[i][0] += gv[0];
+      fq->g[i][1] += gv[1];
+      fq->g[i][2] += gv[2];
+      return;
+    }
+}
+
+int tds_dense_solve(int n, double *A, double *b) {
+  for (int k = 0; k < n; k++) {
+    int p = k;
+    for (int i = k + 1; i < n; i++)
+      if (fabs(A[i * n + k]) > fabs(A[p * n + k])) p = i;
+    if (!(fabs(A[p * n + k]) > 0)) return -1;
+    if (p != k) {
+      for (int j = 0; j < n; j++) {
+        double t = A[k * n + j];
+        A[k * n + j] = A[p * n + j];
+        A[p * n + j] = t;
+      }
+      double t = b[k];
+      b[k] = b[p];
+      b[p] = t;
+    }
+    for (int i = k + 1; i < n; i++) {
+      double f = A[i * n + k] / A[k * n + k];
+      if (f == 0) continue;
+      for (int j = k; j < n; j++) A[i * n + j] -= f * A[k * n + j];
+      b[i] -= f * b[k];
+    }
+  }
+  for (int k = n - 1; k >= 0; k--) {
+    double t = b[k];
+    for (int j = k + 1; j < n; j++) t -= A[k * n + j] * b[j];
+    b[k] = t / A[k * n + k];
+  }
+  return 0;
+}
+
+/* Assemble the Gram matrix of the entry gradients into fq->gram. */
+static void gram(tds_fixq *fq) {
+  int32_t nq = fq->nq;
+  memset(fq->gram, 0, (size_t)nq * (size_t)nq * sizeof *fq->gram);
+  for (int32_t v = 0; v < fq->nv; v++)
+    for (int32_t i = fq->start[v]; i < fq->start[v + 1]; i++)
+      for (int32_t j = fq->start[v]; j < fq->start[v + 1]; j++)
+        fq->gram[fq->eq[i] * nq + fq->eq[j]] +=
+            fq->g[i][0] * fq->g[j][0] + fq->g[i][1] * fq->g[j][1] +
+            fq->g[i][2] * fq->g[j][2];
+}
+
+static int solve(tds_ctx *ctx, tds_fixq *fq, double *rhs) {
+  gram(fq);
+  if (tds_dense_solve(fq->nq, fq->gram, rhs) != 0)
+    return tds_seterr(ctx, TDS_ENUM,
+                      "volume constraints are dependent (singular Gram "
+                      "matrix): a body without free vertices, or redundant targets");
+  return TDS_OK;
+}
+
+int tds_fixq_multipliers(tds_ctx *ctx, tds_fixq *fq, double (*gradE)[3]) {
+  if (fq->nq == 0) return TDS_OK;
+  double *b = fq->mult;
+  memset(b, 0, (size_t)fq->nq * sizeof *b);
+  for (int32_t v = 0; v < fq->nv; v++)
+    for (int32_t i = fq->start[v]; i < fq->start[v + 1]; i++)
+      b[fq->eq[i]] += fq->g[i][0] * gradE[v][0] + fq->g[i][1] * gradE[v][1] +
+                      fq->g[i][2] * gradE[v][2];
+  return solve(ctx, fq, b);
+}
+
+int tds_fixq_restore(tds_ctx *ctx, tds_fixq *fq, int32_t nv, double (*dx)[3]) {
+  memset(dx, 0, (size_t)nv * sizeof *dx);
+  if (fq->nq == 0) return TDS_OK;
+  double *mu = fq->mult;
+  for (int32_t q = 0; q < fq->nq; q++) mu[q] = fq->target[q] - fq->value[q];
+  int rc = solve(ctx, fq, mu);
+  if (rc != TDS_OK) return rc;
+  for (int32_t v = 0; v < fq->nv; v++)
+    for (int32_t i = fq->start[v]; i < fq->start[v + 1]; i++) {
+      double c = mu[fq->eq[i]];
+      dx[v][0] += c * fq->g[i][0];
+      dx[v][1] += c * fq->g[i][1];
+      dx[v][2] += c * fq->g[i][2];
+    }
+  return TDS_OK;
+}

@@ -1,0 +1,58 @@
+/*
+** fixq.h: constraints held by Lagrange multipliers (body volumes with a
+** target, FIXED named quantities), Evolver's "fixed quantities".
+**
+** Each constrained quantity q has a value, a target and a gradient. The
+** gradients are stored sparsely: for every vertex, the list of quantities
+** it touches and dQ_q/dx_v (a vertex touches the bodies around it and every
+** global quantity). The Gram matrix G[q][r] = sum_v <dQ_q, dQ_r> couples
+** them; pressures (multipliers) come from a small dense solve.
+*/
+#ifndef TDS_FIXQ_H
+#define TDS_FIXQ_H
+
+#include "surf.h"
+
+typedef struct tds_fixq {
+  int32_t nq;           /* number of constrained quantities */
+  int32_t *qbody;       /* q -> body index, or TDS_NONE */
+  int32_t *qquant;      /* q -> named quantity index, or -1 */
+  int32_t *bq;          /* body -> q, or -1 (m.nb entries) */
+  double *value;        /* current values */
+  double *target;
+  double *mult;         /* scratch: multipliers of the last solve */
+  double *gram;         /* nq*nq, scratch */
+  int32_t nv;           /* vertex slots covered by the pattern */
+  int32_t *start;       /* per-vertex entry range, nv + 1 */
+  int32_t *eq;          /* entry -> q */
+  double (*g)[3];       /* entry -> gradient */
+  int32_t nent;
+} tds_fixq;
+
+/* Build the quantity list and sparsity pattern for the surface as it is
+** now (call after any topology or constraint-set change). Needs current
+** adjacency. TDS_OK or TDS_ENOMEM. */
+int tds_fixq_build(tds_ctx *ctx, tds_surf *s, tds_fixq *fq);
+void tds_fixq_free(tds_fixq *fq);
+
+/* Zero all entry gradients. */
+void tds_fixq_clear(tds_fixq *fq);
+/* Add gv to the gradient of quantity q at vertex v (entry must exist in the
+** pattern, which holds by construction). */
+void tds_fixq_add(tds_fixq *fq, tds_id v, int32_t q, const double gv[3]);
+
+/* Restoring motion dx = sum_q mu_q g_q with G mu = target - value (dx is
+** overwritten for every vertex). TDS_OK or TDS_ENUM. */
+int tds_fixq_restore(tds_ctx *ctx, tds_fixq *fq, int32_t nv, double (*dx)[3]);
+
+/* Multipliers of the gradient of energy: lambda = G^-1 <g, grad E>, so that
+** grad E - sum lambda g is orthogonal to every g. These are Evolver's
+** pressures. Stored in fq->mult. TDS_OK or TDS_ENUM. */
+int tds_fixq_multipliers(tds_ctx *ctx, tds_fixq *fq, double (*gradE)[3]);
+
+/* Solve the dense symmetric system A x = b (n x n, row-major) in place by
+** Gaussian elimination with partial pivoting; b becomes x. A is destroyed.
+** Returns 0, or -1 when singular. */
+int tds_dense_solve(int n, double *A, double *b);
+
+#endif

@@ -1,0 +1,214 @@
+/* lua_cmd.c: command primitives (iterate, refine, equiangulate, average,
+** scale, gravity, parameters, totals, checks). The prelude gives them
+** their user names (g, r, u, V, ...). */
+#include <stdlib.h>
+#include <string.h>
+
+#include "iterate.h"
+#include "lua_tds.h"
+#include "topo.h"
+
+static int check_rc(lua_State *L, tds_state *st, int rc) {
+  if (rc != TDS_OK) {
+    if (rc == TDS_EINTR) lua_sethook(L, NULL, 0, 0);
+    return tds_lua_fail(L, st, rc);
+  }
+  return 0;
+}
+
+static void print_counts(tds_state *st) {
+  const tds_mesh *m = &st->s.m;
+  int32_t nf = tds_mesh_count(m, TDS_FACET);
+  tds_printf(&st->ctx, "Vertices: %d  Edges: %d  Facets: %d  Bodies: %d  Facetedges: %d\n",
+             tds_mesh_count(m, TDS_VERTEX), tds_mesh_count(m, TDS_EDGE), nf,
+             tds_mesh_count(m, TDS_BODY), 3 * nf);
+}
+
+/* tds.iterate(n) */
+static int l_iterate(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  lua_Integer n = luaL_optinteger(L, 1, 1);
+  luaL_argcheck(L, n >= 0 && n <= 1000000000, 1, "iteration count out of range");
+  check_rc(L, st, tds_iterate(&st->ctx, &st->s, (int)n));
+  return 0;
+}
+
+/* tds.refine([edges]) -> number of edges split */
+static int l_refine(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  uint8_t *sel = tds_lua_selection(L, st, 1, TDS_EDGE);
+  int32_t n = 0;
+  int rc = tds_refine(&st->ctx, &st->s, sel, &n);
+  free(sel);
+  check_rc(L, st, rc);
+  if (lua_isnoneornil(L, 1))
+    print_counts(st);
+  else
+    tds_printf(&st->ctx, "Edges refined: %d\n", n);
+  lua_pushinteger(L, n);
+  return 1;
+}
+
+/* tds.equiangulate([edges]) -> flips */
+static int l_equiangulate(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  uint8_t *sel = tds_lua_selection(L, st, 1, TDS_EDGE);
+  int32_t n = 0;
+  int rc = tds_equiangulate(&st->ctx, &st->s, sel, &n);
+  free(sel);
+  check_rc(L, st, rc);
+  tds_printf(&st->ctx, "Edges switched in equiangulation: %d\n", n);
+  lua_pushinteger(L, n);
+  return 1;
+}
+
+/* tds.vertex_average([vertices]) -> vertices moved */
+static int l_vertex_average(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  uint8_t *sel = tds_lua_selection(L, st, 1, TDS_VERTEX);
+  int32_t n = 0;
+  int rc = tds_vertex_average(&st->ctx, &st->s, sel, &n);
+  free(sel);
+  check_rc(L, st, rc);
+  tds_printf(&st->ctx, "Vertex averaging done.\n");
+  lua_pushinteger(L, n);
+  return 1;
+}
+
+/* tds.totals() -> energy, area (recomputed) */
+static int l_totals(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  check_rc(L, st, tds_surf_update(&st->ctx, &st->s));
+  lua_pushnumber(L, st->s.energy);
+  lua_pushnumber(L, st->s.area);
+  return 2;
+}
+
+/* tds.pressures(): recompute body pressures at the current shape. */
+static int l_pressures(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  check_rc(L, st, tds_pressures(&st->ctx, &st->s));
+  return 0;
+}
+
+/* tds.scale([s]) -> current scale; tds.scale(s) fixes it, tds.scale(nil)
+** via tds.optimize() returns to optimizing mode. */
+static int l_scale(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  if (!lua_isnoneornil(L, 1)) {
+    double sc = luaL_checknumber(L, 1);
+    luaL_argcheck(L, sc >= 0, 1, "scale must not be negative");
+    st->s.scale = sc;
+    st->s.fixed_scale = 1;
+  }
+  lua_pushnumber(L, st->s.scale);
+  lua_pushboolean(L, st->s.fixed_scale);
+  return 2;
+}
+
+/* tds.optimize([limit]): optimizing scale, with an optional upper bound. */
+static int l_optimize(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  if (!lua_isnoneornil(L, 1)) {
+    double lim = luaL_checknumber(L, 1);
+    luaL_argcheck(L, lim > 0, 1, "scale limit must be positive");
+    st->s.scale_limit = lim;
+  }
+  st->s.fixed_scale = 0;
+  return 0;
+}
+
+/* tds.gravity([G [, on]]) -> G, on */
+static int l_gravity(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  if (!lua_isnoneornil(L, 1)) st->s.gravity = luaL_checknumber(L, 1);
+  if (!lua_isnoneornil(L, 2)) st->s.gravity_on = lua_toboolean(L, 2);
+  lua_pushnumber(L, st->s.gravity);
+  lua_pushboolean(L, st->s.gravity_on);
+  return 2;
+}
+
+/* tds.check(): run the mesh checker; raises with the broken relation. */
+static int l_check(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  if (tds_mesh_adjacency(&st->s.m) != TDS_OK) return luaL_error(L, "out of memory");
+  check_rc(L, st, tds_mesh_check(&st->ctx, &st->s.m));
+  lua_pushboolean(L, 1);
+  return 1;
+}
+
+/* tds.param(name [, value]) -> value or nil */
+static int l_param(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  size_t len;
+  const char *name = luaL_checklstring(L, 1, &len);
+  if (!lua_isnoneornil(L, 2)) {
+    double v = luaL_checknumber(L, 2);
+    if (tds_surf_param_set(&st->s, name, v) < 0) return luaL_error(L, "out of memory");
+    st->s.m.coord_gen++;
+  }
+  int i = tds_surf_param_find(&st->s, name, len);
+  if (i < 0) return 0;
+  lua_pushnumber(L, st->s.parval[i]);
+  return 1;
+}
+
+/* tds.quiet([on]) -> previous setting */
+static int l_quiet(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  lua_pushboolean(L, st->ctx.quiet);
+  if (!lua_isnone(L, 1)) st->ctx.quiet = lua_toboolean(L, 1);
+  return 1;
+}
+
+/* tds.setting(name [, value]): model switches and iteration state. */
+static int l_setting(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  static const char *const names[] = {"symmetric_content", "scale_limit",
+                                      "constraint_tolerance", "gap_constant",
+                                      "iterations", NULL};
+  int which = luaL_checkoption(L, 1, NULL, names);
+  tds_surf *s = &st->s;
+  int set = !lua_isnone(L, 2);
+  switch (which) {
+  case 0:
+    if (set) s->symmetric_content = lua_toboolean(L, 2);
+    lua_pushboolean(L, s->symmetric_content);
+    break;
+  case 1:
+    if (set) s->scale_limit = luaL_checknumber(L, 2);
+    lua_pushnumber(L, s->scale_limit);
+    break;
+  case 2:
+    if (set) s->constraint_tol = luaL_checknumber(L, 2);
+    lua_pushnumber(L, s->constraint_tol);
+    break;
+  case 3:
+    if (set) s->gap_constant = luaL_checknumber(L, 2);
+    lua_pushnumber(L, s->gap_constant);
+    break;
+  default:
+    lua_pushinteger(L, (lua_Integer)s->iterations);
+  }
+  return 1;
+}
+
+/* tds.memory() -> bytes held by the mesh store */
+static int l_memory(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  lua_pushinteger(L, (lua_Integer)tds_mesh_bytes(&st->s.m));
+  return 1;
+}
+
+void tds_open_cmd(lua_State *L, tds_state *st) {
+  static const luaL_Reg fns[] = {
+      {"iterate", l_iterate},   {"refine", l_refine},
+      {"equiangulate", l_equiangulate}, {"vertex_average", l_vertex_average},
+      {"totals", l_totals},     {"pressures", l_pressures},
+      {"scale", l_scale},       {"optimize", l_optimize},
+      {"gravity", l_gravity},   {"check", l_check},
+      {"param", l_param},       {"quiet", l_quiet},
+      {"setting", l_setting},   {"memory", l_memory},
+      {NULL, NULL}};
+  tds_lua_register(L, st, fns);
+}

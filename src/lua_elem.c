@@ -1,0 +1,468 @@
+/* lua_elem.c: element handles (tds.vertex, tds.edge, tds.facet, tds.body),
+** their attributes, iteration and selections. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "geom.h"
+#include "lua_tds.h"
+#include "motion.h"
+
+typedef struct handle {
+  int kind;
+  tds_id id;
+} handle;
+
+static const char *const kind_name[TDS_NKINDS] = {"vertex", "edge", "facet",
+                                                  "body"};
+static const char *const meta_name[TDS_NKINDS] = {"tds.vertex", "tds.edge",
+                                                  "tds.facet", "tds.body"};
+
+static int32_t nslots(const tds_mesh *m, int kind) {
+  switch (kind) {
+  case TDS_VERTEX: return m->nv;
+  case TDS_EDGE: return m->ne;
+  case TDS_FACET: return m->nf;
+  default: return m->nb;
+  }
+}
+
+static const uint32_t *flags_of(const tds_mesh *m, int kind) {
+  switch (kind) {
+  case TDS_VERTEX: return m->vflags;
+  case TDS_EDGE: return m->eflags;
+  case TDS_FACET: return m->fflags;
+  default: return m->bflags;
+  }
+}
+
+static int alive(const tds_mesh *m, int kind, tds_id id) {
+  return id >= 0 && id < nslots(m, kind) && tds_alive(flags_of(m, kind), id);
+}
+
+void tds_push_elem(lua_State *L, int kind, tds_id id) {
+  handle *h = lua_newuserdatauv(L, sizeof *h, 0);
+  h->kind = kind;
+  h->id = id;
+  luaL_setmetatable(L, meta_name[kind]);
+}
+
+static handle *to_handle(lua_State *L, int i) {
+  handle *h = lua_touserdata(L, i);
+  if (!h || !lua_getmetatable(L, i)) return NULL;
+  lua_getfield(L, -1, "__tds_kind");
+  int ok = lua_isinteger(L, -1);
+  lua_pop(L, 2);
+  return ok ? h : NULL;
+}
+
+tds_id tds_check_elem(lua_State *L, tds_state *st, int i, int kind, int *kindp) {
+  handle *h = to_handle(L, i);
+  if (!h || (kind >= 0 && h->kind != kind)) {
+    const char *want = kind >= 0 ? kind_name[kind] : "element";
+    luaL_typeerror(L, i, want);
+  }
+  if (!alive(&st->s.m, h->kind, h->id))
+    luaL_error(L, "%s %d no longer exists", kind_name[h->kind], h->id + 1);
+  if (kindp) *kindp = h->kind;
+  return h->id;
+}
+
+/* Attributes. ------------------------------------------------------------ */
+
+static void push_cmask(lua_State *L, const tds_surf *s, tds_cmask mask) {
+  lua_newtable(L);
+  int n = 0;
+  for (int c = 0; c < TDS_MAX_CON; c++)
+    if (mask & ((tds_cmask)1 << c)) {
+      lua_pushinteger(L, s->con[c].number);
+      lua_rawseti(L, -2, ++n);
+    }
+}
+
+/* A constraint number or list of numbers -> mask; raises on unknown ones. */
+static tds_cmask check_cmask(lua_State *L, const tds_surf *s, int i) {
+  tds_cmask mask = 0;
+  if (lua_isnoneornil(L, i) || lua_isboolean(L, i)) return 0;
+  int n = lua_istable(L, i) ? (int)luaL_len(L, i) : 1;
+  for (int k = 1; k <= n; k++) {
+    lua_Integer c;
+    if (lua_istable(L, i)) {
+      lua_rawgeti(L, i, k);
+      c = luaL_checkinteger(L, -1);
+      lua_pop(L, 1);
+    } else {
+      c = luaL_checkinteger(L, i);
+    }
+    int slot = tds_surf_con_slot(s, (int)(c < 0 ? -c : c));
+    if (slot < 0) luaL_error(L, "constraint %d is not defined", (int)c);
+    mask |= (tds_cmask)1 << slot;
+  }
+  return mask;
+}
+
+static int set_flag(lua_State *L, uint32_t *flags, tds_id id, uint32_t bit, int i) {
+  if (lua_toboolean(L, i))
+    flags[id] |= bit;
+  else
+    flags[id] &= ~bit;
+  return 0;
+}
+
+static int push_body(lua_State *L, tds_id b) {
+  if (b == TDS_NONE)
+    lua_pushnil(L);
+  else
+    tds_push_elem(L, TDS_BODY, b);
+  return 1;
+}
+
+static double edge_length(const tds_mesh *m, tds_id e) {
+  double d[3];
+  v3_sub(d, m->x[m->ev[e][1]], m->x[m->ev[e][0]]);
+  return v3_norm(d);
+}
+
+static int on_constraint(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  int kind;
+  tds_id id = tds_check_elem(L, st, 1, -1, &kind);
+  lua_Integer c = luaL_checkinteger(L, 2);
+  int slot = tds_surf_con_slot(&st->s, (int)c);
+  const tds_mesh *m = &st->s.m;
+  tds_cmask mask = kind == TDS_VERTEX ? m->vcon[id]
+                   : kind == TDS_EDGE ? m->econ[id]
+                   : kind == TDS_FACET ? m->fcon[id] : 0;
+  lua_pushboolean(L, slot >= 0 && (mask & ((tds_cmask)1 << slot)));
+  return 1;
+}
+
+static int on_boundary(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  int kind;
+  tds_id id = tds_check_elem(L, st, 1, -1, &kind);
+  lua_Integer b = luaL_checkinteger(L, 2);
+  const tds_surf *s = &st->s;
+  int32_t slot = kind == TDS_VERTEX ? s->m.vbdry[id]
+                 : kind == TDS_EDGE ? s->m.ebdry[id] : TDS_NONE;
+  lua_pushboolean(L, slot != TDS_NONE && s->bdry[slot].number == b);
+  return 1;
+}
+
+static int vertex_get(lua_State *L, tds_state *st, tds_id v, const char *k) {
+  tds_surf *s = &st->s;
+  tds_mesh *m = &s->m;
+  if (!strcmp(k, "x") || !strcmp(k, "y") || !strcmp(k, "z"))
+    lua_pushnumber(L, m->x[v][k[0] - 'x']);
+  else if (!strcmp(k, "fixed")) lua_pushboolean(L, m->vflags[v] & TDS_FIXED);
+  else if (!strcmp(k, "bare")) lua_pushboolean(L, m->vflags[v] & TDS_BARE);
+  else if (!strcmp(k, "constraints")) push_cmask(L, s, m->vcon[v]);
+  else if (!strcmp(k, "boundary")) {
+    if (m->vbdry[v] == TDS_NONE) lua_pushnil(L);
+    else lua_pushinteger(L, s->bdry[m->vbdry[v]].number);
+  } else if (!strcmp(k, "p1") || !strcmp(k, "p2"))
+    lua_pushnumber(L, m->vp[v][k[1] - '1']);
+  else if (!strcmp(k, "valence")) {
+    if (tds_mesh_adjacency(m) != TDS_OK) return luaL_error(L, "out of memory");
+    lua_pushinteger(L, m->ve_start[v + 1] - m->ve_start[v]);
+  } else return 0;
+  return 1;
+}
+
+static int vertex_set(lua_State *L, tds_state *st, tds_id v, const char *k) {
+  tds_surf *s = &st->s;
+  tds_mesh *m = &s->m;
+  if (!strcmp(k, "x") || !strcmp(k, "y") || !strcmp(k, "z")) {
+    m->x[v][k[0] - 'x'] = luaL_checknumber(L, 3);
+    m->coord_gen++;
+  } else if (!strcmp(k, "fixed")) set_flag(L, m->vflags, v, TDS_FIXED, 3);
+  else if (!strcmp(k, "bare")) set_flag(L, m->vflags, v, TDS_BARE, 3);
+  else if (!strcmp(k, "constraint") || !strcmp(k, "constraints")) {
+    m->vcon[v] = check_cmask(L, s, 3);
+    if (tds_motion_enforce(s, v) != TDS_OK)
+      return luaL_error(L, "vertex %d could not be projected onto its constraints", v + 1);
+    m->coord_gen++;
+  } else return 0;
+  return 1;
+}
+
+static int edge_get(lua_State *L, tds_state *st, tds_id e, const char *k) {
+  tds_surf *s = &st->s;
+  tds_mesh *m = &s->m;
+  if (!strcmp(k, "length")) lua_pushnumber(L, edge_length(m, e));
+  else if (!strcmp(k, "tail")) tds_push_elem(L, TDS_VERTEX, m->ev[e][0]);
+  else if (!strcmp(k, "head")) tds_push_elem(L, TDS_VERTEX, m->ev[e][1]);
+  else if (!strcmp(k, "fixed")) lua_pushboolean(L, m->eflags[e] & TDS_FIXED);
+  else if (!strcmp(k, "no_refine")) lua_pushboolean(L, m->eflags[e] & TDS_NO_REFINE);
+  else if (!strcmp(k, "tension") || !strcmp(k, "density")) lua_pushnumber(L, m->eten[e]);
+  else if (!strcmp(k, "color")) lua_pushinteger(L, m->ecolor[e]);
+  else if (!strcmp(k, "valence")) lua_pushinteger(L, tds_edge_valence(m, e));
+  else if (!strcmp(k, "constraints")) push_cmask(L, s, m->econ[e]);
+  else if (!strcmp(k, "boundary")) {
+    if (m->ebdry[e] == TDS_NONE) lua_pushnil(L);
+    else lua_pushinteger(L, s->bdry[m->ebdry[e]].number);
+  } else return 0;
+  return 1;
+}
+
+static int edge_set(lua_State *L, tds_state *st, tds_id e, const char *k) {
+  tds_surf *s = &st->s;
+  tds_mesh *m = &s->m;
+  if (!strcmp(k, "fixed")) set_flag(L, m->eflags, e, TDS_FIXED, 3);
+  else if (!strcmp(k, "no_refine")) set_flag(L, m->eflags, e, TDS_NO_REFINE, 3);
+  else if (!strcmp(k, "tension") || !strcmp(k, "density")) m->eten[e] = luaL_checknumber(L, 3);
+  else if (!strcmp(k, "color")) m->ecolor[e] = (int16_t)luaL_checkinteger(L, 3);
+  else if (!strcmp(k, "constraint") || !strcmp(k, "constraints")) m->econ[e] = check_cmask(L, s, 3);
+  else return 0;
+  return 1;
+}
+
+static int facet_get(lua_State *L, tds_state *st, tds_id f, const char *k) {
+  tds_surf *s = &st->s;
+  tds_mesh *m = &s->m;
+  if (!strcmp(k, "area")) {
+    lua_pushnumber(L, geom_area(m->x[m->fv[f][0]], m->x[m->fv[f][1]],
+                                m->x[m->fv[f][2]], NULL));
+  } else if (!strcmp(k, "tension") || !strcmp(k, "density")) lua_pushnumber(L, m->ften[f]);
+  else if (!strcmp(k, "fixed")) lua_pushboolean(L, m->fflags[f] & TDS_FIXED);
+  else if (!strcmp(k, "no_refine")) lua_pushboolean(L, m->fflags[f] & TDS_NO_REFINE);
+  else if (!strcmp(k, "nodisplay")) lua_pushboolean(L, m->fflags[f] & TDS_NODISPLAY);
+  else if (!strcmp(k, "color")) lua_pushinteger(L, m->fcolor[f]);
+  else if (!strcmp(k, "frontbody")) return push_body(L, m->fb[f][0]);
+  else if (!strcmp(k, "backbody")) return push_body(L, m->fb[f][1]);
+  else if (!strcmp(k, "original")) {
+    if (m->forig[f] == TDS_NONE) lua_pushnil(L);
+    else lua_pushinteger(L, m->forig[f] + 1);
+  } else if (!strcmp(k, "constraints")) push_cmask(L, s, m->fcon[f]);
+  else if (!strcmp(k, "vertices") || !strcmp(k, "edges")) {
+    lua_createtable(L, 3, 0);
+    for (int i = 0; i < 3; i++) {
+      if (k[0] == 'v') tds_push_elem(L, TDS_VERTEX, m->fv[f][i]);
+      else lua_pushinteger(L, (TDS_OID(m->fe[f][i]) + 1) * (TDS_OREV(m->fe[f][i]) ? -1 : 1));
+      lua_rawseti(L, -2, i + 1);
+    }
+  } else return 0;
+  return 1;
+}
+
+static tds_id opt_body(lua_State *L, tds_state *st, int i) {
+  if (lua_isnoneornil(L, i) || (lua_isinteger(L, i) && lua_tointeger(L, i) == 0))
+    return TDS_NONE;
+  if (lua_isinteger(L, i)) {
+    lua_Integer b = lua_tointeger(L, i);
+    if (!alive(&st->s.m, TDS_BODY, (tds_id)b - 1))
+      luaL_error(L, "body %d does not exist", (int)b);
+    return (tds_id)b - 1;
+  }
+  return tds_check_elem(L, st, i, TDS_BODY, NULL);
+}
+
+static int facet_set(lua_State *L, tds_state *st, tds_id f, const char *k) {
+  tds_surf *s = &st->s;
+  tds_mesh *m = &s->m;
+  if (!strcmp(k, "tension") || !strcmp(k, "density")) m->ften[f] = luaL_checknumber(L, 3);
+  else if (!strcmp(k, "fixed")) set_flag(L, m->fflags, f, TDS_FIXED, 3);
+  else if (!strcmp(k, "no_refine")) set_flag(L, m->fflags, f, TDS_NO_REFINE, 3);
+  else if (!strcmp(k, "nodisplay")) set_flag(L, m->fflags, f, TDS_NODISPLAY, 3);
+  else if (!strcmp(k, "color")) m->fcolor[f] = (int16_t)luaL_checkinteger(L, 3);
+  else if (!strcmp(k, "frontbody")) m->fb[f][0] = opt_body(L, st, 3);
+  else if (!strcmp(k, "backbody")) m->fb[f][1] = opt_body(L, st, 3);
+  else if (!strcmp(k, "constraint") || !strcmp(k, "constraints")) m->fcon[f] = check_cmask(L, s, 3);
+  else return 0;
+  m->topo_gen++; /* bodies and constraints feed derived data */
+  return 1;
+}
+
+static int body_get(lua_State *L, tds_state *st, tds_id b, const char *k) {
+  tds_surf *s = &st->s;
+  tds_mesh *m = &s->m;
+  if (!strcmp(k, "volume")) {
+    int rc = tds_surf_update(&st->ctx, s);
+    if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+    lua_pushnumber(L, m->bvol[b]);
+  } else if (!strcmp(k, "target")) {
+    if (m->bflags[b] & TDS_TARGET) lua_pushnumber(L, m->btarget[b]);
+    else lua_pushnil(L);
+  } else if (!strcmp(k, "pressure")) lua_pushnumber(L, m->bpressure[b]);
+  else if (!strcmp(k, "density")) lua_pushnumber(L, m->bdensity[b]);
+  else if (!strcmp(k, "volconst")) lua_pushnumber(L, m->bvolconst[b]);
+  else return 0;
+  return 1;
+}
+
+static int body_set(lua_State *L, tds_state *st, tds_id b, const char *k) {
+  tds_surf *s = &st->s;
+  tds_mesh *m = &s->m;
+  if (!strcmp(k, "target") || !strcmp(k, "volume")) {
+    if (lua_isnil(L, 3)) {
+      m->bflags[b] &= ~TDS_TARGET;
+    } else {
+      m->btarget[b] = luaL_checknumber(L, 3);
+      m->bflags[b] = (m->bflags[b] | TDS_TARGET) & ~TDS_PRESSURE;
+    }
+  } else if (!strcmp(k, "pressure")) {
+    if (lua_isnil(L, 3)) {
+      m->bflags[b] &= ~TDS_PRESSURE;
+    } else {
+      m->bpressure[b] = luaL_checknumber(L, 3);
+      m->bflags[b] = (m->bflags[b] | TDS_PRESSURE) & ~TDS_TARGET;
+    }
+  } else if (!strcmp(k, "density")) {
+    m->bdensity[b] = luaL_checknumber(L, 3);
+    if (m->bdensity[b] != 0) s->gravity_on = 1;
+  } else if (!strcmp(k, "volconst")) {
+    m->bvolconst[b] = luaL_checknumber(L, 3);
+    m->bflags[b] |= TDS_VOLCONST;
+  } else return 0;
+  return 1;
+}
+
+static int (*const getters[TDS_NKINDS])(lua_State *, tds_state *, tds_id,
+                                        const char *) = {vertex_get, edge_get,
+                                                         facet_get, body_get};
+static int (*const setters[TDS_NKINDS])(lua_State *, tds_state *, tds_id,
+                                        const char *) = {vertex_set, edge_set,
+                                                         facet_set, body_set};
+
+/* __index: id, built-in attributes, C methods, then Lua extensions in the
+** metatable's `methods` table. */
+static int elem_index(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  int kind;
+  tds_id id = tds_check_elem(L, st, 1, -1, &kind);
+  const char *k = luaL_checkstring(L, 2);
+  if (!strcmp(k, "id")) {
+    lua_pushinteger(L, id + 1);
+    return 1;
+  }
+  if (getters[kind](L, st, id, k)) return 1;
+  lua_getmetatable(L, 1);
+  lua_getfield(L, -1, "methods");
+  lua_getfield(L, -1, k);
+  return 1;
+}
+
+static int elem_newindex(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  int kind;
+  tds_id id = tds_check_elem(L, st, 1, -1, &kind);
+  const char *k = luaL_checkstring(L, 2);
+  if (!setters[kind](L, st, id, k))
+    return luaL_error(L, "%s attribute '%s' cannot be set", kind_name[kind], k);
+  return 0;
+}
+
+static int elem_tostring(lua_State *L) {
+  handle *h = to_handle(L, 1);
+  lua_pushfstring(L, "%s %d", kind_name[h->kind], (int)h->id + 1);
+  return 1;
+}
+
+static int elem_eq(lua_State *L) {
+  handle *a = to_handle(L, 1), *b = to_handle(L, 2);
+  lua_pushboolean(L, a && b && a->kind == b->kind && a->id == b->id);
+  return 1;
+}
+
+/* tds.next(kind, i): the next live 1-based id after i (0 = start), or nil. */
+static int l_next(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  int kind = (int)luaL_checkinteger(L, 1);
+  luaL_argcheck(L, kind >= 0 && kind < TDS_NKINDS, 1, "bad element kind");
+  lua_Integer i = luaL_checkinteger(L, 2);
+  const tds_mesh *m = &st->s.m;
+  int32_t n = nslots(m, kind);
+  const uint32_t *fl = flags_of(m, kind);
+  for (tds_id j = (tds_id)(i < 0 ? 0 : i); j < n; j++)
+    if (!(fl[j] & TDS_DEAD)) {
+      lua_pushinteger(L, j + 1);
+      tds_push_elem(L, kind, j);
+      return 2;
+    }
+  return 0;
+}
+
+/* tds.get(kind, id): the handle of a live element, or nil. */
+static int l_get(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  int kind = (int)luaL_checkinteger(L, 1);
+  luaL_argcheck(L, kind >= 0 && kind < TDS_NKINDS, 1, "bad element kind");
+  lua_Integer id = luaL_checkinteger(L, 2);
+  if (id < 1 || id > INT32_MAX || !alive(&st->s.m, kind, (tds_id)id - 1))
+    return 0;
+  tds_push_elem(L, kind, (tds_id)id - 1);
+  return 1;
+}
+
+static int l_count(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  int kind = (int)luaL_checkinteger(L, 1);
+  luaL_argcheck(L, kind >= 0 && kind < TDS_NKINDS, 1, "bad element kind");
+  lua_pushinteger(L, tds_mesh_count(&st->s.m, kind));
+  return 1;
+}
+
+uint8_t *tds_lua_selection(lua_State *L, tds_state *st, int arg, int kind) {
+  if (lua_isnoneornil(L, arg)) return NULL;
+  int32_t n = nslots(&st->s.m, kind);
+  /* A full userdata owns the buffer so a raised error cannot leak it. */
+  uint8_t *sel = lua_newuserdatauv(L, (size_t)(n > 0 ? n : 1), 0);
+  memset(sel, 0, (size_t)(n > 0 ? n : 1));
+  int top = lua_gettop(L);
+  if (lua_isfunction(L, arg)) {
+    for (;;) {
+      lua_pushvalue(L, arg);
+      lua_call(L, 0, 1);
+      if (lua_isnil(L, -1)) break;
+      sel[tds_check_elem(L, st, -1, kind, NULL)] = 1;
+      lua_settop(L, top);
+    }
+  } else if (lua_istable(L, arg)) {
+    lua_Integer len = luaL_len(L, arg);
+    for (lua_Integer i = 1; i <= len; i++) {
+      lua_rawgeti(L, arg, i);
+      sel[tds_check_elem(L, st, -1, kind, NULL)] = 1;
+      lua_settop(L, top);
+    }
+  } else {
+    sel[tds_check_elem(L, st, arg, kind, NULL)] = 1;
+  }
+  lua_settop(L, top);
+  uint8_t *copy = malloc((size_t)(n > 0 ? n : 1));
+  if (!copy) luaL_error(L, "out of memory");
+  memcpy(copy, sel, (size_t)(n > 0 ? n : 1));
+  lua_pop(L, 1);
+  return copy;
+}
+
+void tds_open_elem(lua_State *L, tds_state *st) {
+  static const luaL_Reg meta[] = {{"__index", elem_index},
+                                  {"__newindex", elem_newindex},
+                                  {"__tostring", elem_tostring},
+                                  {"__eq", elem_eq},
+                                  {NULL, NULL}};
+  static const luaL_Reg methods[] = {{"on_constraint", on_constraint},
+                                     {"on_boundary", on_boundary},
+                                     {NULL, NULL}};
+  lua_newtable(L); /* tds methods: one shared table of Lua-visible methods */
+  for (int k = 0; k < TDS_NKINDS; k++) {
+    luaL_newmetatable(L, meta_name[k]);
+    tds_lua_register(L, st, meta);
+    lua_pushinteger(L, k);
+    lua_setfield(L, -2, "__tds_kind");
+    lua_newtable(L);
+    tds_lua_register(L, st, methods);
+    lua_pushvalue(L, -1);
+    lua_setfield(L, -4, kind_name[k]); /* tds_methods.vertex = ... */
+    lua_setfield(L, -2, "methods");
+    lua_pop(L, 1);
+  }
+  lua_setfield(L, -2, "methods"); /* tds.methods.<kind>: extend in Lua */
+  static const luaL_Reg fns[] = {{"next", l_next}, {"get", l_get},
+                                 {"count", l_count}, {NULL, NULL}};
+  tds_lua_register(L, st, fns);
+  for (int k = 0; k < TDS_NKINDS; k++) {
+    lua_pushinteger(L, k);
+    lua_setfield(L, -2, kind_name[k]); /* tds.vertex = 0, ... */
+  }
+}

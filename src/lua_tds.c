@@ -1,0 +1,115 @@
+/* lua_tds.c: the state, the raw `tds` library, the embedded prelude. */
+#include "lua_tds.h"
+
+#include <lualib.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "prelude.inc"
+
+int tds_lua_fail(lua_State *L, tds_state *st, int rc) {
+  (void)rc;
+  return luaL_error(L, "%s", st->ctx.errmsg);
+}
+
+void tds_lua_register(lua_State *L, tds_state *st, const luaL_Reg *fns) {
+  for (; fns->name; fns++) {
+    lua_pushlightuserdata(L, st);
+    lua_pushcclosure(L, fns->func, 1);
+    lua_setfield(L, -2, fns->name);
+  }
+}
+
+static int state_gc(lua_State *L) {
+  tds_state *st = lua_touserdata(L, 1);
+  tds_surf_free(&st->s);
+  free(st->datafile);
+  st->datafile = NULL;
+  return 0;
+}
+
+int tds_lua_is_quit(lua_State *L, int idx, int *code) {
+  if (!lua_istable(L, idx)) return 0;
+  lua_getfield(L, idx, "tds_quit");
+  int isq = lua_isinteger(L, -1);
+  if (isq && code) *code = (int)lua_tointeger(L, -1);
+  lua_pop(L, 1);
+  return isq;
+}
+
+/* package.preload loader for an embedded module (upvalue: its index). */
+static int load_embedded(lua_State *L) {
+  int i = (int)lua_tointeger(L, lua_upvalueindex(1));
+  char chunk[64];
+  snprintf(chunk, sizeof chunk, "=[tds %s]", lua_sources[i].name);
+  if (luaL_loadbuffer(L, (const char *)lua_sources[i].data,
+                      lua_sources[i].size, chunk) != LUA_OK)
+    return lua_error(L);
+  lua_call(L, 0, 1);
+  return 1;
+}
+
+/* SIGINT: flag the core's loops and stop running Lua code (as lua.c). */
+static lua_State *sig_L;
+static tds_state *sig_st;
+
+static void stop_hook(lua_State *L, lua_Debug *ar) {
+  (void)ar;
+  lua_sethook(L, NULL, 0, 0);
+  if (sig_st) sig_st->ctx.interrupt = 0;
+  luaL_error(L, "interrupted");
+}
+
+static void on_sigint(int sig) {
+  signal(sig, SIG_DFL); /* a second Ctrl-C kills the process */
+  if (sig_st) sig_st->ctx.interrupt = 1;
+  if (sig_L)
+    lua_sethook(sig_L, stop_hook, LUA_MASKCALL | LUA_MASKRET | LUA_MASKCOUNT, 1);
+}
+
+void tds_lua_sigint(lua_State *L, tds_state *st, int on) {
+  if (on) {
+    sig_L = L;
+    sig_st = st;
+    st->ctx.interrupt = 0;
+    signal(SIGINT, on_sigint);
+  } else {
+    signal(SIGINT, SIG_DFL);
+    lua_sethook(L, NULL, 0, 0);
+    sig_L = NULL;
+    sig_st = NULL;
+  }
+}
+
+tds_state *tds_lua_open(lua_State *L) {
+  luaL_openlibs(L);
+  tds_state *st = lua_newuserdatauv(L, sizeof *st, 0);
+  memset(st, 0, sizeof *st);
+  tds_ctx_init(&st->ctx);
+  tds_surf_init(&st->s);
+  lua_newtable(L); /* metatable */
+  lua_pushcfunction(L, state_gc);
+  lua_setfield(L, -2, "__gc");
+  lua_setmetatable(L, -2);
+  lua_setfield(L, LUA_REGISTRYINDEX, "tds.state");
+
+  lua_newtable(L); /* the raw library */
+  tds_open_elem(L, st);
+  tds_open_decl(L, st);
+  tds_open_cmd(L, st);
+  lua_setglobal(L, "tds");
+
+  lua_getglobal(L, "package");
+  lua_getfield(L, -1, "preload");
+  for (int i = 0; lua_sources[i].name; i++) {
+    lua_pushinteger(L, i);
+    lua_pushcclosure(L, load_embedded, 1);
+    lua_setfield(L, -2, lua_sources[i].name);
+  }
+  lua_pop(L, 2);
+  lua_getglobal(L, "require");
+  lua_pushstring(L, "prelude");
+  if (lua_pcall(L, 1, 0, 0) != LUA_OK) return NULL;
+  return st;
+}

@@ -1,0 +1,61 @@
+/*
+** lua_tds.h: the Lua bindings' shared state and helpers.
+**
+** One tds_state per lua_State, stored as a full userdata in the registry
+** and passed to every binding as upvalue 1. Bindings check arguments,
+** call the core, and turn a failing status into a Lua error carrying the
+** core's message (tds_lua_fail).
+*/
+#ifndef TDS_LUA_TDS_H
+#define TDS_LUA_TDS_H
+
+#include <lauxlib.h>
+#include <lua.h>
+
+#include "surf.h"
+
+typedef struct tds_state {
+  tds_ctx ctx;
+  tds_surf s;
+  int loaded;        /* a surface has been declared or loaded */
+  char *datafile;    /* name of the loaded file, for messages and dumps */
+} tds_state;
+
+#define TDS_STATE(L) ((tds_state *)lua_touserdata(L, lua_upvalueindex(1)))
+
+/* Raise the core's message for rc as a Lua error (never returns). */
+int tds_lua_fail(lua_State *L, tds_state *st, int rc);
+
+/* Create the state, open the tds library and the prelude into L's globals.
+** Returns the state (owned by L) or NULL with an error message on the
+** stack. */
+tds_state *tds_lua_open(lua_State *L);
+
+/* Register functions with the state as upvalue into the table on top. */
+void tds_lua_register(lua_State *L, tds_state *st, const luaL_Reg *fns);
+
+/* Openers of the binding files; each adds its functions to the table on
+** top of the stack (the raw `tds` table). */
+void tds_open_elem(lua_State *L, tds_state *st);
+void tds_open_decl(lua_State *L, tds_state *st);
+void tds_open_cmd(lua_State *L, tds_state *st);
+
+/* Push a handle for element (kind, 0-based id). */
+void tds_push_elem(lua_State *L, int kind, tds_id id);
+/* Check that argument i is a live element of `kind` (-1: any); returns its
+** 0-based id and stores the kind. */
+tds_id tds_check_elem(lua_State *L, tds_state *st, int i, int kind, int *kindp);
+
+/* Element selection from an iterator or handle list argument: returns a
+** malloc'd 0/1 array of `n` entries for `kind` (caller frees) or NULL when
+** the argument is absent (meaning all). Raises on bad arguments. */
+uint8_t *tds_lua_selection(lua_State *L, tds_state *st, int arg, int kind);
+
+/* Sigint support for the REPL and main: install / restore the handler that
+** sets ctx.interrupt and interrupts running Lua code. */
+void tds_lua_sigint(lua_State *L, tds_state *st, int on);
+
+/* q()/quit() raise a table { tds_quit = code }; this recognises it. */
+int tds_lua_is_quit(lua_State *L, int idx, int *code);
+
+#endif

@@ -1,0 +1,117 @@
+/* main.c: command line of the tds program. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "repl.h"
+
+static const char usage[] =
+    "usage: tds [options] [FILE]\n"
+    "Run a .tds script (Lua) or load a Surface Evolver datafile, then exit.\n"
+    "\n"
+    "  -i          open the interactive prompt after FILE (tds alone opens it)\n"
+    "  -e CODE     run Lua CODE after FILE; may be repeated\n"
+    "  -q          quiet: no per-iteration lines\n"
+    "  --help      show this help\n"
+    "  --version   show the version\n"
+    "\n"
+    "Exit status is 0 on success, 1 after an error, or the code given to q().\n";
+
+/* Load FILE as a chunk: a .tds script, or a datafile through tds.load. */
+static int load_file(lua_State *L, const char *path) {
+  lua_getglobal(L, "tds");
+  lua_getfield(L, -1, "load_chunk");
+  lua_remove(L, -2);
+  if (lua_isfunction(L, -1)) {
+    lua_pushstring(L, path);
+    if (lua_pcall(L, 1, 1, 0) != LUA_OK) return LUA_ERRFILE;
+    return LUA_OK;
+  }
+  lua_pop(L, 1);
+  return luaL_loadfile(L, path);
+}
+
+int main(int argc, char **argv) {
+  int interactive = 0, quiet = 0, status = 0, quit_code = 0;
+  const char *file = NULL;
+  const char **code = calloc((size_t)argc + 1, sizeof *code);
+  int ncode = 0;
+  if (!code) return 1;
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+      fputs(usage, stdout);
+      free(code);
+      return 0;
+    } else if (!strcmp(a, "--version")) {
+      printf("tds %s (%s)\n", TDS_VERSION, LUA_RELEASE);
+      free(code);
+      return 0;
+    } else if (!strcmp(a, "-i")) {
+      interactive = 1;
+    } else if (!strcmp(a, "-q")) {
+      quiet = 1;
+    } else if (!strcmp(a, "-e")) {
+      if (++i == argc) {
+        fprintf(stderr, "tds: -e needs an argument\n%s", usage);
+        free(code);
+        return 1;
+      }
+      code[ncode++] = argv[i];
+    } else if (a[0] == '-' && a[1]) {
+      fprintf(stderr, "tds: unknown option '%s'\n%s", a, usage);
+      free(code);
+      return 1;
+    } else if (!file) {
+      file = a;
+    } else {
+      fprintf(stderr, "tds: only one FILE may be given ('%s')\n", a);
+      free(code);
+      return 1;
+    }
+  }
+  lua_State *L = luaL_newstate();
+  if (!L) {
+    fprintf(stderr, "tds: cannot create Lua state\n");
+    free(code);
+    return 1;
+  }
+  tds_state *st = tds_lua_open(L);
+  if (!st) {
+    fprintf(stderr, "tds: %s\n", lua_tostring(L, -1));
+    lua_close(L);
+    free(code);
+    return 1;
+  }
+  st->ctx.quiet = quiet;
+  int rc = 0;
+  if (file) {
+    if (load_file(L, file) != LUA_OK) {
+      fprintf(stderr, "%s\n", lua_tostring(L, -1));
+      rc = 1;
+    } else {
+      rc = tds_run_chunk(L, st, &quit_code);
+    }
+  }
+  for (int i = 0; i < ncode && rc == 0; i++) {
+    if (luaL_loadbuffer(L, code[i], strlen(code[i]), "=(command line)") != LUA_OK) {
+      fprintf(stderr, "%s\n", lua_tostring(L, -1));
+      lua_pop(L, 1);
+      rc = 1;
+    } else {
+      rc = tds_run_chunk(L, st, &quit_code);
+    }
+  }
+  if (rc == 2) {
+    status = quit_code;
+  } else if (interactive || (!file && ncode == 0)) {
+    int r = tds_repl(L, st);
+    status = rc ? 1 : r;
+  } else {
+    status = rc;
+  }
+  lua_close(L);
+  free(code);
+  return status;
+}

@@ -1,0 +1,154 @@
+/*
+** mesh.h: the element store of a soap-film surface.
+**
+** Struct-of-arrays per element kind, addressed by 0-based indices. Slots
+** are never moved: a deleted element keeps its slot with TDS_DEAD set, so
+** user ids (index + 1) stay stable. New elements are appended.
+**
+** Facet f has vertices fv[f][0..2] and oriented edges fe[f][0..2]; side
+** s = 3f+k runs from fv[f][k] to fv[f][(k+1)%3] along edge fe[f][k].
+** The sides on one edge form a circular ring through side_next[], entered
+** at eside[e]; any number of facets may share an edge. The ring is kept in
+** no particular angular order.
+**
+** The primary arrays (x, ev, fv, fe, fb, side_next/eside) are the truth.
+** Vertex stars are derived (mesh_adj.c), rebuilt when topo_gen moves.
+*/
+#ifndef TDS_MESH_H
+#define TDS_MESH_H
+
+#include "tds.h"
+
+enum {                      /* element flags (any kind) */
+  TDS_DEAD = 1u << 0,       /* slot unused */
+  TDS_FIXED = 1u << 1,      /* does not move (vertex) / fixes descendants */
+  TDS_NO_REFINE = 1u << 2,  /* edge or facet not subdivided by refine */
+  TDS_BARE = 1u << 3,       /* vertex or edge expected to have no facets */
+  TDS_NODISPLAY = 1u << 4,  /* facet hidden in graphics (kept for dumps) */
+  TDS_TARGET = 1u << 5,     /* body volume is constrained to btarget */
+  TDS_PRESSURE = 1u << 6,   /* body has a prescribed pressure */
+  TDS_NONCONTENT = 1u << 7, /* facet or edge excluded from volumes */
+  TDS_HIT = 1u << 8,        /* vertex: a one-sided constraint is active */
+  TDS_VOLCONST = 1u << 9,   /* body has an explicit volconst */
+  TDS_CONREV = 1u << 10     /* edge: constraint integrals run reversed */
+};
+
+enum { TDS_VERTEX = 0, TDS_EDGE, TDS_FACET, TDS_BODY, TDS_NKINDS };
+
+typedef uint64_t tds_cmask; /* bit c set: on constraint slot c (0..63) */
+
+typedef struct tds_mesh {
+  /* vertices */
+  int32_t nv, capv;         /* slots used, capacity */
+  double (*x)[3];           /* position */
+  uint32_t *vflags;
+  tds_cmask *vcon;          /* constraints the vertex is on */
+  int32_t *vbdry;           /* parametric boundary index or TDS_NONE */
+  double (*vp)[2];          /* boundary parameters */
+  /* edges */
+  int32_t ne, cape;
+  tds_id (*ev)[2];          /* tail, head */
+  uint32_t *eflags;
+  tds_cmask *econ;
+  int32_t *ebdry;
+  double *eten;             /* edge tension (default 0 in the soapfilm model) */
+  int16_t *ecolor;
+  int32_t *eside;           /* one facet side on the edge or TDS_NONE */
+  /* facets */
+  int32_t nf, capf;
+  tds_id (*fv)[3];
+  int32_t (*fe)[3];         /* oriented edge references */
+  tds_id (*fb)[2];          /* [0] frontbody (listed +), [1] backbody (-) */
+  uint32_t *fflags;
+  tds_cmask *fcon;
+  double *ften;             /* surface tension (default 1) */
+  int16_t *fcolor;
+  tds_id *forig;            /* facet of the datafile it descends from */
+  int32_t *side_next;       /* ring of sides around an edge, 3*capf */
+  /* bodies */
+  int32_t nb, capb;
+  uint32_t *bflags;
+  double *btarget;          /* target volume (TDS_TARGET) */
+  double *bvolconst;        /* constant added to the computed volume */
+  double *bdensity;         /* for gravity */
+  double *bpressure;        /* Lagrange multiplier, or prescribed pressure */
+  double *bvol;             /* actual volume, as last computed */
+
+  uint64_t topo_gen;        /* bumped by every topology change */
+  uint64_t coord_gen;       /* bumped by every coordinate change */
+
+  /* derived adjacency (mesh_adj.c), valid while adj_gen == topo_gen */
+  uint64_t adj_gen;
+  int32_t *vf_start, *vf;   /* facets around each vertex, CSR */
+  int32_t *ve_start, *ve;   /* oriented edges leaving each vertex, CSR */
+  int32_t adj_cap[4];        /* capacities of vf_start, ve_start, vf, ve */
+} tds_mesh;
+
+/* Set up an empty mesh. */
+void tds_mesh_init(tds_mesh *m);
+/* Release all storage; the mesh is empty and reusable afterwards. */
+void tds_mesh_free(tds_mesh *m);
+/* Deep copy of src into an initialised empty dst. TDS_OK or TDS_ENOMEM. */
+int tds_mesh_copy(tds_mesh *dst, const tds_mesh *src);
+
+/* Make room for at least n slots of `kind` (all columns grow together).
+** TDS_OK or TDS_ENOMEM; on failure nothing observable changes. */
+int tds_mesh_reserve(tds_mesh *m, int kind, int32_t n);
+
+/* Append a vertex at x; returns its index or TDS_NONE (out of memory). */
+tds_id tds_mesh_add_vertex(tds_mesh *m, const double x[3]);
+/* Append an edge from v0 to v1; index or TDS_NONE. Vertices must exist. */
+tds_id tds_mesh_add_edge(tds_mesh *m, tds_id v0, tds_id v1);
+/* Append a facet bounded by three oriented edges that chain head to tail;
+** links its sides into the edge rings. Index or TDS_NONE. The caller
+** checks the chain (tds_mesh_edges_chain). */
+tds_id tds_mesh_add_facet(tds_mesh *m, const int32_t oe[3]);
+/* Append a body with no facets; index or TDS_NONE. */
+tds_id tds_mesh_add_body(tds_mesh *m);
+/* Extend the slot range of `kind` to n slots, the new ones dead (used to
+** honour explicit ids with gaps). TDS_OK or TDS_ENOMEM. */
+int tds_mesh_extend_dead(tds_mesh *m, int kind, int32_t n);
+
+/* Bring dead slot `id` of `kind` to life with default attributes,
+** extending the slot range as needed (explicit ids). A claimed facet has no
+** edges yet: give it some with tds_mesh_set_facet. TDS_OK, TDS_ENOMEM, or
+** TDS_ERANGE if the slot is already in use. */
+int tds_mesh_claim(tds_mesh *m, int kind, tds_id id);
+
+/* Give facet f new oriented edges (vertices follow), relinking its sides in
+** the edge rings. The chain must be valid. Bumps topo_gen. */
+void tds_mesh_set_facet(tds_mesh *m, tds_id f, const int32_t oe[3]);
+/* Mark an element dead; a facet is unlinked from its edges first. */
+void tds_mesh_kill(tds_mesh *m, int kind, tds_id id);
+
+/* Tail and head vertex of an oriented edge reference. */
+static inline tds_id tds_oe_tail(const tds_mesh *m, int32_t oe) {
+  return m->ev[TDS_OID(oe)][TDS_OREV(oe)];
+}
+static inline tds_id tds_oe_head(const tds_mesh *m, int32_t oe) {
+  return m->ev[TDS_OID(oe)][!TDS_OREV(oe)];
+}
+/* Nonzero when the three oriented edges exist and chain head to tail. */
+int tds_mesh_edges_chain(const tds_mesh *m, const int32_t oe[3]);
+
+/* Number of facet sides on edge e (0 for a bare edge). */
+int tds_edge_valence(const tds_mesh *m, tds_id e);
+
+static inline int tds_alive(const uint32_t *flags, tds_id i) {
+  return !(flags[i] & TDS_DEAD);
+}
+/* Live element counts. */
+int32_t tds_mesh_count(const tds_mesh *m, int kind);
+
+/* Rebuild derived adjacency if stale. TDS_OK or TDS_ENOMEM. */
+int tds_mesh_adjacency(tds_mesh *m);
+
+/* Validate every invariant of the store (links, rings, orientation, body
+** references, derived adjacency if current). Returns TDS_OK or TDS_ETOPO
+** with a message naming the broken relation in ctx. */
+int tds_mesh_check(tds_ctx *ctx, tds_mesh *m);
+
+/* Bytes of storage held by the mesh per live facet (for the benchmark). */
+size_t tds_mesh_bytes(const tds_mesh *m);
+
+#endif

@@ -1,0 +1,220 @@
+/* repl.c: the read-eval-print loop (Lua first, Evolver habits second). */
+#include "repl.h"
+
+#include <ctype.h>
+#include <readline/history.h>
+#include <readline/readline.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#define PROMPT1 "tds> "
+#define PROMPT2 "...> "
+#define HISTORY_MAX 1000
+
+static void print_error(lua_State *L) {
+  const char *msg = lua_tostring(L, -1);
+  if (!msg) {
+    if (luaL_callmeta(L, -1, "__tostring") && lua_type(L, -1) == LUA_TSTRING)
+      msg = lua_tostring(L, -1);
+    else
+      msg = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, -1));
+  }
+  fprintf(stderr, "%s\n", msg);
+  fflush(stderr);
+}
+
+int tds_run_chunk(lua_State *L, tds_state *st, int *quit_code) {
+  fflush(stdout);
+  tds_lua_sigint(L, st, 1);
+  int status = lua_pcall(L, 0, LUA_MULTRET, 0);
+  tds_lua_sigint(L, st, 0);
+  fflush(stdout);
+  if (status == LUA_OK) return 0;
+  if (tds_lua_is_quit(L, -1, quit_code)) {
+    lua_pop(L, 1);
+    return 2;
+  }
+  print_error(L);
+  lua_pop(L, 1);
+  return 1;
+}
+
+/* One line of input (without the newline), malloc'd; NULL at end of input. */
+static char *read_line(int tty, const char *prompt) {
+  if (tty) {
+    signal(SIGINT, SIG_IGN); /* Ctrl-C at the prompt does nothing */
+    char *line = readline(prompt);
+    signal(SIGINT, SIG_DFL);
+    return line;
+  }
+  size_t cap = 256, n = 0;
+  char *buf = malloc(cap);
+  if (!buf) return NULL;
+  int c;
+  while ((c = getchar()) != EOF && c != '\n') {
+    if (n + 1 == cap) {
+      char *b = realloc(buf, cap *= 2);
+      if (!b) {
+        free(buf);
+        return NULL;
+      }
+      buf = b;
+    }
+    buf[n++] = (char)c;
+  }
+  if (c == EOF && n == 0) {
+    free(buf);
+    return NULL;
+  }
+  buf[n] = 0;
+  return buf;
+}
+
+/* Syntax error caused only by the end of the chunk: more input may fix it. */
+static int incomplete(lua_State *L, int status) {
+  if (status != LUA_ERRSYNTAX) return 0;
+  size_t len;
+  const char *msg = lua_tolstring(L, -1, &len);
+  return len >= 5 && strcmp(msg + len - 5, "<eof>") == 0;
+}
+
+/* A line that is just a name whose value is a function: call it (Evolver
+** habit: `r`, `gogo`). Pushes the function and returns 1 if so. */
+static int bare_function(lua_State *L, const char *line) {
+  const char *p = line, *start;
+  while (isspace((unsigned char)*p)) p++;
+  start = p;
+  if (!isalpha((unsigned char)*p) && *p != '_') return 0;
+  while (isalnum((unsigned char)*p) || *p == '_') p++;
+  const char *end = p;
+  while (isspace((unsigned char)*p)) p++;
+  if (*p) return 0;
+  lua_pushglobaltable(L);
+  lua_pushlstring(L, start, (size_t)(end - start));
+  lua_gettable(L, -2);
+  lua_remove(L, -2);
+  if (lua_isfunction(L, -1)) return 1;
+  lua_pop(L, 1);
+  return 0;
+}
+
+/* Compile the chunk in *buf (may read continuation lines, growing *buf).
+** Leaves a function on the stack and returns 1, or prints the error and
+** returns 0. */
+static int compile(lua_State *L, int tty, char **buf) {
+  if (bare_function(L, *buf)) return 1;
+  lua_pushfstring(L, "return %s;", *buf);
+  int status = luaL_loadbuffer(L, lua_tostring(L, -1), lua_rawlen(L, -1), "=stdin");
+  lua_remove(L, -2);
+  if (status == LUA_OK) return 1;
+  lua_pop(L, 1);
+  for (;;) {
+    status = luaL_loadbuffer(L, *buf, strlen(*buf), "=stdin");
+    if (!incomplete(L, status)) break;
+    lua_pop(L, 1);
+    char *more = read_line(tty, PROMPT2);
+    if (!more) {
+      luaL_loadbuffer(L, *buf, strlen(*buf), "=stdin"); /* the error again */
+      break;
+    }
+    size_t n = strlen(*buf) + strlen(more) + 2;
+    char *joined = malloc(n);
+    if (!joined) {
+      free(more);
+      lua_pushliteral(L, "out of memory");
+      status = LUA_ERRMEM;
+      break;
+    }
+    snprintf(joined, n, "%s\n%s", *buf, more);
+    free(more);
+    free(*buf);
+    *buf = joined;
+  }
+  if (status == LUA_OK) return 1;
+  /* Not Lua: maybe Evolver command syntax. */
+  lua_getglobal(L, "tds");
+  lua_getfield(L, -1, "translate");
+  lua_remove(L, -2);
+  lua_pushstring(L, *buf);
+  if (lua_pcall(L, 1, 1, 0) == LUA_OK && lua_isstring(L, -1)) {
+    const char *code = lua_tostring(L, -1);
+    if (luaL_loadbuffer(L, code, strlen(code), "=stdin") == LUA_OK) {
+      lua_remove(L, -2); /* translation */
+      lua_remove(L, -2); /* original error */
+      return 1;
+    }
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  print_error(L); /* the original Lua message */
+  lua_pop(L, 1);
+  return 0;
+}
+
+static char *history_path(void) {
+  const char *env = getenv("TDS_HISTORY");
+  if (env) return *env ? strdup(env) : NULL;
+  const char *home = getenv("HOME");
+  if (!home || !*home) return NULL;
+  size_t n = strlen(home) + 16;
+  char *p = malloc(n);
+  if (p) snprintf(p, n, "%s/.tds_history", home);
+  return p;
+}
+
+int tds_repl(lua_State *L, tds_state *st) {
+  int tty = isatty(0), failed = 0, code = 0;
+  char *hist = tty ? history_path() : NULL;
+  if (hist) {
+    stifle_history(HISTORY_MAX);
+    if (read_history(hist) != 0) write_history(hist);
+  }
+  if (tty)
+    printf("tds %s: Lua with soap films. `help()` lists commands, q quits.\n",
+           TDS_VERSION);
+  char *buf;
+  while ((buf = read_line(tty, PROMPT1)) != NULL) {
+    const char *p = buf;
+    while (isspace((unsigned char)*p)) p++;
+    if (!*p) {
+      free(buf);
+      continue;
+    }
+    int base = lua_gettop(L);
+    if (compile(L, tty, &buf)) {
+      if (hist) {
+        add_history(buf);
+        append_history(1, hist);
+      }
+      int rc = tds_run_chunk(L, st, &code);
+      if (rc == 2) {
+        free(buf);
+        goto done;
+      }
+      failed |= rc;
+      int n = lua_gettop(L) - base;
+      if (n > 0) { /* print results with the global print */
+        lua_getglobal(L, "print");
+        lua_insert(L, base + 1);
+        if (lua_pcall(L, n, 0, 0) != LUA_OK) {
+          print_error(L);
+          lua_pop(L, 1);
+        }
+      }
+    } else {
+      failed = 1;
+    }
+    lua_settop(L, base);
+    free(buf);
+  }
+  code = tty ? 0 : failed;
+done:
+  if (hist) {
+    history_truncate_file(hist, HISTORY_MAX);
+    free(hist);
+  }
+  return code;
+}

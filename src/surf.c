@@ -1,0 +1,87 @@
+/* surf.c: surface lifetime, parameters and constraint lookup. */
+#include "surf.h"
+
+#include <ctype.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "expr.h"
+
+void tds_surf_init(tds_surf *s) {
+  memset(s, 0, sizeof *s);
+  tds_mesh_init(&s->m);
+  s->gravity = 1;            /* Evolver's default G; off until a density */
+  s->gap_constant = 1;
+  s->constraint_tol = 1e-12;
+  s->target_tol = 1e-4;
+  s->scale = 0.1;
+  s->scale_limit = 1;
+}
+
+static void free_exprs(tds_expr **e, int n) {
+  for (int i = 0; i < n; i++) tds_expr_free(e[i]);
+}
+
+void tds_surf_free(tds_surf *s) {
+  tds_mesh_free(&s->m);
+  for (int i = 0; i < s->npar; i++) free(s->parname[i]);
+  free(s->parname);
+  free(s->parval);
+  for (int i = 0; i < TDS_MAX_CON; i++) {
+    tds_constraint *c = &s->con[i];
+    tds_expr_free(c->formula);
+    free_exprs(c->energy, 3);
+    free_exprs(c->content, 3);
+  }
+  for (int i = 0; i < s->nbdry; i++) {
+    free_exprs(s->bdry[i].x, 3);
+    free_exprs(s->bdry[i].energy, 3);
+    free_exprs(s->bdry[i].content, 3);
+  }
+  free(s->bdry);
+  for (int i = 0; i < s->nquant; i++) {
+    free(s->quant[i].name);
+    for (int j = 0; j < s->quant[i].ninst; j++)
+      free_exprs(s->quant[i].inst[j].integrand, 3);
+  }
+  free(s->quant);
+  tds_surf_init(s);
+}
+
+int tds_surf_param_find(const tds_surf *s, const char *name, size_t len) {
+  for (int i = 0; i < s->npar; i++)
+    if (strlen(s->parname[i]) == len && strncasecmp(s->parname[i], name, len) == 0)
+      return i;
+  return -1;
+}
+
+int tds_surf_param_set(tds_surf *s, const char *name, double value) {
+  int i = tds_surf_param_find(s, name, strlen(name));
+  if (i >= 0) {
+    s->parval[i] = value;
+    return i;
+  }
+  if (s->npar == s->cappar) {
+    int cap = s->cappar ? 2 * s->cappar : 16;
+    char **n = realloc(s->parname, (size_t)cap * sizeof *n);
+    if (!n) return -1;
+    s->parname = n;
+    double *v = realloc(s->parval, (size_t)cap * sizeof *v);
+    if (!v) return -1;
+    s->parval = v;
+    s->cappar = cap;
+  }
+  char *copy = strdup(name);
+  if (!copy) return -1;
+  for (char *p = copy; *p; p++) *p = (char)tolower((unsigned char)*p);
+  s->parname[s->npar] = copy;
+  s->parval[s->npar] = value;
+  return s->npar++;
+}
+
+int tds_surf_con_slot(const tds_surf *s, int number) {
+  for (int i = 0; i < TDS_MAX_CON; i++)
+    if (s->con[i].number == number && number != 0) return i;
+  return -1;
+}

@@ -1,0 +1,116 @@
+/*
+** surf.h: a surface = the mesh plus its model (parameters, constraints,
+** boundaries, quantities, gravity) and iteration settings.
+**
+** Everything the commands need lives here, so two surfaces can coexist in
+** one process. Commands take (tds_ctx *, tds_surf *) and return a status.
+*/
+#ifndef TDS_SURF_H
+#define TDS_SURF_H
+
+#include "mesh.h"
+
+typedef struct tds_expr tds_expr;
+
+#define TDS_MAX_CON 64   /* constraint slots (bits of tds_cmask) */
+
+enum {                   /* constraint flags */
+  TDS_CON_NONNEG = 1,    /* one-sided: formula >= 0 allowed */
+  TDS_CON_NONPOS = 2,    /* one-sided: formula <= 0 allowed */
+  TDS_CON_CONVEX = 4,    /* gap energy for edges on it */
+  TDS_CON_GLOBAL = 8     /* applies to every vertex */
+};
+
+typedef struct tds_constraint {
+  int number;             /* user's id (1-based, as declared); 0 = unused */
+  int flags;
+  tds_expr *formula;      /* level set: formula(x) = 0 */
+  tds_expr *energy[3];    /* edge integrand (vector field), or NULL */
+  tds_expr *content[3];   /* edge integrand added to body volumes */
+} tds_constraint;
+
+typedef struct tds_boundary {
+  int number;             /* user's id; 0 = unused */
+  int nparams;            /* 1 (wire) or 2 (surface) */
+  int flags;              /* TDS_CON_CONVEX */
+  tds_expr *x[3];         /* position as functions of p1, p2 */
+  tds_expr *energy[3];
+  tds_expr *content[3];
+} tds_boundary;
+
+enum { TDS_Q_ENERGY = 0, TDS_Q_FIXED, TDS_Q_INFO };
+enum {
+  TDS_M_FACET_AREA = 0, TDS_M_EDGE_LENGTH, TDS_M_FACET_VECTOR_INTEGRAL,
+  TDS_M_EDGE_VECTOR_INTEGRAL, TDS_M_FACET_SCALAR_INTEGRAL,
+  TDS_M_EDGE_SCALAR_INTEGRAL, TDS_M_GRAVITY, TDS_M_COUNT
+};
+
+typedef struct tds_method_inst {
+  int method;             /* TDS_M_* */
+  double modulus;         /* multiplier of this instance */
+  tds_expr *integrand[3]; /* vector integrand, or [0] scalar */
+} tds_method_inst;
+
+typedef struct tds_quantity {
+  char *name;
+  int kind;               /* TDS_Q_ENERGY / FIXED / INFO */
+  double modulus;         /* multiplies the value in the energy */
+  double target;          /* for FIXED */
+  double volconst;        /* added to the value */
+  double value;           /* as last computed */
+  double pressure;        /* Lagrange multiplier (FIXED) */
+  int ninst;
+  tds_method_inst inst[4];
+} tds_quantity;
+
+typedef struct tds_surf {
+  tds_mesh m;
+
+  /* parameters: live values read by compiled expressions through slots */
+  int npar, cappar;
+  char **parname;         /* lower-case names */
+  double *parval;
+
+  tds_constraint con[TDS_MAX_CON];
+  int nbdry;
+  tds_boundary *bdry;     /* nbdry slots */
+  int nquant;
+  tds_quantity *quant;
+
+  /* model */
+  double gravity;         /* G */
+  int gravity_on;         /* gravity energy active */
+  int symmetric_content;  /* volume via (x,y,z)/3 . dS */
+  double gap_constant;    /* spring constant for convex constraints */
+  double constraint_tol;  /* level-set projection tolerance */
+  double target_tol;      /* volume constraint tolerance (reporting) */
+
+  /* iteration settings and state */
+  double scale;           /* last scale factor */
+  double scale_limit;     /* upper bound of the optimizing scale */
+  int fixed_scale;        /* nonzero: use `scale` as given (m command) */
+  int64_t iterations;     /* iterations done since load */
+
+  /* last computed totals */
+  double energy, area;
+} tds_surf;
+
+/* Initialise an empty surface with Evolver's defaults. */
+void tds_surf_init(tds_surf *s);
+/* Release everything the surface owns. */
+void tds_surf_free(tds_surf *s);
+
+/* Recompute energy, area and body volumes (fills s->energy, s->area,
+** m.bvol and quantity values). TDS_OK, or TDS_ENUM if not finite. */
+int tds_surf_update(tds_ctx *ctx, tds_surf *s);
+
+/* Parameter table. tds_surf_param_find returns the slot or -1;
+** tds_surf_param_set creates the parameter if needed and returns its slot,
+** or -1 when out of memory. Names are matched case-insensitively. */
+int tds_surf_param_find(const tds_surf *s, const char *name, size_t len);
+int tds_surf_param_set(tds_surf *s, const char *name, double value);
+
+/* Constraint slot for a user number, or -1 if not declared. */
+int tds_surf_con_slot(const tds_surf *s, int number);
+
+#endif

@@ -1,0 +1,73 @@
+/*
+** tds.h: shared types, status codes and the error context of the core.
+**
+** The core (every src/ file that is not lua_*.c, repl.c or main.c) never
+** includes lua.h, never exits and keeps no globals. Functions return a
+** status code; on failure the message is in ctx->errmsg (SQLite style).
+*/
+#ifndef TDS_H
+#define TDS_H
+
+#include <signal.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#define TDS_VERSION "0.1.0"
+
+typedef int32_t tds_id;    /* element index, 0-based in C; TDS_NONE if absent */
+#define TDS_NONE (-1)
+
+/* An oriented reference packs an index and a reversal bit (Evolver's sign). */
+#define TDS_OREF(id, rev) (((id) << 1) | ((rev) ? 1 : 0))
+#define TDS_OID(r) ((r) >> 1)
+#define TDS_OREV(r) ((r) & 1)
+#define TDS_OFLIP(r) ((r) ^ 1)
+
+enum {
+  TDS_OK = 0,
+  TDS_ENOMEM,   /* allocation failed */
+  TDS_EIO,      /* file could not be read or written */
+  TDS_ESYNTAX,  /* malformed input (datafile, expression) */
+  TDS_ETOPO,    /* topology operation refused or mesh inconsistent */
+  TDS_ERANGE,   /* argument out of range, element does not exist */
+  TDS_EINTR,    /* interrupted by the user (Ctrl-C) */
+  TDS_ENUM      /* numerical failure (NaN, singular system) */
+};
+
+/* Where progress lines and warnings go; the REPL and tests may capture them. */
+typedef void (*tds_out_fn)(void *ud, const char *text);
+
+typedef struct tds_ctx {
+  char errmsg[1024];                 /* message of the last failure */
+  volatile sig_atomic_t interrupt;   /* set asynchronously (SIGINT); polled */
+  tds_out_fn out;                    /* progress output; NULL = stdout */
+  void *out_ud;
+  tds_out_fn warn;                   /* warnings; NULL = stderr */
+  void *warn_ud;
+  int quiet;                         /* suppress progress lines */
+} tds_ctx;
+
+/* Initialise a context with default sinks. */
+void tds_ctx_init(tds_ctx *ctx);
+
+/* Store a formatted message in ctx->errmsg and return rc. */
+int tds_seterr(tds_ctx *ctx, int rc, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+/* Print a formatted progress line (or any text) through ctx->out. */
+void tds_printf(tds_ctx *ctx, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+
+/* Emit a formatted warning through ctx->warn. */
+void tds_warnf(tds_ctx *ctx, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+
+/* Zero-initialised allocation helpers; NULL on failure (n*size checked). */
+void *tds_calloc(size_t n, size_t size);
+
+/* Grow *p (element size `size`) from capacity *cap to at least `need`
+** elements, zero-filling the new part. Returns TDS_OK or TDS_ENOMEM (on
+** failure *p and *cap are untouched). */
+int tds_grow(void **p, size_t size, int32_t *cap, int32_t need);
+
+#endif

@@ -1,0 +1,89 @@
+/*
+** topo.h: topology-changing commands and the face builder.
+**
+** Each command checks and reserves everything it needs before mutating,
+** so a failure (out of memory) leaves the surface as it was. All of them
+** bump topo_gen; ids of existing elements never change.
+*/
+#ifndef TDS_TOPO_H
+#define TDS_TOPO_H
+
+#include "surf.h"
+
+/* Refine: split every selected edge at its midpoint (all live edges without
+** TDS_NO_REFINE when sel is NULL; otherwise those with sel[e] != 0) and
+** subdivide the facets around them: 3 split edges give 4 facets, 2 give 3,
+** 1 gives 2. New vertices inherit fixed/constraints/boundary from their
+** edge (boundary parameters by interpolation) and are projected onto their
+** constraints; new edges inside a facet inherit the facet's fixed,
+** no_refine and constraints; new facets inherit everything. Counts of new
+** elements go to *nsplit (edges split) if not NULL. */
+int tds_refine(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nsplit);
+
+/* Equiangulate: flip every edge between exactly two facets whose angles
+** opposite the edge sum to more than pi, until none is left (a work set,
+** as in Delaunay flipping). Never flips fixed edges, edges on constraints
+** or boundaries, edges of other than two facets, edges whose facets differ
+** in tension, bodies, constraints or fixedness, or a flip that would
+** duplicate an existing edge. sel as for tds_refine (NULL = all).
+** *nflips gets the number of flips. */
+int tds_equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
+                     int32_t *nflips);
+
+/* Whether edge e may be flipped (the rules above), and if so the two
+** facets and the opposite vertices: f1 contains e forwards, f2 backwards. */
+int tds_flip_ok(const tds_surf *s, tds_id e, tds_id *f1, tds_id *f2);
+
+/* Flip edge e (tds_flip_ok must hold and the new edge must not exist). */
+void tds_flip(tds_surf *s, tds_id e, tds_id f1, tds_id f2);
+
+/* Vertex averaging (Evolver's V): every free vertex moves to the
+** area-weighted mean of the centroids of its facets, minus the normal
+** component of that move (volume kept to first order); vertices on
+** constraints, boundaries, triple or border edges are averaged along
+** those edges only, if they have exactly two such neighbours, then
+** projected back. All new positions are computed before any move.
+** sel as for tds_refine but over vertices. *nmoved: vertices moved. */
+int tds_vertex_average(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
+                       int32_t *nmoved);
+
+/* Attributes of a declared face, applied to every facet built from it. */
+typedef struct tds_face_attr {
+  uint32_t flags;      /* TDS_FIXED, TDS_NO_REFINE, TDS_NODISPLAY, ... */
+  tds_cmask con;
+  double tension;
+  int16_t color;
+} tds_face_attr;
+
+/* Build face `f` (0-based id) from a loop of n >= 3 oriented edges that
+** chain head to tail. A triangle occupies slot f. A longer loop gets a new
+** centre vertex at the mean of its vertices, n spoke edges (loop vertex ->
+** centre) and n triangles, as Evolver splits faces: the triangle on the
+** last loop edge occupies slot f, the others are appended. Every facet
+** built records f as its original face (forig). TDS_OK, TDS_ERANGE (slot
+** in use), TDS_ETOPO (edges do not chain) or TDS_ENOMEM. */
+int tds_build_face(tds_ctx *ctx, tds_surf *s, tds_id f, int n,
+                   const int32_t *oe, const tds_face_attr *attr);
+
+/* Declarations (shared by .tds scripts and the datafile reader). Ids are
+** 0-based slots; each checks its references and fails with a message
+** naming the element (1-based ids) and TDS_ERANGE/TDS_ETOPO/TDS_ENOMEM. */
+
+/* Vertex `v` at x, or on boundary slot bdry (>= 0) at parameters p (x is
+** then computed). Projected onto its constraints. */
+int tds_decl_vertex(tds_ctx *ctx, tds_surf *s, tds_id v, const double x[3],
+                    int32_t bdry, const double p[2], uint32_t flags,
+                    tds_cmask con);
+
+/* Edge `e` from vertex t to h. */
+int tds_decl_edge(tds_ctx *ctx, tds_surf *s, tds_id e, tds_id t, tds_id h,
+                  uint32_t flags, tds_cmask con, int32_t bdry, double tension,
+                  int16_t color);
+
+/* Body `b` bounded by declared faces (signed 1-based face ids: + when the
+** face's normal points out of the body). Every facet built from a listed
+** face gets b as front (+) or back (-) body. */
+int tds_decl_body(tds_ctx *ctx, tds_surf *s, tds_id b, int n,
+                  const int32_t *faces);
+
+#endif

@@ -1,0 +1,183 @@
+/* topo_refine.c: the r command (edge midpoints, facets into 2, 3 or 4). */
+#include "topo.h"
+
+#include <stdlib.h>
+
+#include "motion.h"
+#include "vec3.h"
+
+/* Oriented reference to the first (tail side) or second half of the split
+** oriented edge oe; edge e now runs tail->mid and e2[e] mid->head. */
+static int32_t half(const int32_t *e2, int32_t oe, int second) {
+  tds_id e = TDS_OID(oe);
+  if (!TDS_OREV(oe)) return second ? TDS_OREF(e2[e], 0) : TDS_OREF(e, 0);
+  return second ? TDS_OREF(e, 1) : TDS_OREF(e2[e], 1);
+}
+
+static void inherit_facet(tds_mesh *m, tds_id dst, tds_id src) {
+  m->fflags[dst] = m->fflags[src];
+  m->fcon[dst] = m->fcon[src];
+  m->ften[dst] = m->ften[src];
+  m->fcolor[dst] = m->fcolor[src];
+  m->fb[dst][0] = m->fb[src][0];
+  m->fb[dst][1] = m->fb[src][1];
+  m->forig[dst] = m->forig[src] != TDS_NONE ? m->forig[src] : src;
+}
+
+/* A new edge inside facet f, from v0 to v1. */
+static tds_id inner_edge(tds_mesh *m, tds_id f, tds_id v0, tds_id v1) {
+  tds_id e = tds_mesh_add_edge(m, v0, v1);
+  m->eflags[e] = m->fflags[f] & (TDS_FIXED | TDS_NO_REFINE);
+  m->econ[e] = m->fcon[f];
+  return e;
+}
+
+static tds_id new_facet(tds_mesh *m, tds_id src, int32_t a, int32_t b, int32_t c) {
+  int32_t oe[3] = {a, b, c};
+  tds_id f = tds_mesh_add_facet(m, oe);
+  inherit_facet(m, f, src);
+  return f;
+}
+
+static void set3(tds_mesh *m, tds_id f, int32_t a, int32_t b, int32_t c) {
+  int32_t oe[3] = {a, b, c};
+  tds_mesh_set_facet(m, f, oe);
+}
+
+static double dist2(const tds_mesh *m, tds_id a, tds_id b) {
+  double d[3];
+  v3_sub(d, m->x[a], m->x[b]);
+  return v3_dot(d, d);
+}
+
+/* Subdivide facet f, whose edges k have midpoint mid[k] (TDS_NONE if not
+** split). Rotates so the split edges come first, then builds triangles. */
+static void split_facet(tds_mesh *m, tds_id f, const tds_id *midv,
+                        const int32_t *e2) {
+  int32_t oe[3];
+  tds_id v[3], mid[3];
+  int nsplit = 0;
+  for (int k = 0; k < 3; k++) {
+    oe[k] = m->fe[f][k];
+    v[k] = m->fv[f][k];
+    mid[k] = midv[TDS_OID(oe[k])];
+    nsplit += mid[k] != TDS_NONE;
+  }
+  if (nsplit == 0) return;
+  /* Rotate: for one split edge put it at 0; for two, the unsplit at 2. */
+  int r = 0;
+  if (nsplit == 1) r = mid[0] != TDS_NONE ? 0 : mid[1] != TDS_NONE ? 1 : 2;
+  if (nsplit == 2) r = mid[2] == TDS_NONE ? 0 : mid[0] == TDS_NONE ? 1 : 2;
+  int32_t o[3];
+  tds_id a[3], mm[3];
+  for (int k = 0; k < 3; k++) {
+    o[k] = oe[(k + r) % 3];
+    a[k] = v[(k + r) % 3];
+    mm[k] = mid[(k + r) % 3];
+  }
+  if (nsplit == 3) {
+    tds_id e01 = inner_edge(m, f, mm[0], mm[1]);
+    tds_id e12 = inner_edge(m, f, mm[1], mm[2]);
+    tds_id e20 = inner_edge(m, f, mm[2], mm[0]);
+    new_facet(m, f, half(e2, o[0], 1), half(e2, o[1], 0), TDS_OREF(e01, 1));
+    new_facet(m, f, half(e2, o[1], 1), half(e2, o[2], 0), TDS_OREF(e12, 1));
+    new_facet(m, f, TDS_OREF(e01, 0), TDS_OREF(e12, 0), TDS_OREF(e20, 0));
+    set3(m, f, half(e2, o[0], 0), TDS_OREF(e20, 1), half(e2, o[2], 1));
+  } else if (nsplit == 2) {
+    /* Edges 0 (a0->a1) and 1 (a1->a2) split: corner at a1, then the quad
+    ** a0, m0, m1, a2 cut along its shorter diagonal. */
+    tds_id ec = inner_edge(m, f, mm[0], mm[1]);
+    new_facet(m, f, half(e2, o[0], 1), half(e2, o[1], 0), TDS_OREF(ec, 1));
+    if (dist2(m, a[0], mm[1]) <= dist2(m, mm[0], a[2])) {
+      tds_id d = inner_edge(m, f, a[0], mm[1]);
+      new_facet(m, f, TDS_OREF(d, 0), half(e2, o[1], 1), o[2]);
+      set3(m, f, half(e2, o[0], 0), TDS_OREF(ec, 0), TDS_OREF(d, 1));
+    } else {
+      tds_id d = inner_edge(m, f, mm[0], a[2]);
+      new_facet(m, f, TDS_OREF(ec, 0), half(e2, o[1], 1), TDS_OREF(d, 1));
+      set3(m, f, half(e2, o[0], 0), TDS_OREF(d, 0), o[2]);
+    }
+  } else {
+    tds_id d = inner_edge(m, f, mm[0], a[2]);
+    new_facet(m, f, half(e2, o[0], 1), o[1], TDS_OREF(d, 1));
+    set3(m, f, half(e2, o[0], 0), TDS_OREF(d, 0), o[2]);
+  }
+}
+
+/* Midpoint vertex of edge e (tail->head), attributes from the edge. */
+static tds_id split_edge(tds_surf *s, tds_id e, int32_t *e2) {
+  tds_mesh *m = &s->m;
+  tds_id t = m->ev[e][0], h = m->ev[e][1];
+  double x[3];
+  v3_add(x, m->x[t], m->x[h]);
+  v3_scale(x, 0.5);
+  tds_id v = tds_mesh_add_vertex(m, x);
+  m->vflags[v] = m->eflags[e] & TDS_FIXED;
+  m->vcon[v] = m->econ[e];
+  m->vbdry[v] = m->ebdry[e];
+  if (m->ebdry[e] != TDS_NONE) {
+    tds_id from = m->vbdry[h] == m->ebdry[e] ? h : t;
+    tds_boundary_param_toward(s, m->ebdry[e], x, m->vp[from], m->vp[v]);
+  }
+  tds_id n = tds_mesh_add_edge(m, v, h);
+  m->ev[e][1] = v;
+  m->eflags[n] = m->eflags[e];
+  m->econ[n] = m->econ[e];
+  m->ebdry[n] = m->ebdry[e];
+  m->eten[n] = m->eten[e];
+  m->ecolor[n] = m->ecolor[e];
+  e2[e] = n;
+  return v;
+}
+
+int tds_refine(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nsplit) {
+  tds_mesh *m = &s->m;
+  int32_t ne = m->ne, nf = m->nf, nv0 = m->nv;
+  tds_id *midv = malloc((size_t)(ne > 0 ? ne : 1) * sizeof *midv);
+  int32_t *e2 = malloc((size_t)(ne > 0 ? ne : 1) * sizeof *e2);
+  if (!midv || !e2) {
+    free(midv);
+    free(e2);
+    return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+  }
+  int32_t nsp = 0, nnewf = 0, nnewe = 0;
+  for (tds_id e = 0; e < ne; e++) {
+    midv[e] = TDS_NONE;
+    e2[e] = TDS_NONE;
+    int want = sel ? sel[e] : !(m->eflags[e] & TDS_NO_REFINE);
+    if (want && tds_alive(m->eflags, e)) {
+      midv[e] = 0; /* marked; vertex made below */
+      nsp++;
+    }
+  }
+  for (tds_id f = 0; f < nf; f++) {
+    if (!tds_alive(m->fflags, f)) continue;
+    int k = 0;
+    for (int j = 0; j < 3; j++) k += midv[TDS_OID(m->fe[f][j])] != TDS_NONE;
+    nnewf += k; /* 3 split: +3 facets, 2: +2, 1: +1 */
+    nnewe += k; /* and as many inner edges */
+  }
+  /* Reserve exactly, so nothing below can fail. */
+  if (tds_mesh_reserve(m, TDS_VERTEX, nv0 + nsp) ||
+      tds_mesh_reserve(m, TDS_EDGE, ne + nsp + nnewe) ||
+      tds_mesh_reserve(m, TDS_FACET, nf + nnewf)) {
+    free(midv);
+    free(e2);
+    return tds_seterr(ctx, TDS_ENOMEM, "out of memory while refining");
+  }
+  for (tds_id e = 0; e < ne; e++)
+    if (midv[e] != TDS_NONE) midv[e] = split_edge(s, e, e2);
+  for (tds_id f = 0; f < nf; f++)
+    if (tds_alive(m->fflags, f)) split_facet(m, f, midv, e2);
+  free(midv);
+  free(e2);
+  int bad = 0;
+  for (tds_id v = nv0; v < m->nv; v++)
+    if (tds_motion_enforce(s, v) != TDS_OK) bad++;
+  m->coord_gen++;
+  if (nsplit) *nsplit = nsp;
+  if (bad)
+    tds_warnf(ctx, "refine: %d new vertices could not be projected onto "
+              "their constraints\n", bad);
+  return tds_surf_update(ctx, s);
+}

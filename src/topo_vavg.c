@@ -1,0 +1,97 @@
+/* topo_vavg.c: vertex averaging (the V command). */
+#include "topo.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "geom.h"
+#include "motion.h"
+
+/* Mean of the neighbours of v along its "curve" edges (triple edges, or
+** edges on the same constraints when v is on a contact line), if there are
+** exactly two; 0 if v should not move. */
+static int along_curve(const tds_mesh *m, tds_id v, int triple, double out[3]) {
+  tds_id nb[2];
+  int n = 0;
+  for (int32_t i = m->ve_start[v]; i < m->ve_start[v + 1]; i++) {
+    tds_id e = TDS_OID(m->ve[i]);
+    int val = tds_edge_valence(m, e);
+    int on = triple ? val >= 3 : (m->econ[e] == m->vcon[v] && val <= 1);
+    if (!on) continue;
+    if (n == 2) return 0;
+    nb[n++] = tds_oe_head(m, m->ve[i]);
+  }
+  if (n != 2) return 0;
+  v3_add(out, m->x[nb[0]], m->x[nb[1]]);
+  v3_scale(out, 0.5);
+  return 1;
+}
+
+/* Area-weighted mean of the centroids of v's facets that share its
+** constraints, with the component along their summed normal removed. */
+static int over_facets(const tds_mesh *m, tds_id v, double out[3]) {
+  double sum[3] = {0, 0, 0}, nsum[3] = {0, 0, 0}, wsum = 0;
+  for (int32_t i = m->vf_start[v]; i < m->vf_start[v + 1]; i++) {
+    tds_id f = m->vf[i];
+    if (m->fcon[f] != m->vcon[v]) continue;
+    const double *a = m->x[m->fv[f][0]], *b = m->x[m->fv[f][1]],
+                 *c = m->x[m->fv[f][2]];
+    double ab[3], ac[3], N[3];
+    v3_sub(ab, b, a);
+    v3_sub(ac, c, a);
+    v3_cross(N, ab, ac);
+    double A = 0.5 * v3_norm(N);
+    for (int k = 0; k < 3; k++) sum[k] += A * (a[k] + b[k] + c[k]) / 3;
+    wsum += A;
+    v3_add(nsum, nsum, N);
+  }
+  if (wsum <= 0) return 0;
+  double d[3];
+  for (int k = 0; k < 3; k++) d[k] = sum[k] / wsum - m->x[v][k];
+  double nn = v3_dot(nsum, nsum);
+  if (nn > 0) v3_axpy(d, -v3_dot(d, nsum) / nn, nsum);
+  v3_add(out, m->x[v], d);
+  return 1;
+}
+
+int tds_vertex_average(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
+                       int32_t *nmoved) {
+  tds_mesh *m = &s->m;
+  if (tds_mesh_adjacency(m) != TDS_OK)
+    return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+  double (*nx)[3] = malloc((size_t)(m->nv > 0 ? m->nv : 1) * sizeof *nx);
+  uint8_t *mv = calloc((size_t)(m->nv > 0 ? m->nv : 1), 1);
+  if (!nx || !mv) {
+    free(nx);
+    free(mv);
+    return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+  }
+  for (tds_id v = 0; v < m->nv; v++) {
+    if (!tds_vertex_free(s, v) || (sel && !sel[v]) || m->vbdry[v] != TDS_NONE)
+      continue;
+    int triple = 0, border = 0;
+    for (int32_t i = m->ve_start[v]; i < m->ve_start[v + 1]; i++) {
+      int val = tds_edge_valence(m, TDS_OID(m->ve[i]));
+      triple |= val >= 3;
+      border |= val <= 1;
+    }
+    if (triple)
+      mv[v] = (uint8_t)along_curve(m, v, 1, nx[v]);
+    else if (border)
+      mv[v] = m->vcon[v] ? (uint8_t)along_curve(m, v, 0, nx[v]) : 0;
+    else
+      mv[v] = (uint8_t)over_facets(m, v, nx[v]);
+  }
+  int32_t moved = 0;
+  for (tds_id v = 0; v < m->nv; v++)
+    if (mv[v]) {
+      v3_copy(m->x[v], nx[v]);
+      tds_motion_enforce(s, v);
+      moved++;
+    }
+  free(nx);
+  free(mv);
+  m->coord_gen++;
+  if (nmoved) *nmoved = moved;
+  return tds_surf_update(ctx, s);
+}
