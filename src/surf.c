@@ -46,6 +46,7 @@ void tds_surf_free(tds_surf *s) {
       free_exprs(s->quant[i].inst[j].integrand, 3);
   }
   free(s->quant);
+  free(s->read_text);
   tds_surf_init(s);
 }
 

@@ -42,7 +42,7 @@ enum { TDS_Q_ENERGY = 0, TDS_Q_FIXED, TDS_Q_INFO };
 enum {
   TDS_M_FACET_AREA = 0, TDS_M_EDGE_LENGTH, TDS_M_FACET_VECTOR_INTEGRAL,
   TDS_M_EDGE_VECTOR_INTEGRAL, TDS_M_FACET_SCALAR_INTEGRAL,
-  TDS_M_EDGE_SCALAR_INTEGRAL, TDS_M_GRAVITY, TDS_M_COUNT
+  TDS_M_EDGE_SCALAR_INTEGRAL, TDS_M_GRAVITY, TDS_M_FULL_GRAVITY, TDS_M_COUNT
 };
 
 typedef struct tds_method_inst {
@@ -90,6 +90,8 @@ typedef struct tds_surf {
   double scale_limit;     /* upper bound of the optimizing scale */
   int fixed_scale;        /* nonzero: use `scale` as given (m command) */
   int64_t iterations;     /* iterations done since load */
+
+  char *read_text;        /* a datafile's read section, kept verbatim */
 
   /* last computed totals */
   double energy, area;

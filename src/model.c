@@ -1,0 +1,181 @@
+/* model.c: constraints, boundaries and named quantities of a surface. */
+#include "model.h"
+
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+const char *const tds_method_names[TDS_M_COUNT] = {
+    "facet_area",             "edge_length",
+    "facet_vector_integral",  "edge_vector_integral",
+    "facet_scalar_integral",  "edge_scalar_integral",
+    "gravity_method",         "full_gravity_method",
+};
+
+int tds_method_by_name(const char *name) {
+  for (int i = 0; i < TDS_M_COUNT; i++)
+    if (!strcasecmp(name, tds_method_names[i])) return i;
+  if (!strcasecmp(name, "facet_tension")) return TDS_M_FACET_AREA;
+  if (!strcasecmp(name, "edge_tension")) return TDS_M_EDGE_LENGTH;
+  return -1;
+}
+
+static int lookup(void *ud, const char *name, size_t len) {
+  return tds_surf_param_find(ud, name, len);
+}
+
+void tds_model_env(tds_surf *s, int flags, tds_expr_env *env) {
+  env->flags = flags;
+  env->lookup = lookup;
+  env->ud = s;
+}
+
+int tds_model_compile(tds_ctx *ctx, tds_surf *s, const char *text, int flags,
+                      tds_expr **out) {
+  tds_expr_env env;
+  tds_model_env(s, flags, &env);
+  return tds_expr_parse(ctx, text, NULL, &env, out);
+}
+
+static void free3(tds_expr *e[3]) {
+  for (int i = 0; e && i < 3; i++) {
+    tds_expr_free(e[i]);
+    e[i] = NULL;
+  }
+}
+
+static void take3(tds_expr *dst[3], tds_expr *src[3]) {
+  for (int i = 0; i < 3; i++) dst[i] = src ? src[i] : NULL;
+}
+
+int tds_model_constraint(tds_ctx *ctx, tds_surf *s, int number, int flags,
+                         tds_expr *formula, tds_expr *energy[3],
+                         tds_expr *content[3]) {
+  int slot = tds_surf_con_slot(s, number);
+  if (slot < 0)
+    for (int i = 0; i < TDS_MAX_CON && slot < 0; i++)
+      if (s->con[i].number == 0) slot = i;
+  if (number < 1 || slot < 0 || !formula) {
+    tds_expr_free(formula);
+    free3(energy);
+    free3(content);
+    if (!formula) return tds_seterr(ctx, TDS_ESYNTAX, "constraint %d has no formula", number);
+    return tds_seterr(ctx, TDS_ERANGE,
+                      number < 1 ? "constraint number %d must be positive"
+                                 : "constraint %d: at most 64 constraints are supported",
+                      number);
+  }
+  tds_constraint *c = &s->con[slot];
+  tds_expr_free(c->formula);
+  free3(c->energy);
+  free3(c->content);
+  c->number = number;
+  c->flags = flags;
+  c->formula = formula;
+  take3(c->energy, energy);
+  take3(c->content, content);
+  return TDS_OK;
+}
+
+int tds_model_boundary_slot(const tds_surf *s, int number) {
+  for (int i = 0; i < s->nbdry; i++)
+    if (s->bdry[i].number == number) return i;
+  return -1;
+}
+
+int tds_model_boundary(tds_ctx *ctx, tds_surf *s, int number, int nparams,
+                       int flags, tds_expr *x[3], tds_expr *energy[3],
+                       tds_expr *content[3]) {
+  int bad = number < 1 || nparams < 1 || nparams > 2;
+  for (int i = 0; i < 3; i++) bad |= !x[i];
+  int slot = tds_model_boundary_slot(s, number);
+  if (!bad && slot < 0) {
+    tds_boundary *nb = realloc(s->bdry, (size_t)(s->nbdry + 1) * sizeof *nb);
+    if (!nb) {
+      free3(x);
+      free3(energy);
+      free3(content);
+      return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+    }
+    s->bdry = nb;
+    slot = s->nbdry++;
+    memset(&s->bdry[slot], 0, sizeof s->bdry[slot]);
+  }
+  if (bad) {
+    free3(x);
+    free3(energy);
+    free3(content);
+    return tds_seterr(ctx, TDS_ERANGE,
+                      "boundary %d: needs a positive number, 1 or 2 parameters "
+                      "and x, y and z formulas", number);
+  }
+  tds_boundary *b = &s->bdry[slot];
+  free3(b->x);
+  free3(b->energy);
+  free3(b->content);
+  b->number = number;
+  b->nparams = nparams;
+  b->flags = flags;
+  take3(b->x, x);
+  take3(b->energy, energy);
+  take3(b->content, content);
+  return TDS_OK;
+}
+
+int tds_model_quantity_find(const tds_surf *s, const char *name) {
+  for (int i = 0; i < s->nquant; i++)
+    if (!strcasecmp(s->quant[i].name, name)) return i;
+  return -1;
+}
+
+int tds_model_quantity(tds_ctx *ctx, tds_surf *s, const char *name, int kind,
+                       double modulus, double target, int *idx) {
+  int i = tds_model_quantity_find(s, name);
+  if (i < 0) {
+    tds_quantity *nq = realloc(s->quant, (size_t)(s->nquant + 1) * sizeof *nq);
+    if (!nq) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+    s->quant = nq;
+    i = s->nquant;
+    memset(&s->quant[i], 0, sizeof s->quant[i]);
+    s->quant[i].name = strdup(name);
+    if (!s->quant[i].name) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+    s->nquant++;
+  } else {
+    tds_quantity *q = &s->quant[i];
+    for (int j = 0; j < q->ninst; j++) free3(q->inst[j].integrand);
+    q->ninst = 0;
+  }
+  tds_quantity *q = &s->quant[i];
+  q->kind = kind;
+  q->modulus = modulus;
+  q->target = target;
+  q->value = q->pressure = 0;
+  *idx = i;
+  return TDS_OK;
+}
+
+int tds_model_method(tds_ctx *ctx, tds_surf *s, int idx, int method,
+                     double modulus, tds_expr *integrand[3]) {
+  tds_quantity *q = &s->quant[idx];
+  int need = method == TDS_M_FACET_VECTOR_INTEGRAL || method == TDS_M_EDGE_VECTOR_INTEGRAL
+                 ? 3
+             : method == TDS_M_FACET_SCALAR_INTEGRAL || method == TDS_M_EDGE_SCALAR_INTEGRAL
+                 ? 1
+                 : 0;
+  int have = 0;
+  for (int i = 0; integrand && i < 3; i++) have += integrand[i] != NULL;
+  if (method < 0 || method >= TDS_M_COUNT || q->ninst == 4 ||
+      (need == 1 && !integrand[0]) || (need == 0 && have)) {
+    free3(integrand);
+    if (q->ninst == 4)
+      return tds_seterr(ctx, TDS_ERANGE, "quantity %s: at most 4 methods", q->name);
+    return tds_seterr(ctx, TDS_ESYNTAX, "quantity %s: method %s %s", q->name,
+                      method >= 0 && method < TDS_M_COUNT ? tds_method_names[method] : "?",
+                      need ? "needs its integrand" : "takes no integrand");
+  }
+  tds_method_inst *mi = &q->inst[q->ninst++];
+  mi->method = method;
+  mi->modulus = modulus;
+  take3(mi->integrand, integrand);
+  return TDS_OK;
+}
