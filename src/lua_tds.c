@@ -98,6 +98,9 @@ tds_state *tds_lua_open(lua_State *L) {
   tds_open_elem(L, st);
   tds_open_decl(L, st);
   tds_open_cmd(L, st);
+  tds_open_model(L, st);
+  tds_open_datafile(L, st);
+  tds_open_pg(L, st);
   lua_setglobal(L, "tds");
 
   lua_getglobal(L, "package");
