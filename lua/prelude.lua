@@ -98,6 +98,27 @@ function parameter(t)
   end
 end
 
+-- constraint(n, {...}), boundary(n, {...}), quantity{...}: the model.
+local function raise_at_caller(ok, err)
+  if not ok then error(err, 3) end
+end
+function constraint(n, t)
+  if math.type(n) ~= "integer" or type(t) ~= "table" then
+    error("constraint(number, { formula = ... }) expected", 2)
+  end
+  raise_at_caller(tds.constraint(n, t))
+end
+function boundary(n, t)
+  if math.type(n) ~= "integer" or type(t) ~= "table" then
+    error("boundary(number, { parameters = 1, x = ..., y = ..., z = ... }) expected", 2)
+  end
+  raise_at_caller(tds.boundary(n, t))
+end
+function quantity(t)
+  if type(t) ~= "table" then error("quantity{ name = ..., method = ... } expected", 2) end
+  raise_at_caller(tds.quantity(t))
+end
+
 function gravity_constant(value)
   if type(value) ~= "number" then error("gravity_constant(number) expected", 2) end
   tds.gravity(value)
@@ -133,6 +154,16 @@ function m(scale)
   end
 end
 function optimize(limit) tds.optimize(limit) end
+
+-- U(): toggle conjugate gradient directions; U(2) keeps it on and starts
+-- a fresh history (Evolver's `U 2`).
+function U(n)
+  local on = tds.setting("conj_grad")
+  if n == 2 then on = false end
+  tds.setting("conj_grad", not on)
+  print(("Conjugate gradient %s."):format(on and "OFF" or "ON"))
+end
+conj_grad = U
 
 -- G(value) sets the gravitational constant and turns gravity on;
 -- G() toggles gravity.

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "eval_int.h"
 #include "geom.h"
 
 /* Facet pass: area energy, body volumes and gravity. */
@@ -98,6 +99,8 @@ int tds_eval(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
   if (out->fq) tds_fixq_clear(out->fq);
   facet_pass(s, out);
   edge_pass(s, out);
+  tds_eval_edges(s, out);
+  tds_eval_quantities(s, out);
   if (out->fq)
     for (int32_t q = 0; q < out->fq->nq; q++) {
       tds_id b = out->fq->qbody[q];

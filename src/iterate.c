@@ -18,6 +18,9 @@ typedef struct work {
   double (*rest)[3]; /* restoring motion */
   tds_fixq fq;
   int unconverged;   /* a projection hit its step limit */
+  double E0;         /* energy at the start of the step */
+  int at_target;     /* quantities were at target at the start */
+  double slope;      /* dE/ds along vel at the start (negative) */
 } work;
 
 static void work_free(work *w) {
@@ -65,6 +68,12 @@ static int direction(tds_ctx *ctx, tds_surf *s, work *w) {
   int rc = tds_eval(ctx, s, &out);
   if (rc != TDS_OK) return rc;
   tds_fixq *fq = &w->fq;
+  w->E0 = out.energy;
+  w->at_target = 1;
+  for (int32_t q = 0; q < fq->nq; q++)
+    if (!(fabs(fq->target[q] - fq->value[q]) <=
+          1e-12 * (fabs(fq->target[q]) > 1e-300 ? fabs(fq->target[q]) : 1)))
+      w->at_target = 0;
   for (tds_id v = 0; v < m->nv; v++) {
     if (m->vflags[v] & TDS_DEAD) continue;
     tds_motion_project(s, v, w->grad[v]);
@@ -74,6 +83,7 @@ static int direction(tds_ctx *ctx, tds_surf *s, work *w) {
   rc = tds_fixq_multipliers(ctx, fq, w->grad);
   if (rc != TDS_OK) return rc;
   store_pressures(s, fq);
+  w->slope = 0;
   for (tds_id v = 0; v < m->nv; v++) {
     w->vel[v][0] = -w->grad[v][0];
     w->vel[v][1] = -w->grad[v][1];
@@ -84,17 +94,21 @@ static int direction(tds_ctx *ctx, tds_surf *s, work *w) {
       w->vel[v][1] += lam * fq->g[i][1];
       w->vel[v][2] += lam * fq->g[i][2];
     }
+    w->slope -= v3_dot(w->vel[v], w->vel[v]);
   }
   return TDS_OK;
 }
 
 /* Newton steps onto the constrained quantities' targets: x += sum mu_q g_q
 ** with G mu = target - value, until every value is within 1e-12 of its
-** target (relative) or ten steps are done. Leaves s->energy and s->area
-** at the final positions. Returns 0, or -1 if a value is not finite. */
+** target (relative), or the error stops shrinking below 1e-8 (the
+** rounding floor of a sum over many facets), or ten steps are done.
+** Leaves s->energy and s->area at the final positions. Returns 0, or -1
+** if a value is not finite. */
 static int project_quantities(tds_ctx *ctx, tds_surf *s, work *w) {
   tds_mesh *m = &s->m;
   tds_fixq *fq = &w->fq;
+  double prev = INFINITY;
   for (int it = 0;; it++) {
     tds_eval_out out = {.fq = fq->nq ? fq : NULL};
     if (tds_eval(ctx, s, &out) != TDS_OK) return -1;
@@ -108,6 +122,8 @@ static int project_quantities(tds_ctx *ctx, tds_surf *s, work *w) {
     }
     if (worst <= 1) return 0;
     if (!isfinite(worst)) return -1;
+    if (worst < 1e4 && worst > 0.5 * prev) return 0; /* at rounding level */
+    prev = worst;
     if (it == 10) {
       w->unconverged = 1;
       return 0;
@@ -142,65 +158,88 @@ static double trial(tds_ctx *ctx, tds_surf *s, work *w, double scale) {
   return s->energy;
 }
 
-/* Vertex of the parabola through three points (a < b < c, fb <= fa, fc). */
-static double parabola(double a, double fa, double b, double fb, double c,
-                       double fc) {
-  double p = (b - a) * (fb - fc), q = (b - c) * (fb - fa);
-  double den = 2 * (p - q);
-  if (den == 0) return b;
-  double t = b - ((b - a) * p - (b - c) * q) / den;
-  if (!(t > a && t < c)) return b;
-  return t;
-}
-
-/* Bracket the minimum of the energy along the step and interpolate.
-** Returns the chosen scale; *E is the energy there, positions are set. */
-static double line_search(tds_ctx *ctx, tds_surf *s, work *w, double *E) {
+/* Line search along vel from the start of the step (energy E0, slope D =
+** dE/ds at 0, negative for a descent direction). Each trial is a full
+** move with projection, so energies are compared on the constraints. The
+** next scale minimises the parabola through E0, D and the last trial;
+** a trial that does not lower the energy is retried at a smaller scale.
+** Returns the chosen scale with the positions there and *E its energy. */
+static double line_search(tds_ctx *ctx, tds_surf *s, work *w, double E0,
+                          double D, double *E) {
   const double lim = s->scale_limit, tiny = 1e-12 * lim;
-  double start = s->scale > tiny ? s->scale : 0.1 * lim;
-  if (start > lim) start = lim;
-  double E0 = trial(ctx, s, w, 0);
-  double a = 0, Ea = E0, b, Eb, c, Ec;
-  double s1 = start, E1 = trial(ctx, s, w, s1);
-  if (E1 < E0) {
-    b = s1;
-    Eb = E1;
-    for (;;) {
-      if (b >= lim) {
-        *E = Eb; /* positions are at b already */
-        return b;
-      }
-      c = 2 * b < lim ? 2 * b : lim;
-      Ec = trial(ctx, s, w, c);
-      if (!(Ec < Eb)) break;
-      a = b;
-      Ea = Eb;
-      b = c;
-      Eb = Ec;
-    }
-  } else {
-    c = s1;
-    Ec = E1;
-    for (;;) {
-      b = c / 2;
-      Eb = trial(ctx, s, w, b);
-      if (Eb < E0) break;
-      c = b;
-      Ec = Eb;
-      if (b < tiny) {
-        *E = trial(ctx, s, w, 0);
-        return 0;
-      }
-    }
+  double s1 = s->scale > tiny ? s->scale : 0.1 * lim;
+  if (s1 > lim) s1 = lim;
+  if (!(D < 0)) { /* no descent direction: stay (still projects) */
+    *E = trial(ctx, s, w, 0);
+    return 0;
   }
-  double t = parabola(a, Ea, b, Eb, c, Ec);
+  double E1 = trial(ctx, s, w, s1);
+  while (!(E1 < E0)) { /* shrink until the energy goes down */
+    double a = (E1 - E0 - D * s1) / (s1 * s1);
+    double t = a > 0 ? -D / (2 * a) : s1 / 2;
+    if (!(t < 0.5 * s1)) t = 0.5 * s1;
+    if (!(t > 0.1 * s1)) t = 0.1 * s1;
+    s1 = t;
+    if (s1 < tiny) {
+      *E = trial(ctx, s, w, 0);
+      return 0;
+    }
+    E1 = trial(ctx, s, w, s1);
+  }
+  /* s1 lowers the energy: one interpolated (or extrapolated) try. */
+  double a = (E1 - E0 - D * s1) / (s1 * s1);
+  double t = a > 0 ? -D / (2 * a) : 4 * s1;
+  if (t > 4 * s1) t = 4 * s1;
+  if (t > lim) t = lim;
+  if (!(fabs(t - s1) > 0.05 * s1)) { /* close enough: keep s1 */
+    *E = E1;
+    return s1;
+  }
   double Et = trial(ctx, s, w, t);
-  if (Et <= Eb) {
+  if (Et < E1) {
     *E = Et;
     return t;
   }
-  *E = trial(ctx, s, w, b);
-  return b;
+  *E = trial(ctx, s, w, s1);
+  return s1;
+}
+
+/* Conjugate gradient (Polak-Ribiere, restarted when beta < 0): replace
+** vel by vel + beta * previous direction. The history lives in the surface
+** and is dropped when the topology changes (Evolver resets it after any
+** surface modification). Returns TDS_ENOMEM if the history cannot grow. */
+static int conjugate(tds_ctx *ctx, tds_surf *s, work *w) {
+  tds_mesh *m = &s->m;
+  if (s->cg_nv != m->nv || s->cg_topo != m->topo_gen || !s->cg_dir) {
+    size_t n = (size_t)(m->nv > 0 ? m->nv : 1);
+    double (*d)[3] = realloc(s->cg_dir, n * sizeof *d);
+    if (d) s->cg_dir = d;
+    double (*p)[3] = d ? realloc(s->cg_prev, n * sizeof *p) : NULL;
+    if (!p) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+    s->cg_prev = p;
+    s->cg_nv = m->nv;
+    s->cg_topo = m->topo_gen;
+    s->cg_norm2 = 0;
+  }
+  double g2 = 0, gdg = 0;
+  for (tds_id v = 0; v < m->nv; v++) {
+    g2 += v3_dot(w->vel[v], w->vel[v]);
+    if (s->cg_norm2 > 0)
+      gdg += v3_dot(w->vel[v], w->vel[v]) - v3_dot(w->vel[v], s->cg_prev[v]);
+  }
+  double beta = s->cg_norm2 > 0 ? gdg / s->cg_norm2 : 0;
+  if (!(beta > 0)) beta = 0;
+  w->slope = 0; /* -<steepest descent, new direction> */
+  for (tds_id v = 0; v < m->nv; v++) {
+    v3_copy(s->cg_prev[v], w->vel[v]);
+    for (int k = 0; k < 3; k++) {
+      s->cg_dir[v][k] = w->vel[v][k] + beta * (s->cg_norm2 > 0 ? s->cg_dir[v][k] : 0);
+      w->slope -= w->vel[v][k] * s->cg_dir[v][k];
+      w->vel[v][k] = s->cg_dir[v][k];
+    }
+  }
+  s->cg_norm2 = g2;
+  return TDS_OK;
 }
 
 static int step(tds_ctx *ctx, tds_surf *s, work *w) {
@@ -208,13 +247,15 @@ static int step(tds_ctx *ctx, tds_surf *s, work *w) {
   memcpy(w->x0, m->x, (size_t)m->nv * sizeof *w->x0);
   memcpy(w->p0, m->vp, (size_t)m->nv * sizeof *w->p0);
   int rc = direction(ctx, s, w);
+  if (rc == TDS_OK && s->conj_grad) rc = conjugate(ctx, s, w);
   if (rc != TDS_OK) return rc;
   double E, scale;
   if (s->fixed_scale) {
     scale = s->scale;
     E = trial(ctx, s, w, scale);
   } else {
-    scale = line_search(ctx, s, w, &E);
+    double E0 = w->at_target ? w->E0 : trial(ctx, s, w, 0);
+    scale = line_search(ctx, s, w, E0, w->slope, &E);
     s->scale = scale;
   }
   if (!isfinite(E)) {

@@ -166,7 +166,7 @@ static int l_setting(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   static const char *const names[] = {"symmetric_content", "scale_limit",
                                       "constraint_tolerance", "gap_constant",
-                                      "iterations", NULL};
+                                      "iterations", "conj_grad", NULL};
   int which = luaL_checkoption(L, 1, NULL, names);
   tds_surf *s = &st->s;
   int set = !lua_isnone(L, 2);
@@ -187,8 +187,15 @@ static int l_setting(lua_State *L) {
     if (set) s->gap_constant = luaL_checknumber(L, 2);
     lua_pushnumber(L, s->gap_constant);
     break;
-  default:
+  case 4:
     lua_pushinteger(L, (lua_Integer)s->iterations);
+    break;
+  default:
+    if (set) {
+      s->conj_grad = lua_toboolean(L, 2);
+      s->cg_norm2 = 0; /* a fresh history */
+    }
+    lua_pushboolean(L, s->conj_grad);
   }
   return 1;
 }

@@ -1,7 +1,191 @@
-/* lua_datafile.c: loading and writing Surface Evolver datafiles. */
+/* lua_datafile.c: loading and writing Surface Evolver datafiles.
+**
+**   tds.load_datafile(path)      load into the current, empty surface;
+**                                raises "path:line: message" on failure
+**   tds.dump([path])             write the surface as a datafile; returns
+**                                true, or nil and a message (like io.open).
+**                                Without path: the loaded file's name with
+**                                extension .dmp (Evolver's default)
+**   tds.load_chunk(path)         for main.c: a function that loads the
+**                                datafile when called, or the compiled
+**                                .tds chunk
+**   tds.datafile_info(text [, name])  parse a datafile given as text into a
+**                                scratch surface (the current one is not
+**                                touched); returns a table of counts, energy
+**                                and parameters, or nil and the message.
+**                                For tests and diagnostics.
+**   dump(path)                   global alias of tds.dump
+*/
+#include <stdlib.h>
+#include <string.h>
+
+#include "datafile.h"
 #include "lua_tds.h"
 
+/* Raise msg as is (no position prefix: it has its own file:line). */
+static int raise_msg(lua_State *L, const char *msg) {
+  lua_pushstring(L, msg);
+  return lua_error(L);
+}
+
+static int surface_in_use(const tds_state *st) {
+  const tds_surf *s = &st->s;
+  if (st->loaded || s->m.nv || s->m.ne || s->m.nf || s->m.nb || s->npar ||
+      s->nbdry || s->nquant)
+    return 1;
+  for (int c = 0; c < TDS_MAX_CON; c++)
+    if (s->con[c].number) return 1;
+  return 0;
+}
+
+static void load(lua_State *L, tds_state *st, const char *path) {
+  if (surface_in_use(st))
+    luaL_error(L, "%s: a surface is already loaded; start a new tds session "
+               "to load a datafile", path);
+  int rc = tds_datafile_load(&st->ctx, &st->s, path);
+  if (rc != TDS_OK) raise_msg(L, st->ctx.errmsg);
+  st->loaded = 1;
+  char *copy = strdup(path);
+  if (copy) {
+    free(st->datafile);
+    st->datafile = copy;
+  }
+}
+
+/* tds.load_datafile(path) */
+static int l_load_datafile(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  load(L, st, luaL_checkstring(L, 1));
+  return 0;
+}
+
+/* The function tds.load_chunk returns for a datafile (upvalue 2: path). */
+static int datafile_chunk(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  load(L, st, lua_tostring(L, lua_upvalueindex(2)));
+  return 0;
+}
+
+/* tds.load_chunk(path) -> function */
+static int l_load_chunk(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  const char *path = luaL_checkstring(L, 1);
+  if (tds_datafile_detect(path)) {
+    lua_pushlightuserdata(L, st);
+    lua_pushvalue(L, 1);
+    lua_pushcclosure(L, datafile_chunk, 2);
+    return 1;
+  }
+  if (luaL_loadfile(L, path) != LUA_OK) return lua_error(L);
+  return 1;
+}
+
+/* Default dump name: the datafile's name with its extension replaced. */
+static const char *default_dump_name(lua_State *L, tds_state *st) {
+  if (!st->datafile) return NULL;
+  const char *p = st->datafile;
+  const char *slash = strrchr(p, '/');
+  const char *dot = strrchr(slash ? slash : p, '.');
+  size_t n = dot && dot != (slash ? slash + 1 : p) ? (size_t)(dot - p) : strlen(p);
+  lua_pushlstring(L, p, n);
+  lua_pushliteral(L, ".dmp");
+  lua_concat(L, 2);
+  return lua_tostring(L, -1);
+}
+
+/* tds.dump([path]) -> true | nil, msg */
+static int l_dump(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  const char *path = luaL_optstring(L, 1, NULL);
+  if (!path) path = default_dump_name(L, st);
+  if (!path) {
+    lua_pushnil(L);
+    lua_pushliteral(L, "dump: give a file name (no datafile was loaded)");
+    return 2;
+  }
+  if (tds_datafile_dump(&st->ctx, &st->s, path) != TDS_OK) {
+    lua_pushnil(L);
+    lua_pushstring(L, st->ctx.errmsg);
+    return 2;
+  }
+  lua_pushboolean(L, 1);
+  return 1;
+}
+
+static void no_output(void *ud, const char *text) {
+  (void)ud;
+  (void)text;
+}
+
+/* tds.datafile_info(text [, name]) -> table | nil, msg */
+static int l_datafile_info(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  size_t len;
+  const char *text = luaL_checklstring(L, 1, &len);
+  const char *name = luaL_optstring(L, 2, "(string)");
+  tds_surf *s = lua_newuserdatauv(L, sizeof *s, 0); /* scratch, freed below */
+  tds_surf_init(s);
+  tds_ctx ctx = st->ctx;
+  ctx.warn = no_output;
+  ctx.out = no_output;
+  int rc = tds_datafile_load_buffer(&ctx, s, name, text, len);
+  if (rc != TDS_OK) {
+    tds_surf_free(s);
+    lua_pushnil(L);
+    lua_pushstring(L, ctx.errmsg);
+    return 2;
+  }
+  lua_createtable(L, 0, 12);
+  lua_pushinteger(L, tds_mesh_count(&s->m, TDS_VERTEX));
+  lua_setfield(L, -2, "vertices");
+  lua_pushinteger(L, tds_mesh_count(&s->m, TDS_EDGE));
+  lua_setfield(L, -2, "edges");
+  lua_pushinteger(L, tds_mesh_count(&s->m, TDS_FACET));
+  lua_setfield(L, -2, "facets");
+  lua_pushinteger(L, tds_mesh_count(&s->m, TDS_BODY));
+  lua_setfield(L, -2, "bodies");
+  int ncon = 0;
+  for (int c = 0; c < TDS_MAX_CON; c++) ncon += s->con[c].number != 0;
+  lua_pushinteger(L, ncon);
+  lua_setfield(L, -2, "constraints");
+  lua_pushinteger(L, s->nbdry);
+  lua_setfield(L, -2, "boundaries");
+  lua_pushinteger(L, s->nquant);
+  lua_setfield(L, -2, "quantities");
+  lua_pushnumber(L, s->gravity);
+  lua_setfield(L, -2, "gravity_constant");
+  lua_pushboolean(L, s->gravity_on);
+  lua_setfield(L, -2, "gravity");
+  lua_pushboolean(L, s->symmetric_content);
+  lua_setfield(L, -2, "symmetric_content");
+  if (s->read_text) {
+    lua_pushstring(L, s->read_text);
+    lua_setfield(L, -2, "read");
+  }
+  lua_newtable(L);
+  for (int i = 0; i < s->npar; i++) {
+    lua_pushnumber(L, s->parval[i]);
+    lua_setfield(L, -2, s->parname[i]);
+  }
+  lua_setfield(L, -2, "parameters");
+  tds_ctx ectx = st->ctx;
+  if (tds_surf_update(&ectx, s) == TDS_OK) {
+    lua_pushnumber(L, s->energy);
+    lua_setfield(L, -2, "energy");
+    lua_pushnumber(L, s->area);
+    lua_setfield(L, -2, "area");
+  }
+  tds_surf_free(s);
+  return 1;
+}
+
 void tds_open_datafile(lua_State *L, tds_state *st) {
-  (void)L;
-  (void)st;
+  static const luaL_Reg fns[] = {{"load_datafile", l_load_datafile},
+                                 {"dump", l_dump},
+                                 {"load_chunk", l_load_chunk},
+                                 {"datafile_info", l_datafile_info},
+                                 {NULL, NULL}};
+  tds_lua_register(L, st, fns);
+  lua_getfield(L, -1, "dump"); /* the raw tds table is on top */
+  lua_setglobal(L, "dump");
 }

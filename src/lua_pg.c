@@ -1,7 +1,226 @@
-/* lua_pg.c: the projected-gradient method and mesh metrics. */
+/* lua_pg.c: the projected-gradient method and mesh metrics.
+**
+** Raw primitives (lua/pg.lua gives them their user names):
+**   tds.pg{ iterations=, max=, nmax=, s=, plain=, depth=, flips=, every=,
+**           rtol= }                        -> result table
+**   tds.quality()                          -> statistics table
+**   tds.curvature(mode [, value])          -> statistics table with
+**                                             per-vertex values
+**   tds.vertex_mean_curvature(v)           -> number or nil
+**   tds.facet_min_angle(f)                 -> degrees
+**   tds.pg_multipliers()                   -> { [body id] = pressure }
+**   tds.pg_flip_all()                      -> flips
+*/
+#include <math.h>
+#include <stdlib.h>
+
 #include "lua_tds.h"
+#include "metrics.h"
+#include "pg.h"
+
+static lua_Integer opt_int(lua_State *L, int t, const char *k, lua_Integer d) {
+  lua_getfield(L, t, k);
+  lua_Integer v = d;
+  if (!lua_isnil(L, -1)) {
+    int ok;
+    v = lua_tointegerx(L, -1, &ok);
+    if (!ok) luaL_error(L, "pg option '%s' must be an integer", k);
+  }
+  lua_pop(L, 1);
+  return v;
+}
+
+static double opt_num(lua_State *L, int t, const char *k, double d) {
+  lua_getfield(L, t, k);
+  double v = d;
+  if (!lua_isnil(L, -1)) {
+    int ok;
+    v = lua_tonumberx(L, -1, &ok);
+    if (!ok) luaL_error(L, "pg option '%s' must be a number", k);
+  }
+  lua_pop(L, 1);
+  return v;
+}
+
+static int opt_bool(lua_State *L, int t, const char *k, int d) {
+  lua_getfield(L, t, k);
+  int v = lua_isnil(L, -1) ? d : lua_toboolean(L, -1);
+  lua_pop(L, 1);
+  return v;
+}
+
+static void setnum(lua_State *L, const char *k, double v) {
+  lua_pushnumber(L, v);
+  lua_setfield(L, -2, k);
+}
+static void setint(lua_State *L, const char *k, lua_Integer v) {
+  lua_pushinteger(L, v);
+  lua_setfield(L, -2, k);
+}
+
+static int l_pg(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  tds_pg_opts o;
+  tds_pg_defaults(&o);
+  if (!lua_isnoneornil(L, 1)) {
+    luaL_checktype(L, 1, LUA_TTABLE);
+    o.iterations = opt_int(L, 1, "iterations", 0);
+    o.max_iterations = opt_int(L, 1, "max", o.max_iterations);
+    o.nmax = (int)opt_int(L, 1, "nmax", o.nmax);
+    o.s = opt_num(L, 1, "s", o.s);
+    o.accel = !opt_bool(L, 1, "plain", 0);
+    o.depth = (int)opt_int(L, 1, "depth", o.depth);
+    o.flips = opt_bool(L, 1, "flips", 1);
+    o.every = opt_int(L, 1, "every", 0);
+    o.rtol = opt_num(L, 1, "rtol", 0);
+  }
+  luaL_argcheck(L, o.iterations >= 0, 1, "iterations must not be negative");
+  luaL_argcheck(L, o.nmax >= 1, 1, "nmax must be at least 1");
+  luaL_argcheck(L, o.depth >= 0 && o.depth <= 50, 1, "depth must be in 0..50");
+  tds_pg_result r;
+  int rc = tds_pg_run(&st->ctx, &st->s, &o, &r);
+  if (rc != TDS_OK) {
+    if (rc == TDS_EINTR) lua_sethook(L, NULL, 0, 0);
+    return tds_lua_fail(L, st, rc);
+  }
+  lua_createtable(L, 0, 14);
+  setint(L, "iterations", r.iterations);
+  setint(L, "best_iteration", r.best_iteration);
+  setnum(L, "r", r.r);
+  setnum(L, "r_last", r.r_last);
+  setnum(L, "r_relative", r.mean_edge > 0 ? r.r / r.mean_edge : 0);
+  setint(L, "flips", r.flips);
+  setint(L, "clamps", r.clamps);
+  setint(L, "restarts", r.restarts);
+  setint(L, "reached", r.reached);
+  setnum(L, "lambda", r.lambda);
+  setnum(L, "pressure", -r.lambda);
+  setnum(L, "energy", st->s.energy);
+  setnum(L, "mean_edge", r.mean_edge);
+  setnum(L, "seconds", r.seconds);
+  setint(L, "vertices", r.nfree);
+  setnum(L, "seconds_per_vertex_iteration",
+         r.iterations > 0 && r.nfree > 0
+             ? r.seconds / ((double)r.iterations * r.nfree) : 0);
+  lua_pushboolean(L, r.converged);
+  lua_setfield(L, -2, "converged");
+  return 1;
+}
+
+static int l_quality(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  tds_quality_out q;
+  tds_quality(&st->s, &q);
+  lua_createtable(L, 0, 12);
+  setint(L, "n", q.n);
+  setnum(L, "min", q.min);
+  setnum(L, "mean", q.mean);
+  setnum(L, "std", q.std);
+  setnum(L, "above30", q.above[0]);
+  setnum(L, "above40", q.above[1]);
+  setnum(L, "above50", q.above[2]);
+  setnum(L, "above55", q.above[3]);
+  lua_createtable(L, 12, 0);
+  for (int i = 0; i < 12; i++) {
+    lua_pushinteger(L, q.hist[i]);
+    lua_rawseti(L, -2, i + 1);
+  }
+  lua_setfield(L, -2, "histogram");
+  if (q.worst != TDS_NONE) setint(L, "worst", q.worst + 1);
+  return 1;
+}
+
+static int l_curvature(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  static const char *const modes[] = {"value", "lambda", "pressure", NULL};
+  int mode = luaL_checkoption(L, 1, "value", modes);
+  double value = luaL_optnumber(L, 2, 0);
+  tds_mesh *m = &st->s.m;
+  size_t nv = (size_t)(m->nv > 0 ? m->nv : 1);
+  double *h = lua_newuserdatauv(L, 2 * nv * sizeof *h, 0);
+  double *tg = h + nv;
+  tds_curv_out c;
+  int rc = tds_curvature(&st->ctx, &st->s, mode, value, h, tg, &c);
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+  lua_createtable(L, 0, 10);
+  setint(L, "n", c.n);
+  setnum(L, "max", c.max);
+  setnum(L, "mean", c.mean);
+  setnum(L, "rms", c.rms);
+  setnum(L, "mean_curvature", c.hmean);
+  if (c.worst != TDS_NONE) {
+    setint(L, "worst", c.worst + 1);
+    setnum(L, "worst_value", h[c.worst]);
+    setnum(L, "worst_target", tg[c.worst]);
+  }
+  lua_newtable(L);
+  lua_newtable(L);
+  lua_newtable(L);
+  for (tds_id v = 0; v < m->nv; v++) {
+    if (isnan(h[v])) continue;
+    lua_pushnumber(L, h[v]);
+    lua_rawseti(L, -4, v + 1);
+    lua_pushnumber(L, h[v] - tg[v]);
+    lua_rawseti(L, -3, v + 1);
+    lua_pushnumber(L, tg[v]);
+    lua_rawseti(L, -2, v + 1);
+  }
+  lua_setfield(L, -4, "targets");
+  lua_setfield(L, -3, "errors");
+  lua_setfield(L, -2, "values");
+  return 1;
+}
+
+static int l_vertex_mean_curvature(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  tds_id v = tds_check_elem(L, st, 1, TDS_VERTEX, NULL);
+  if (tds_mesh_adjacency(&st->s.m) != TDS_OK) return luaL_error(L, "out of memory");
+  double h = tds_vertex_mean_curvature(&st->s, v);
+  if (isnan(h)) return 0;
+  lua_pushnumber(L, h);
+  return 1;
+}
+
+static int l_facet_min_angle(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  tds_id f = tds_check_elem(L, st, 1, TDS_FACET, NULL);
+  lua_pushnumber(L, tds_facet_min_angle(&st->s.m, f));
+  return 1;
+}
+
+static int l_pg_multipliers(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  tds_mesh *m = &st->s.m;
+  double *mult = lua_newuserdatauv(L, (size_t)(m->nb > 0 ? m->nb : 1) * sizeof *mult, 0);
+  int rc = tds_pg_multipliers(&st->ctx, &st->s, mult);
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+  lua_newtable(L);
+  for (tds_id b = 0; b < m->nb; b++) {
+    if (!tds_alive(m->bflags, b)) continue;
+    lua_pushnumber(L, mult[b]);
+    lua_rawseti(L, -2, b + 1);
+  }
+  return 1;
+}
+
+static int l_pg_flip_all(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  int32_t n = 0;
+  int rc = tds_pg_flip_all(&st->ctx, &st->s, &n);
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+  lua_pushinteger(L, n);
+  return 1;
+}
 
 void tds_open_pg(lua_State *L, tds_state *st) {
-  (void)L;
-  (void)st;
+  static const luaL_Reg fns[] = {
+      {"pg", l_pg},
+      {"quality", l_quality},
+      {"curvature", l_curvature},
+      {"vertex_mean_curvature", l_vertex_mean_curvature},
+      {"facet_min_angle", l_facet_min_angle},
+      {"pg_multipliers", l_pg_multipliers},
+      {"pg_flip_all", l_pg_flip_all},
+      {NULL, NULL}};
+  tds_lua_register(L, st, fns);
 }

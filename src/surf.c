@@ -47,6 +47,8 @@ void tds_surf_free(tds_surf *s) {
   }
   free(s->quant);
   free(s->read_text);
+  free(s->cg_dir);
+  free(s->cg_prev);
   tds_surf_init(s);
 }
 

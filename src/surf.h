@@ -90,6 +90,12 @@ typedef struct tds_surf {
   double scale_limit;     /* upper bound of the optimizing scale */
   int fixed_scale;        /* nonzero: use `scale` as given (m command) */
   int64_t iterations;     /* iterations done since load */
+  int conj_grad;          /* conjugate gradient directions (Evolver's U) */
+  double (*cg_dir)[3];    /* CG history: last search direction per vertex */
+  double (*cg_prev)[3];   /* and the last velocity (for Polak-Ribiere) */
+  double cg_norm2;        /* |velocity|^2 of the last step (0: restart) */
+  int32_t cg_nv;          /* vertex slots cg_dir covers */
+  uint64_t cg_topo;       /* topo_gen the history belongs to */
 
   char *read_text;        /* a datafile's read section, kept verbatim */
 

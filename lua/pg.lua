@@ -1,0 +1,236 @@
+-- pg.lua: the projected-gradient method and the paper's metrics, friendly
+-- names over the raw primitives of src/lua_pg.c. Requiring it defines the
+-- globals pg, projected_gradient, quality, curvature, write_fe, trimesh and
+-- the element attributes v.mean_curvature and f.min_angle.
+-- See doc/method.md and doc/metrics.md.
+
+local tds = tds
+
+local function opts_of(arg, name)
+  if arg == nil then return {} end
+  if math.type(arg) == "integer" then
+    if arg < 1 then error(name .. "(n): n must be at least 1", 3) end
+    return { iterations = arg }
+  end
+  if type(arg) == "table" then return arg end
+  error(name .. "(n) or " .. name .. "{ options } expected", 3)
+end
+
+-- pg(n): n iterations. pg(): until the termination criterion. pg{...}:
+-- options iterations, max, nmax, s, plain, depth, flips, every, rtol.
+-- Returns { iterations, r, flips, lambda, energy, converged, ... }.
+function pg(arg)
+  local o = opts_of(arg, "pg")
+  local t = {}
+  for k, v in pairs(o) do t[k] = v end
+  if t.n and not t.iterations then t.iterations = t.n; t.n = nil end
+  return tds.pg(t)
+end
+projected_gradient = pg
+
+local function pct(x) return ("%5.1f%%"):format(x) end
+
+-- quality(): smallest facet angles; prints a table unless quality{quiet=true}.
+function quality(o)
+  o = o or {}
+  local q = tds.quality()
+  if not o.quiet then
+    print(("Mesh quality: smallest angle of %d facets"):format(q.n))
+    if q.n > 0 then
+      print(("  min %.2f  mean %.2f  std %.2f (degrees)"):format(q.min, q.mean, q.std))
+      print(("  above 30: %s  40: %s  50: %s  55: %s"):format(
+        pct(q.above30), pct(q.above40), pct(q.above50), pct(q.above55)))
+      local most = 1
+      for i = 1, 12 do most = math.max(most, q.histogram[i]) end
+      for i = 1, 12 do
+        local c = q.histogram[i]
+        print(("  [%2d,%2d%s %6d %s"):format(5 * (i - 1), 5 * i, i == 12 and "]" or ")",
+          c, ("#"):rep(math.floor(40 * c / most + 0.5))))
+      end
+    end
+  end
+  return q
+end
+
+-- curvature{ target = number | "lambda" | "pressure" }: Meyer et al. mean
+-- curvature (k1 + k2) at every measured vertex and its error.
+-- Default target: "pressure" when there are bodies, else 0.
+function curvature(o)
+  o = o or {}
+  if type(o) == "number" or type(o) == "string" then o = { target = o } end
+  local target = o.target
+  if target == nil then target = (tds.count(tds.body) > 0) and "pressure" or 0 end
+  local c
+  if type(target) == "number" then
+    c = tds.curvature("value", target)
+  elseif target == "lambda" or target == "pressure" then
+    c = tds.curvature(target)
+  else
+    error('curvature{ target = number | "lambda" | "pressure" } expected', 2)
+  end
+  c.target = target
+  if not o.quiet then
+    print(("Mean curvature (Meyer et al., k1+k2) at %d vertices, target %s"):format(
+      c.n, tostring(target)))
+    if c.n > 0 then
+      print(("  mean k1+k2 %.10g   error max %.3e  mean %.3e  rms %.3e"):format(
+        c.mean_curvature, c.max, c.mean, c.rms))
+      print(("  worst vertex %d: k1+k2 %.10g, target %.10g"):format(
+        c.worst, c.worst_value, c.worst_target))
+    end
+  end
+  return c
+end
+
+-- Element attributes computed on demand: v.mean_curvature, f.min_angle.
+local props = {
+  vertex = { mean_curvature = function(h) return tds.vertex_mean_curvature(h) end },
+  facet = { min_angle = function(h) return tds.facet_min_angle(h) end },
+}
+do
+  local reg = debug.getregistry()
+  for kind, p in pairs(props) do
+    local mt = reg["tds." .. kind]
+    local old = mt and mt.__index
+    if old then
+      mt.__index = function(h, k)
+        local f = p[k]
+        if f then return f(h) end
+        return old(h, k)
+      end
+    end
+    -- also callable as methods: v:mean_curvature()
+    local methods = tds.methods and tds.methods[kind]
+    if methods then
+      for k, f in pairs(p) do methods[k] = methods[k] or f end
+    end
+  end
+end
+
+-- trimesh{ vertices = {...}, facets = {...}, bodies = {...} }: declare a
+-- surface from a triangle list. vertices[i] = { x, y, z, fixed = bool,
+-- constraint = n }; facets[i] = { a, b, c, tension = t, fixed = bool,
+-- body = b (front), backbody = b }; bodies[i] = { volume = V, density = d }.
+-- Edges are made for every vertex pair; an edge of one facet whose ends
+-- are both fixed is fixed, and one whose ends share a constraint is on it.
+function trimesh(t)
+  local V, F = t.vertices or error("trimesh{}: vertices expected", 2), t.facets or {}
+  local vdecl = {}
+  for i, p in ipairs(V) do
+    vdecl[i] = { p[1], p[2], p[3], fixed = p.fixed or nil, constraint = p.constraint }
+  end
+  vertices(vdecl)
+  local key = function(a, b) return a < b and (a * 1000003 + b) or (b * 1000003 + a) end
+  local eid, ends, count, edecl = {}, {}, {}, {}
+  for _, f in ipairs(F) do
+    for k = 1, 3 do
+      local a, b = f[k], f[k % 3 + 1]
+      local kk = key(a, b)
+      if not eid[kk] then
+        edecl[#edecl + 1] = { a, b }
+        eid[kk] = #edecl
+      end
+      count[kk] = (count[kk] or 0) + 1
+    end
+  end
+  for kk, e in pairs(eid) do
+    local d = edecl[e]
+    local va, vb = V[d[1]], V[d[2]]
+    if count[kk] == 1 then
+      if va.fixed and vb.fixed then d.fixed = true end
+      if va.constraint and va.constraint == vb.constraint and not d.fixed then
+        d.constraint = va.constraint
+      end
+    end
+  end
+  edges(edecl)
+  local fdecl = {}
+  for i, f in ipairs(F) do
+    local loop = {}
+    for k = 1, 3 do
+      local a, b = f[k], f[k % 3 + 1]
+      local e = eid[key(a, b)]
+      loop[k] = (edecl[e][1] == a) and e or -e
+    end
+    loop.tension = f.tension
+    loop.fixed = f.fixed or nil
+    fdecl[i] = loop
+  end
+  faces(fdecl)
+  if t.bodies then
+    local bdecl = {}
+    for b, bd in ipairs(t.bodies) do
+      local list = {}
+      for i, f in ipairs(F) do
+        if f.body == b then list[#list + 1] = i end
+        if f.backbody == b then list[#list + 1] = -i end
+      end
+      list.volume = bd.volume
+      list.density = bd.density
+      bdecl[b] = list
+    end
+    bodies(bdecl)
+  end
+end
+
+-- write_fe(path, { header = text, read = text }): the current surface as a
+-- Surface Evolver datafile (vertices, edges, facets, bodies, gravity).
+-- header goes first (parameters, constraint declarations in Evolver
+-- syntax); constraint numbers are written as the surface has them.
+function write_fe(path, o)
+  o = o or {}
+  local out = assert(io.open(path, "w"))
+  local w = function(...) out:write(string.format(...)) end
+  w("// %s: written by tds write_fe\n", path)
+  if o.header then w("%s\n", o.header) end
+  local G, on = tds.gravity()
+  if on then w("gravity_constant %.17g\n", G) end
+  local function cons(e)
+    local c = e.constraints
+    if #c == 0 then return "" end
+    return " constraint " .. table.concat(c, " ")
+  end
+  w("\nvertices\n")
+  for v in vertices() do
+    w("%d %.17g %.17g %.17g%s%s\n", v.id, v.x, v.y, v.z, v.fixed and " fixed" or "", cons(v))
+  end
+  w("\nedges\n")
+  for e in edges() do
+    w("%d %d %d%s%s%s\n", e.id, e.tail.id, e.head.id, e.fixed and " fixed" or "",
+      e.no_refine and " no_refine" or "", cons(e))
+  end
+  w("\nfaces\n")
+  for f in facets() do
+    local ed = f.edges
+    local extra = ""
+    if f.tension ~= 1 then extra = extra .. (" density %.17g"):format(f.tension) end
+    if f.fixed then extra = extra .. " fixed" end
+    if f.no_refine then extra = extra .. " no_refine" end
+    w("%d %d %d %d%s%s\n", f.id, ed[1], ed[2], ed[3], extra, cons(f))
+  end
+  local nb = tds.count(tds.body)
+  if nb > 0 then
+    local list = {}
+    for f in facets() do
+      local fb, bb = f.frontbody, f.backbody
+      if fb then list[fb.id] = list[fb.id] or {}; table.insert(list[fb.id], f.id) end
+      if bb then list[bb.id] = list[bb.id] or {}; table.insert(list[bb.id], -f.id) end
+    end
+    w("\nbodies\n")
+    for b in bodies() do
+      local fl = list[b.id] or {}
+      local parts = {}
+      for i = 1, #fl, 12 do
+        parts[#parts + 1] = table.concat(fl, " ", i, math.min(#fl, i + 11))
+      end
+      w("%d %s", b.id, table.concat(parts, " \\\n  "))
+      if b.target then w(" volume %.17g", b.target) end
+      if b.density ~= 0 then w(" density %.17g", b.density) end
+      w("\n")
+    end
+  end
+  if o.read then w("\nread\n%s\n", o.read) end
+  out:close()
+end
+
+return true

@@ -1,0 +1,304 @@
+-- meshes.lua: input meshes of the paper's experiments, as triangle lists
+-- for trimesh{} (lua/pg.lua). Load with dofile; returns the module table.
+-- Every generator is deterministic (its own random generator, seeded).
+
+local M = {}
+local sqrt, cos, sin, pi = math.sqrt, math.cos, math.sin, math.pi
+
+-- A small deterministic generator (xorshift), so meshes do not depend on
+-- Lua's math.random implementation.
+function M.rng(seed)
+  local s = seed or 88172645463325252
+  return function()
+    s = s ~ (s << 13)
+    s = s ~ (s >> 7)
+    s = s ~ (s << 17)
+    return ((s >> 11) & ((1 << 53) - 1)) / (1 << 53)
+  end
+end
+
+-- Icosahedron subdivided n times, projected on the sphere of radius R.
+function M.icosphere(n, R)
+  R = R or 1
+  local t = (1 + sqrt(5)) / 2
+  local V = { {-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+              {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1} }
+  local F = { {1,12,6}, {1,6,2}, {1,2,8}, {1,8,11}, {1,11,12}, {2,6,10}, {6,12,5},
+              {12,11,3}, {11,8,7}, {8,2,9}, {4,10,5}, {4,5,3}, {4,3,7}, {4,7,9},
+              {4,9,10}, {5,10,6}, {3,5,12}, {7,3,11}, {9,7,8}, {10,9,2} }
+  for _ = 1, n do
+    local mid, NF = {}, {}
+    local function m(a, b)
+      local k = a < b and a * 100000 + b or b * 100000 + a
+      if not mid[k] then
+        local p, q = V[a], V[b]
+        V[#V + 1] = { (p[1] + q[1]) / 2, (p[2] + q[2]) / 2, (p[3] + q[3]) / 2 }
+        mid[k] = #V
+      end
+      return mid[k]
+    end
+    for _, f in ipairs(F) do
+      local a, b, c = f[1], f[2], f[3]
+      local ab, bc, ca = m(a, b), m(b, c), m(c, a)
+      NF[#NF + 1] = { a, ab, ca }; NF[#NF + 1] = { b, bc, ab }
+      NF[#NF + 1] = { c, ca, bc }; NF[#NF + 1] = { ab, bc, ca }
+    end
+    F = NF
+  end
+  for _, p in ipairs(V) do
+    local l = sqrt(p[1]^2 + p[2]^2 + p[3]^2)
+    p[1], p[2], p[3] = R * p[1] / l, R * p[2] / l, R * p[3] / l
+  end
+  return { vertices = V, facets = F }
+end
+
+
+-- Delaunay triangulation of 2-D points (Bowyer-Watson). pts[i] = {u, v}.
+-- Returns a list of counter-clockwise triangles {i, j, k}.
+function M.delaunay(pts)
+  local n = #pts
+  local P = {}
+  for i = 1, n do P[i] = pts[i] end
+  local lo, hi = math.huge, -math.huge
+  for i = 1, n do
+    lo = math.min(lo, pts[i][1], pts[i][2]); hi = math.max(hi, pts[i][1], pts[i][2])
+  end
+  local c, d = (lo + hi) / 2, (hi - lo) * 20 + 1
+  P[n + 1] = { c - d, c - d }; P[n + 2] = { c + d, c - d }; P[n + 3] = { c, c + d }
+  local tris = {}
+  local function add(a, b, cc)
+    local A, B, C = P[a], P[b], P[cc]
+    local ax, ay, bx, by, cx, cy = A[1], A[2], B[1], B[2], C[1], C[2]
+    local D = 2 * (ax * (by - cy) + bx * (cy - ay) + cx * (ay - by))
+    local a2, b2, c2 = ax * ax + ay * ay, bx * bx + by * by, cx * cx + cy * cy
+    local ux = (a2 * (by - cy) + b2 * (cy - ay) + c2 * (ay - by)) / D
+    local uy = (a2 * (cx - bx) + b2 * (ax - cx) + c2 * (bx - ax)) / D
+    tris[#tris + 1] = { a, b, cc, ux, uy, (ax - ux)^2 + (ay - uy)^2 }
+  end
+  add(n + 1, n + 2, n + 3)
+  for i = 1, n do
+    local px, py = P[i][1], P[i][2]
+    local keep, edges = {}, {}
+    for _, t in ipairs(tris) do
+      if (px - t[4])^2 + (py - t[5])^2 < t[6] * (1 - 1e-12) then
+        for k = 1, 3 do
+          local a, b = t[k], t[k % 3 + 1]
+          local key = a < b and a * 1000003 + b or b * 1000003 + a
+          if edges[key] then edges[key] = false else edges[key] = { a, b } end
+        end
+      else
+        keep[#keep + 1] = t
+      end
+    end
+    tris = keep
+    for _, e in pairs(edges) do
+      if e then add(e[1], e[2], i) end
+    end
+  end
+  local out = {}
+  for _, t in ipairs(tris) do
+    if t[1] <= n and t[2] <= n and t[3] <= n then
+      local A, B, C = P[t[1]], P[t[2]], P[t[3]]
+      local cr = (B[1] - A[1]) * (C[2] - A[2]) - (B[2] - A[2]) * (C[1] - A[1])
+      if cr > 0 then out[#out + 1] = { t[1], t[2], t[3] }
+      else out[#out + 1] = { t[1], t[3], t[2] } end
+    end
+  end
+  return out
+end
+
+-- Points of a hexagonal lattice of spacing h, sorted by distance from the
+-- origin; jittered by `jit` * h (deterministic).
+local function hex_lattice(h, R, jit, rng)
+  local pts = {}
+  local nr = math.ceil(R / (h * sqrt(3) / 2)) + 1
+  for j = -nr, nr do
+    local y = j * h * sqrt(3) / 2
+    local off = (j % 2) * h / 2
+    for i = -nr - 1, nr + 1 do
+      local x = i * h + off
+      if x * x + y * y < R * R then
+        pts[#pts + 1] = { x + jit * h * (rng() - 0.5), y + jit * h * (rng() - 0.5), x * x + y * y }
+      end
+    end
+  end
+  table.sort(pts, function(a, b) return a[3] < b[3] end)
+  return pts
+end
+
+-- Points in the unit disk: nint interior points (lattice or random) and
+-- nrim points on the circle. Returns pts (rim first) and nrim.
+function M.disk_points(nint, o)
+  o = o or {}
+  local rng = M.rng(o.seed or 12345)
+  local pts = {}
+  local h = o.h
+  if not h then -- area per lattice point h^2 sqrt(3)/2 over the inner disk
+    h = sqrt(pi / (nint * sqrt(3) / 2))
+    for _ = 1, 5 do h = sqrt(pi * (1 - 0.45 * h)^2 / (nint * sqrt(3) / 2)) end
+    h = h * 0.98
+  end
+  local nrim = o.nrim or math.floor(2 * pi / h + 0.5)
+  for i = 1, nrim do
+    local a = 2 * pi * (i - 1) / nrim
+    pts[i] = { cos(a), sin(a) }
+  end
+  if o.random then
+    local k = 0
+    while k < nint do
+      local x, y = 2 * rng() - 1, 2 * rng() - 1
+      local r2 = x * x + y * y
+      if r2 < (1 - 0.15 * h)^2 then k = k + 1; pts[#pts + 1] = { x, y } end
+    end
+  else
+    local lat = hex_lattice(h, 1.5, o.jitter or 0.02, rng)
+    local k = 0
+    for _, p in ipairs(lat) do
+      if k == nint then break end
+      if p[1]^2 + p[2]^2 < (1 - 0.45 * h)^2 then k = k + 1; pts[#pts + 1] = { p[1], p[2] } end
+    end
+    assert(k == nint, "lattice too small")
+  end
+  return pts, nrim
+end
+
+-- A surface over the unit disk: map(u, v, rim) -> x, y, z. Rim vertices
+-- are fixed unless o.rim is a table of vertex attributes.
+function M.disk_surface(pts, nrim, map, o)
+  o = o or {}
+  local V = {}
+  for i, p in ipairs(pts) do
+    local x, y, z = map(p[1], p[2], i <= nrim)
+    V[i] = { x, y, z }
+    if i <= nrim then
+      if o.rim then for k, v in pairs(o.rim) do V[i][k] = v end
+      else V[i].fixed = true end
+    end
+  end
+  local F = M.delaunay(pts)
+  if o.flip then for _, f in ipairs(F) do f[2], f[3] = f[3], f[2] end end
+  return { vertices = V, facets = F }
+end
+
+-- Equal-area map of the unit disk onto the spherical cap of polar angle
+-- theta_max (measured from the pole (0, 0, 1)), radius R.
+function M.cap_map(R, thmax, zc)
+  local k = 1 - cos(thmax)
+  return function(u, v)
+    local r2 = u * u + v * v
+    local c = 1 - r2 * k
+    local th = math.acos(math.max(-1, math.min(1, c)))
+    local phi = math.atan(v, u)
+    local z = R * cos(th)
+    if math.abs(z) < 1e-14 * R then z = 0 end
+    return R * sin(th) * cos(phi), R * sin(th) * sin(phi), (zc or 0) + z
+  end
+end
+
+-- Staggered cylinder of radius 1 between z0 and z1 with n vertices per ring
+-- and rows intervals; the two end rings are fixed. Facets face outwards.
+function M.cylinder(n, rows, z0, z1, o)
+  o = o or {}
+  local V, F = {}, {}
+  for j = 0, rows do
+    local z = z0 + (z1 - z0) * j / rows
+    for i = 0, n - 1 do
+      local a = 2 * pi * (i + 0.5 * (j % 2)) / n
+      V[#V + 1] = { cos(a), sin(a), z, fixed = (j == 0 or j == rows) or nil }
+    end
+  end
+  local id = function(j, i) return j * n + (i % n) + 1 end
+  for j = 0, rows - 1 do
+    for i = 0, n - 1 do
+      if j % 2 == 0 then
+        F[#F + 1] = { id(j, i), id(j, i + 1), id(j + 1, i) }
+        F[#F + 1] = { id(j, i + 1), id(j + 1, i + 1), id(j + 1, i) }
+      else
+        F[#F + 1] = { id(j, i), id(j + 1, i + 1), id(j + 1, i) }
+        F[#F + 1] = { id(j, i), id(j, i + 1), id(j + 1, i + 1) }
+      end
+    end
+  end
+  if o.caps then -- fixed, tensionless end caps closing a body
+    V[#V + 1] = { 0, 0, z0, fixed = true }
+    local c0 = #V
+    V[#V + 1] = { 0, 0, z1, fixed = true }
+    local c1 = #V
+    for i = 0, n - 1 do
+      F[#F + 1] = { c0, id(0, i + 1), id(0, i), tension = 0, fixed = true }
+      F[#F + 1] = { c1, id(rows, i), id(rows, i + 1), tension = 0, fixed = true }
+    end
+  end
+  return { vertices = V, facets = F }
+end
+
+-- The surface of the cube [-1,1]^3 with a hole of radius rho in each face
+-- (the circles fixed), interior points pulled towards the centre.
+function M.schwarz_p(rho, h, shrink)
+  local rng = M.rng(777)
+  local faces = { -- normal, a, b with a x b = normal
+    { {1,0,0}, {0,1,0}, {0,0,1} }, { {-1,0,0}, {0,0,1}, {0,1,0} },
+    { {0,1,0}, {0,0,1}, {1,0,0} }, { {0,-1,0}, {1,0,0}, {0,0,1} },
+    { {0,0,1}, {1,0,0}, {0,1,0} }, { {0,0,-1}, {0,1,0}, {1,0,0} } }
+  local V, F, index = {}, {}, {}
+  local function vid(x, y, z, fixed)
+    local key = ("%.9f %.9f %.9f"):format(x, y, z)
+    if not index[key] then
+      V[#V + 1] = { x, y, z, fixed = fixed or nil }
+      index[key] = #V
+    end
+    return index[key]
+  end
+  local nc = math.floor(2 * pi * rho / h + 0.5)
+  local ns = math.floor(2 / h + 0.5)
+  for _, fa in ipairs(faces) do
+    local pts, kind = {}, {}
+    for i = 1, nc do
+      local a = 2 * pi * (i - 1) / nc
+      pts[#pts + 1] = { rho * cos(a), rho * sin(a) }; kind[#pts] = "circle"
+    end
+    for s = 0, 3 do
+      for i = 0, ns - 1 do
+        local t = -1 + 2 * i / ns
+        local u, v
+        if s == 0 then u, v = t, -1 elseif s == 1 then u, v = 1, t
+        elseif s == 2 then u, v = -t, 1 else u, v = -1, -t end
+        pts[#pts + 1] = { u, v }
+      end
+    end
+    local lat = hex_lattice(h, 1.5, 0.02, rng)
+    for _, p in ipairs(lat) do
+      local u, v = p[1], p[2]
+      if math.abs(u) < 1 - 0.45 * h and math.abs(v) < 1 - 0.45 * h and
+         u * u + v * v > (rho + 0.45 * h)^2 then
+        pts[#pts + 1] = { u, v }
+      end
+    end
+    local tris = M.delaunay(pts)
+    local map = {}
+    for i, p in ipairs(pts) do
+      local x = fa[1][1] + p[1] * fa[2][1] + p[2] * fa[3][1]
+      local y = fa[1][2] + p[1] * fa[2][2] + p[2] * fa[3][2]
+      local z = fa[1][3] + p[1] * fa[2][3] + p[2] * fa[3][3]
+      map[i] = vid(x, y, z, kind[i] == "circle")
+    end
+    for _, t in ipairs(tris) do
+      local cu = (pts[t[1]][1] + pts[t[2]][1] + pts[t[3]][1]) / 3
+      local cv = (pts[t[1]][2] + pts[t[2]][2] + pts[t[3]][2]) / 3
+      if cu * cu + cv * cv > rho * rho then
+        F[#F + 1] = { map[t[1]], map[t[2]], map[t[3]] }
+      end
+    end
+  end
+  local r0, r1 = sqrt(1 + rho * rho), sqrt(3)
+  for _, p in ipairs(V) do
+    if not p.fixed then
+      local r = sqrt(p[1]^2 + p[2]^2 + p[3]^2)
+      local sc = 1 - shrink * (r - r0) / (r1 - r0)
+      p[1], p[2], p[3] = p[1] * sc, p[2] * sc, p[3] * sc
+    end
+  end
+  return { vertices = V, facets = F }
+end
+
+return M

@@ -1,0 +1,360 @@
+/*
+** dump.c: writing a surface as a Surface Evolver datafile (contract in
+** datafile.h).
+**
+** Numbers are written with 17 significant digits, so a dump read back
+** (by tds or by Evolver) has bit-identical coordinates and parameters.
+** Element ids are kept; dead slots are left out (Evolver accepts gaps).
+** Formulas are written from their source text, cleaned so that the text
+** means the same in a datafile: comments removed, newlines made spaces,
+** and a space put after a sign that the datafile's signed-number rule
+** would otherwise read as the start of a new number ("z -1" -> "z - 1";
+** inside one expression that sign was an operator anyway).
+*/
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "datafile.h"
+#include "model.h"
+
+typedef struct out {
+  FILE *f;
+  int bad;        /* a value was not finite */
+  char what[96];  /* first non-finite item */
+} out;
+
+static void num(out *o, double v, const char *what, int id) {
+  if (!isfinite(v) && !o->bad) {
+    o->bad = 1;
+    snprintf(o->what, sizeof o->what, "%s %d", what, id);
+  }
+  fprintf(o->f, " %.17g", v);
+}
+
+/* Write expression text cleaned for the datafile (see the top). */
+static void text(out *o, const tds_expr *e) {
+  if (!e) {
+    fputs("0", o->f);
+    return;
+  }
+  const char *s = tds_expr_text(e);
+  size_t n = strlen(s);
+  int prev_space = 1;
+  for (size_t i = 0; i < n; i++) {
+    char c = s[i];
+    if (c == '/' && i + 1 < n && s[i + 1] == '/') {
+      while (i < n && s[i] != '\n') i++;
+      c = ' ';
+    } else if (c == '/' && i + 1 < n && s[i + 1] == '*') {
+      i += 2;
+      while (i + 1 < n && !(s[i] == '*' && s[i + 1] == '/')) i++;
+      i++;
+      c = ' ';
+    } else if (c == '\\' && i + 1 < n && (s[i + 1] == '\n' || s[i + 1] == '\r')) {
+      i++;
+      c = ' ';
+    }
+    if (c == '\n' || c == '\r' || c == '\t') c = ' ';
+    fputc(c, o->f);
+    if ((c == '+' || c == '-') && prev_space && i + 1 < n &&
+        ((s[i + 1] >= '0' && s[i + 1] <= '9') || s[i + 1] == '.'))
+      fputc(' ', o->f);
+    prev_space = c == ' ';
+  }
+}
+
+static void components(out *o, const char *title, char letter, tds_expr *const e[3]) {
+  if (!e[0] && !e[1] && !e[2]) return;
+  fprintf(o->f, "%s\n", title);
+  for (int k = 0; k < 3; k++) {
+    fprintf(o->f, "%c%d: ", letter, k + 1);
+    text(o, e[k]);
+    fputc('\n', o->f);
+  }
+}
+
+static void cons(out *o, const tds_surf *s, tds_cmask mask, int rev) {
+  if (!mask) return;
+  fputs(" constraints", o->f);
+  for (int c = 0; c < TDS_MAX_CON; c++)
+    if (mask & ((tds_cmask)1 << c)) fprintf(o->f, " %s%d", rev ? "-" : "", s->con[c].number);
+}
+
+static void header(out *o, const tds_surf *s) {
+  FILE *f = o->f;
+  const tds_mesh *m = &s->m;
+  int density = 0;
+  for (tds_id b = 0; b < m->nb; b++)
+    if (tds_alive(m->bflags, b) && m->bdensity[b] != 0) density = 1;
+  for (int i = 0; i < s->npar; i++) {
+    fprintf(f, "PARAMETER %s =", s->parname[i]);
+    num(o, s->parval[i], "parameter", i + 1);
+    fputc('\n', f);
+  }
+  if (s->npar) fputc('\n', f);
+  if (!s->gravity_on && density)
+    fputs("// gravity was off: G = 0 keeps the bodies' densities without energy\n"
+          "GRAVITY_CONSTANT 0\n", f);
+  else {
+    fputs("GRAVITY_CONSTANT", f);
+    num(o, s->gravity, "gravity_constant", 0);
+    fputc('\n', f);
+  }
+  if (s->gap_constant != 1) {
+    fputs("GAP_CONSTANT", f);
+    num(o, s->gap_constant, "gap_constant", 0);
+    fputc('\n', f);
+  }
+  if (s->constraint_tol != 1e-12) {
+    fputs("CONSTRAINT_TOLERANCE", f);
+    num(o, s->constraint_tol, "constraint_tolerance", 0);
+    fputc('\n', f);
+  }
+  if (s->scale_limit != 1) {
+    fputs("SCALE_LIMIT", f);
+    num(o, s->scale_limit, "scale_limit", 0);
+    fputc('\n', f);
+  }
+  if (s->fixed_scale) {
+    fputs("SCALE", f);
+    num(o, s->scale, "scale", 0);
+    fputs(" FIXED\n", f);
+  }
+  if (s->symmetric_content) fputs("SYMMETRIC_CONTENT\n", f);
+  fputc('\n', f);
+
+  /* constraints in order of their numbers */
+  int last = 0;
+  for (;;) {
+    int best = -1;
+    for (int c = 0; c < TDS_MAX_CON; c++)
+      if (s->con[c].number > last && (best < 0 || s->con[c].number < s->con[best].number))
+        best = c;
+    if (best < 0) break;
+    const tds_constraint *c = &s->con[best];
+    last = c->number;
+    fprintf(f, "CONSTRAINT %d%s%s%s%s\nFORMULA: ", c->number,
+            (c->flags & TDS_CON_GLOBAL) ? " GLOBAL" : "",
+            (c->flags & TDS_CON_CONVEX) ? " CONVEX" : "",
+            (c->flags & TDS_CON_NONNEG) ? " NONNEGATIVE" : "",
+            (c->flags & TDS_CON_NONPOS) ? " NONPOSITIVE" : "");
+    text(o, c->formula);
+    fputc('\n', f);
+    components(o, "ENERGY", 'E', c->energy);
+    components(o, "CONTENT", 'C', c->content);
+    fputc('\n', f);
+  }
+  for (int i = 0; i < s->nbdry; i++) {
+    const tds_boundary *b = &s->bdry[i];
+    if (!b->number) continue;
+    fprintf(f, "BOUNDARY %d PARAMETERS %d%s\n", b->number, b->nparams,
+            (b->flags & TDS_CON_CONVEX) ? " CONVEX" : "");
+    for (int k = 0; k < 3; k++) {
+      fprintf(f, "X%d: ", k + 1);
+      text(o, b->x[k]);
+      fputc('\n', f);
+    }
+    components(o, "ENERGY", 'E', b->energy);
+    components(o, "CONTENT", 'C', b->content);
+    fputc('\n', f);
+  }
+  for (int i = 0; i < s->nquant; i++) {
+    const tds_quantity *q = &s->quant[i];
+    fprintf(f, "QUANTITY %s ", q->name);
+    if (q->kind == TDS_Q_FIXED) {
+      fputs("FIXED =", f);
+      num(o, q->target, "quantity target", i + 1);
+      fputs(" LAGRANGE_MULTIPLIER", f);
+      num(o, q->pressure, "quantity pressure", i + 1);
+    } else {
+      fputs(q->kind == TDS_Q_ENERGY ? "ENERGY" : "INFO_ONLY", f);
+    }
+    if (q->modulus != 1) {
+      fputs(" MODULUS", f);
+      num(o, q->modulus, "quantity modulus", i + 1);
+    }
+    if (q->volconst != 0) {
+      fputs(" VOLCONST", f);
+      num(o, q->volconst, "quantity volconst", i + 1);
+    }
+    fputc('\n', f);
+    for (int j = 0; j < q->ninst; j++) {
+      const tds_method_inst *mi = &q->inst[j];
+      int mth = mi->method >= 0 && mi->method < TDS_M_COUNT ? mi->method : 0;
+      fprintf(f, "METHOD %s", tds_method_names[mth]);
+      if (mi->modulus != 1) {
+        fputs(" MODULUS", f);
+        num(o, mi->modulus, "method modulus", i + 1);
+      }
+      fputs(" GLOBAL\n", f);
+      if (mth == TDS_M_FACET_VECTOR_INTEGRAL || mth == TDS_M_EDGE_VECTOR_INTEGRAL) {
+        fputs("VECTOR_INTEGRAND:\n", f);
+        for (int k = 0; k < 3; k++) {
+          fprintf(f, "Q%d: ", k + 1);
+          text(o, mi->integrand[k]);
+          fputc('\n', f);
+        }
+      } else if (mi->integrand[0]) {
+        fputs("SCALAR_INTEGRAND: ", f);
+        text(o, mi->integrand[0]);
+        fputc('\n', f);
+      }
+    }
+    fputc('\n', f);
+  }
+}
+
+static void elements(out *o, const tds_surf *s) {
+  FILE *f = o->f;
+  const tds_mesh *m = &s->m;
+  fputs("vertices\n", f);
+  for (tds_id v = 0; v < m->nv; v++) {
+    if (!tds_alive(m->vflags, v)) continue;
+    fprintf(f, "%d", v + 1);
+    int32_t bd = m->vbdry[v];
+    if (bd != TDS_NONE && bd >= 0 && bd < s->nbdry) {
+      for (int k = 0; k < s->bdry[bd].nparams; k++) num(o, m->vp[v][k], "vertex", v + 1);
+      fprintf(f, " boundary %d", s->bdry[bd].number);
+    } else {
+      for (int k = 0; k < 3; k++) num(o, m->x[v][k], "vertex", v + 1);
+    }
+    cons(o, s, m->vcon[v], 0);
+    if (m->vflags[v] & TDS_FIXED) fputs(" fixed", f);
+    if (m->vflags[v] & TDS_BARE) fputs(" bare", f);
+    fputc('\n', f);
+  }
+  fputs("\nedges\n", f);
+  for (tds_id e = 0; e < m->ne; e++) {
+    if (!tds_alive(m->eflags, e)) continue;
+    uint32_t fl = m->eflags[e];
+    fprintf(f, "%d %d %d", e + 1, m->ev[e][0] + 1, m->ev[e][1] + 1);
+    cons(o, s, m->econ[e], (fl & TDS_CONREV) != 0);
+    if (m->ebdry[e] != TDS_NONE && m->ebdry[e] >= 0 && m->ebdry[e] < s->nbdry)
+      fprintf(f, " boundary %d", s->bdry[m->ebdry[e]].number);
+    if (fl & TDS_FIXED) fputs(" fixed", f);
+    if (fl & TDS_NO_REFINE) fputs(" no_refine", f);
+    if (fl & TDS_BARE) fputs(" bare", f);
+    if (fl & TDS_NONCONTENT) fputs(" noncontent", f);
+    if (m->eten[e] != 0) {
+      fputs(" tension", f);
+      num(o, m->eten[e], "edge", e + 1);
+    }
+    if (m->ecolor[e]) fprintf(f, " color %d", m->ecolor[e]);
+    fputc('\n', f);
+  }
+  fputs("\nfaces\n", f);
+  for (tds_id t = 0; t < m->nf; t++) {
+    if (!tds_alive(m->fflags, t)) continue;
+    uint32_t fl = m->fflags[t];
+    fprintf(f, "%d", t + 1);
+    for (int k = 0; k < 3; k++) {
+      int32_t r = m->fe[t][k];
+      fprintf(f, " %s%d", TDS_OREV(r) ? "-" : "", TDS_OID(r) + 1);
+    }
+    cons(o, s, m->fcon[t], 0);
+    if (fl & TDS_FIXED) fputs(" fixed", f);
+    if (fl & TDS_NO_REFINE) fputs(" no_refine", f);
+    if (fl & TDS_NODISPLAY) fputs(" nodisplay", f);
+    if (fl & TDS_NONCONTENT) fputs(" noncontent", f);
+    if (m->ften[t] != 1) {
+      fputs(" tension", f);
+      num(o, m->ften[t], "facet", t + 1);
+    }
+    if (m->fcolor[t]) fprintf(f, " color %d", m->fcolor[t]);
+    fputc('\n', f);
+  }
+  int any = 0;
+  for (tds_id b = 0; b < m->nb; b++) any |= tds_alive(m->bflags, b);
+  if (!any) return;
+  fputs("\nbodies\n", f);
+  for (tds_id b = 0; b < m->nb; b++) {
+    if (!tds_alive(m->bflags, b)) continue;
+    fprintf(f, "%d", b + 1);
+    int col = 0;
+    for (tds_id t = 0; t < m->nf; t++) {
+      if (!tds_alive(m->fflags, t)) continue;
+      for (int j = 0; j < 2; j++)
+        if (m->fb[t][j] == b) {
+          if (col == 16) {
+            fputs(" \\\n ", f);
+            col = 0;
+          }
+          fprintf(f, " %s%d", j ? "-" : "", t + 1);
+          col++;
+        }
+    }
+    uint32_t fl = m->bflags[b];
+    if (fl & TDS_TARGET) {
+      fputs(" volume", f);
+      num(o, m->btarget[b], "body", b + 1);
+      fputs(" lagrange_multiplier", f);
+      num(o, m->bpressure[b], "body", b + 1);
+    } else if (fl & TDS_PRESSURE) {
+      fputs(" pressure", f);
+      num(o, m->bpressure[b], "body", b + 1);
+    }
+    if ((fl & TDS_VOLCONST) || m->bvolconst[b] != 0) {
+      fputs(" volconst", f);
+      num(o, m->bvolconst[b], "body", b + 1);
+    }
+    if (m->bdensity[b] != 0 || s->gravity_on) {
+      fputs(" density", f);
+      num(o, m->bdensity[b], "body", b + 1);
+    }
+    fputc('\n', f);
+  }
+}
+
+int tds_datafile_dump(tds_ctx *ctx, tds_surf *s, const char *path) {
+  size_t n = strlen(path);
+  char *tmp = malloc(n + 5);
+  if (!tmp) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+  memcpy(tmp, path, n);
+  memcpy(tmp + n, ".tmp", 5);
+  out o = {0};
+  o.f = fopen(tmp, "w");
+  if (!o.f) {
+    int rc = tds_seterr(ctx, TDS_EIO, "cannot write '%s': %s", tmp, strerror(errno));
+    free(tmp);
+    return rc;
+  }
+  tds_ctx quiet = *ctx;
+  double energy = NAN;
+  if (tds_surf_update(&quiet, s) == TDS_OK) energy = s->energy;
+  const tds_mesh *m = &s->m;
+  fprintf(o.f, "// %s: Surface Evolver datafile written by tds %s\n", path, TDS_VERSION);
+  fprintf(o.f, "// vertices %d, edges %d, facets %d, bodies %d", tds_mesh_count(m, TDS_VERTEX),
+          tds_mesh_count(m, TDS_EDGE), tds_mesh_count(m, TDS_FACET),
+          tds_mesh_count(m, TDS_BODY));
+  if (isfinite(energy)) fprintf(o.f, "; total energy %.17g", energy);
+  fputs("\n\n", o.f);
+  header(&o, s);
+  elements(&o, s);
+  if (s->read_text) {
+    fputs("\nread\n", o.f);
+    fputs(s->read_text, o.f);
+    size_t k = strlen(s->read_text);
+    if (k && s->read_text[k - 1] != '\n') fputc('\n', o.f);
+  }
+  int err = ferror(o.f);
+  int saved = errno;
+  if (fclose(o.f) != 0 && !err) {
+    err = 1;
+    saved = errno;
+  }
+  int rc = TDS_OK;
+  if (o.bad) {
+    rc = tds_seterr(ctx, TDS_ENUM, "cannot dump to '%s': %s is not finite", path, o.what);
+  } else if (err) {
+    rc = tds_seterr(ctx, TDS_EIO, "cannot write '%s': %s", tmp, strerror(saved));
+  } else if (rename(tmp, path) != 0) {
+    rc = tds_seterr(ctx, TDS_EIO, "cannot rename '%s' to '%s': %s", tmp, path,
+                    strerror(errno));
+  }
+  if (rc != TDS_OK) remove(tmp);
+  free(tmp);
+  return rc;
+}

@@ -1,0 +1,167 @@
+/* metrics.c: mesh quality and discrete mean curvature (see metrics.h). */
+#include "metrics.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "pg.h"
+#include "vec3.h"
+
+static double angle_at(const double *p, const double *q, const double *r) {
+  double u[3], v[3], w[3];
+  v3_sub(u, q, p);
+  v3_sub(v, r, p);
+  v3_cross(w, u, v);
+  return atan2(v3_norm(w), v3_dot(u, v));
+}
+
+double tds_facet_min_angle(const tds_mesh *m, tds_id f) {
+  const double *a = m->x[m->fv[f][0]], *b = m->x[m->fv[f][1]],
+               *c = m->x[m->fv[f][2]];
+  double A = angle_at(a, b, c), B = angle_at(b, c, a), C = TDS_PI - A - B;
+  double mn = A < B ? A : B;
+  if (C < mn) mn = C;
+  if (!(mn > 0)) mn = 0;
+  return mn * 180 / TDS_PI;
+}
+
+int tds_facet_measured(const tds_mesh *m, tds_id f) {
+  return !(m->fflags[f] & (TDS_DEAD | TDS_FIXED)) && m->ften[f] != 0;
+}
+
+void tds_quality(const tds_surf *s, tds_quality_out *q) {
+  const tds_mesh *m = &s->m;
+  double sum = 0, sum2 = 0, mn = INFINITY;
+  int32_t n = 0, above[4] = {0, 0, 0, 0};
+  static const double lim[4] = {30, 40, 50, 55};
+  for (int i = 0; i < 12; i++) q->hist[i] = 0;
+  q->worst = TDS_NONE;
+  for (tds_id f = 0; f < m->nf; f++) {
+    if (!tds_facet_measured(m, f)) continue;
+    double a = tds_facet_min_angle(m, f);
+    n++;
+    sum += a;
+    sum2 += a * a;
+    if (a < mn) {
+      mn = a;
+      q->worst = f;
+    }
+    for (int i = 0; i < 4; i++) above[i] += a > lim[i];
+    int bin = (int)(a / 5);
+    if (bin > 11) bin = 11;
+    if (bin < 0) bin = 0;
+    q->hist[bin]++;
+  }
+  q->n = n;
+  q->min = n ? mn : NAN;
+  q->mean = n ? sum / n : NAN;
+  double var = n ? sum2 / n - q->mean * q->mean : NAN;
+  q->std = n ? sqrt(var > 0 ? var : 0) : NAN;
+  for (int i = 0; i < 4; i++) q->above[i] = n ? 100.0 * above[i] / n : NAN;
+}
+
+/* A vertex is measured when it can move and every incident edge lies
+** between exactly two facets (a closed manifold star). */
+static int measured_vertex(const tds_surf *s, tds_id v) {
+  const tds_mesh *m = &s->m;
+  if (m->vflags[v] & (TDS_DEAD | TDS_FIXED)) return 0;
+  if (m->vf_start[v + 1] == m->vf_start[v]) return 0;
+  for (int32_t i = m->ve_start[v]; i < m->ve_start[v + 1]; i++)
+    if (tds_edge_valence(m, TDS_OID(m->ve[i])) != 2) return 0;
+  return 1;
+}
+
+double tds_vertex_mean_curvature(const tds_surf *s, tds_id v) {
+  const tds_mesh *m = &s->m;
+  if (!measured_vertex(s, v)) return NAN;
+  double K[3] = {0, 0, 0}, S[3] = {0, 0, 0}, amix = 0;
+  const double *xi = m->x[v];
+  for (int32_t i = m->vf_start[v]; i < m->vf_start[v + 1]; i++) {
+    tds_id f = m->vf[i];
+    int k = m->fv[f][0] == v ? 0 : m->fv[f][1] == v ? 1 : 2;
+    const double *xj = m->x[m->fv[f][(k + 1) % 3]], *xk = m->x[m->fv[f][(k + 2) % 3]];
+    double eij[3], eik[3], ejk[3], N[3];
+    v3_sub(eij, xj, xi);
+    v3_sub(eik, xk, xi);
+    v3_sub(ejk, xk, xj);
+    v3_cross(N, eij, eik);
+    double nl = v3_norm(N);
+    if (!(nl > 0)) return NAN;
+    v3_add(S, S, N);
+    double di = v3_dot(eij, eik);          /* at i */
+    double dj = -v3_dot(eij, ejk);         /* at j: (xi - xj) . (xk - xj) */
+    double dk = v3_dot(eik, ejk);          /* at k: (xi - xk) . (xj - xk) */
+    double cotj = dj / nl, cotk = dk / nl;
+    /* edge ij is opposite k, edge ik opposite j */
+    for (int c = 0; c < 3; c++) K[c] += -cotk * eij[c] - cotj * eik[c];
+    double A = 0.5 * nl;
+    if (di < 0) amix += A / 2;
+    else if (dj < 0 || dk < 0) amix += A / 4;
+    else amix += (v3_dot(eij, eij) * cotk + v3_dot(eik, eik) * cotj) / 8;
+  }
+  double sl = v3_norm(S);
+  if (!(sl > 0) || !(amix > 0)) return NAN;
+  return v3_dot(K, S) / (sl * 2 * amix);
+}
+
+/* Target at vertex v from its first star facet's bodies. */
+static double target_at(const tds_surf *s, tds_id v, int mode, const double *mult) {
+  const tds_mesh *m = &s->m;
+  tds_id f = m->vf[m->vf_start[v]];
+  double t = 0;
+  int grav = mode == TDS_CURV_PRESSURE && s->gravity_on;
+  for (int j = 0; j < 2; j++) {
+    tds_id b = m->fb[f][j];
+    if (b == TDS_NONE) continue;
+    double p = (m->bflags[b] & TDS_TARGET) ? mult[b]
+               : (m->bflags[b] & TDS_PRESSURE) ? m->bpressure[b] : 0;
+    if (grav) p -= s->gravity * m->bdensity[b] * m->x[v][2];
+    t += j ? -p : p;
+  }
+  return t;
+}
+
+int tds_curvature(tds_ctx *ctx, tds_surf *s, int mode, double value,
+                  double *h, double *target, tds_curv_out *out) {
+  tds_mesh *m = &s->m;
+  if (tds_mesh_adjacency(m) != TDS_OK)
+    return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+  double *mult = NULL;
+  if (mode != TDS_CURV_VALUE && m->nb > 0) {
+    mult = tds_calloc((size_t)m->nb, sizeof *mult);
+    if (!mult) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+    int rc = tds_pg_multipliers(ctx, s, mult);
+    if (rc != TDS_OK) {
+      free(mult);
+      return rc;
+    }
+  }
+  double sum = 0, sum2 = 0, mx = -1, hs = 0;
+  int32_t n = 0;
+  out->worst = TDS_NONE;
+  for (tds_id v = 0; v < m->nv; v++) {
+    double hv = NAN, tv = NAN;
+    if (!(m->vflags[v] & TDS_DEAD)) hv = tds_vertex_mean_curvature(s, v);
+    if (!isnan(hv)) {
+      tv = mode == TDS_CURV_VALUE ? value : mult ? target_at(s, v, mode, mult) : 0;
+      double e = fabs(hv - tv);
+      n++;
+      sum += e;
+      sum2 += e * e;
+      hs += hv;
+      if (e > mx) {
+        mx = e;
+        out->worst = v;
+      }
+    }
+    if (h) h[v] = hv;
+    if (target) target[v] = tv;
+  }
+  free(mult);
+  out->n = n;
+  out->max = n ? mx : NAN;
+  out->mean = n ? sum / n : NAN;
+  out->rms = n ? sqrt(sum2 / n) : NAN;
+  out->hmean = n ? hs / n : NAN;
+  return TDS_OK;
+}

@@ -1,0 +1,61 @@
+/*
+** metrics.h: the paper's measures of a result (doc/metrics.md).
+**
+** Mesh quality: the smallest angle of every measured facet (live, not
+** fixed, nonzero tension), in degrees: minimum, mean, standard deviation,
+** percentages above 30/40/50/55 degrees and a 5-degree histogram.
+**
+** Mean curvature: Meyer, Desbrun, Schroeder, Barr (2003): at every measured
+** vertex (movable, every incident edge between exactly two facets),
+** K = (1 / 2 A_mixed) sum_j (cot a_ij + cot b_ij)(x_i - x_j) and the
+** curvature sum k1 + k2 = K . n_i with n_i the vertex normal of the method
+** (sum of facet area vectors). Its error against a target: a number, the
+** bodies' multipliers ("lambda": -lambda of the paper, the pressure for
+** unit tension), or the local pressure jump including gravity
+** ("pressure": p - G rho z per body on each side).
+*/
+#ifndef TDS_METRICS_H
+#define TDS_METRICS_H
+
+#include "surf.h"
+
+typedef struct tds_quality_out {
+  int32_t n;                 /* facets measured */
+  double min, mean, std;     /* smallest angle, degrees */
+  double above[4];           /* % of facets above 30, 40, 50, 55 degrees */
+  int32_t hist[12];          /* counts per 5-degree bin, [0,5) .. [55,60] */
+  tds_id worst;              /* facet with the smallest angle, or TDS_NONE */
+} tds_quality_out;
+
+/* Smallest interior angle of facet f, in degrees (0 if degenerate). */
+double tds_facet_min_angle(const tds_mesh *m, tds_id f);
+
+/* Nonzero when facet f counts in the quality statistics. */
+int tds_facet_measured(const tds_mesh *m, tds_id f);
+
+/* Quality statistics over the measured facets. */
+void tds_quality(const tds_surf *s, tds_quality_out *q);
+
+enum { TDS_CURV_VALUE = 0, TDS_CURV_LAMBDA, TDS_CURV_PRESSURE };
+
+typedef struct tds_curv_out {
+  int32_t n;                 /* vertices measured */
+  double max, mean, rms;     /* of |k1 + k2 - target| */
+  double hmean;              /* mean of k1 + k2 */
+  tds_id worst;              /* vertex of the largest error, or TDS_NONE */
+} tds_curv_out;
+
+/* Curvature sum k1 + k2 at vertex v (Meyer et al.), or NAN when v is not
+** measured (fixed, on an edge of other than two facets, degenerate). Needs
+** current adjacency. */
+double tds_vertex_mean_curvature(const tds_surf *s, tds_id v);
+
+/* Curvature and its error at every measured vertex. mode TDS_CURV_*; value
+** is the target for TDS_CURV_VALUE. h and target (m.nv entries each, may
+** be NULL) receive k1 + k2 and the target (NAN where not measured).
+** Computes the multipliers (tds_pg_multipliers) for the other modes.
+** TDS_OK, TDS_ENOMEM, TDS_ENUM. */
+int tds_curvature(tds_ctx *ctx, tds_surf *s, int mode, double value,
+                  double *h, double *target, tds_curv_out *out);
+
+#endif

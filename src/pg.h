@@ -1,0 +1,106 @@
+/*
+** pg.h: the projected-gradient method of Ma, Zhou, Pan, Zhang (2016), with
+** CVT (Lloyd) mesh quality, Delaunay flips, and Anderson acceleration.
+**
+** Each iteration moves every movable vertex by v_i = t_i d_i + r_i + s u_i:
+**   d_i  the vertex normal n_i = sum_F N_F / |sum_F N_F| (the direction of
+**        the volume gradient, independent of x_i on a closed star), mapped
+**        into the vertex's motion space for constrained vertices;
+**   t_i  the closed-form root of A_i'(t) = c_i for the star's (tension
+**        weighted) area along d_i, where c_i carries every other energy term
+**        from tds_eval (gravity, constraint integrals, quantities) and the
+**        bodies' Lagrange multipliers (least squares over the normal
+**        components);
+**   r_i  the volume-restoring motion (Newton step onto the targets);
+**   u_i  the tangential part of (G_i - x_i), G_i the centroid of the
+**        restricted Voronoi cell of the vertex in its star; s = 2.
+** All moves are computed from the same positions and applied together;
+** then non-Delaunay edges are flipped (Algorithm 1). r = max_i |v_i|.
+** The method is described in doc/method.md.
+*/
+#ifndef TDS_PG_H
+#define TDS_PG_H
+
+#include "surf.h"
+
+typedef struct tds_pg_opts {
+  int64_t iterations;     /* > 0: run exactly this many; 0: until converged */
+  int64_t max_iterations; /* cap when running until converged (100000) */
+  int nmax;               /* N_max of the termination criterion (200) */
+  double s;               /* tangential over-relaxation (2) */
+  int accel;              /* 1: Anderson acceleration (default); 0: plain */
+  int depth;              /* Anderson history depth (8) */
+  int flips;              /* 1: Delaunay edge flips every iteration (default) */
+  int64_t every;          /* progress line period; 0: automatic; < 0: none */
+  double rtol;            /* > 0: also stop once r < rtol * mean edge length */
+} tds_pg_opts;
+
+typedef struct tds_pg_result {
+  int64_t iterations;     /* iterations done in this run */
+  int64_t best_iteration; /* iteration whose mesh is kept (1-based) */
+  int64_t flips;          /* edges flipped in this run */
+  int64_t clamps;         /* normal steps skipped (c^2 >= b) or limited */
+  int64_t restarts;       /* Anderson history resets (flips, safeguards) */
+  int64_t reached;        /* first iteration with r < 1e-13 x mean edge */
+  double r;               /* r of the kept mesh: max |v_i| */
+  double r_last;          /* r of the last iteration */
+  double lambda;          /* paper's lambda of the first body (= -pressure) */
+  double energy;          /* total energy of the kept mesh */
+  double mean_edge;       /* mean edge length (for r relative to it) */
+  double seconds;         /* wall time of the run */
+  int32_t nfree;          /* movable vertices */
+  int converged;          /* stopped by the termination criterion */
+} tds_pg_result;
+
+/* Defaults: until converged, N_max 200, s = 2, accelerated, flips on. */
+void tds_pg_defaults(tds_pg_opts *o);
+
+/* Run the method. Allocates its work arrays once; the loop allocates
+** nothing. On return the surface holds the kept mesh (the one with the
+** best r since the last flip when running until converged, else the last
+** one), body pressures (Evolver's sign: -lambda) and s->energy. Polls
+** ctx->interrupt: TDS_EINTR leaves the last completed iteration. TDS_OK,
+** TDS_ENOMEM, TDS_ENUM (non-finite values; the surface is restored to the
+** last good mesh), TDS_EINTR. */
+int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
+               tds_pg_result *res);
+
+/* Kernels, exposed for the unit tests and the metrics. --------------- */
+
+/* Sum of the area vectors N_F = (b - a) x (c - a) of the live facets
+** around v with nonzero tension, normalised into n; returns its length
+** (0 leaves n zero). Needs current adjacency. */
+double tds_pg_vertex_normal(const tds_mesh *m, tds_id v, double n[3]);
+
+/* Tension-weighted area of v's star with v moved to x_v + t d: A(t). */
+double tds_pg_star_area(const tds_mesh *m, tds_id v, const double d[3],
+                        double t);
+/* A(0), A'(0), A''(0) of the same function. Needs current adjacency. */
+void tds_pg_star_model(const tds_mesh *m, tds_id v, const double d[3],
+                       double *A0, double *A1, double *A2);
+
+/* The closed-form root of A'(t) = c for the model sqrt(a + b (s0 + t)^2)
+** fitted to A0, A1, A2 (method.md, section 3). When c^2 >= b (no root)
+** returns 0 and sets *clamped to 1 (else 0). */
+double tds_pg_normal_root(double A0, double A1, double A2, double c,
+                          int *clamped);
+
+/* Restricted Voronoi cells of the corners of triangle p[0..2]: cell k is
+** the part of the triangle closer to p[k] than to the other corners (exact
+** for obtuse triangles). area[k] and centroid cen[k] (absolute). */
+void tds_pg_voronoi(const double p[3][3], double area[3], double cen[3][3]);
+
+/* Delaunay flips over the whole surface (Algorithm 1): flip every
+** flippable edge (tds_flip_ok, the new edge not already present) whose
+** opposite angles sum to more than pi, checking the quadrilateral's edges
+** again after each flip. *nflips gets the count. TDS_OK or TDS_ENOMEM. */
+int tds_pg_flip_all(tds_ctx *ctx, tds_surf *s, int32_t *nflips);
+
+/* The bodies' multipliers as the method computes them: least squares of
+** the energy gradient against the volume gradients over the normal
+** components of the movable vertices. mult[b] (m.nb entries; 0 for bodies
+** without a target) in Evolver's sign (pressure = -lambda of the paper).
+** TDS_OK, TDS_ENOMEM, TDS_ENUM. */
+int tds_pg_multipliers(tds_ctx *ctx, tds_surf *s, double *mult);
+
+#endif
