@@ -114,9 +114,12 @@ static void integrals(tds_surf *s, tds_eval_out *out, tds_id e, double sign,
   }
 }
 
-/* Gap energy of an edge on a convex constraint: k |S x Q| / 6 with S the
-** edge vector and Q its projection on the constraint's tangent plane at
-** the tail. With n the unit normal and a = S.n: |S x Q| = |a| |S x n|. */
+/* Gap energy of an edge on a convex constraint: k |S| |S.n| / 6, with S
+** the edge vector and n the unit normal of the constraint at the tail:
+** |S.n| is the height of the head above the tail's tangent plane, and
+** |S||S.n|/6 the area between a chord and a circular wall to leading order
+** (2/3 chord x sagitta). This is what evolver-nox-d computes (measured on
+** skew edges); its manual's |S x Q| formula agrees only to leading order. */
 static void gap(tds_surf *s, tds_eval_out *out, tds_id e, const tds_expr *f) {
   tds_mesh *m = &s->m;
   tds_id t = m->ev[e][0], h = m->ev[e][1];
@@ -125,18 +128,17 @@ static void gap(tds_surf *s, tds_eval_out *out, tds_id e, const tds_expr *f) {
   tds_eval_vars(s, m->x[t], vars);
   tds_expr_eval_hess(f, s->parval, vars, g, H);
   double ulen = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-  if (!(ulen > 0)) return;
+  double len = v3_norm(S);
+  if (!(ulen > 0) || !(len > 0)) return;
   double n[3] = {g[0] / ulen, g[1] / ulen, g[2] / ulen};
-  double a = v3_dot(S, n), SS = v3_dot(S, S);
-  double b2 = SS - a * a, b = b2 > 0 ? sqrt(b2) : 0;
-  double k = s->gap_constant / 6;
-  out->energy += k * fabs(a) * b;
-  if (!out->grad || b == 0) return;
+  double a = v3_dot(S, n), k = s->gap_constant / 6;
+  out->energy += k * len * fabs(a);
+  if (!out->grad) return;
   double sa = a > 0 ? 1 : a < 0 ? -1 : 0;
   double dS[3], dn[3];
   for (int i = 0; i < 3; i++) {
-    dS[i] = k * (sa * b * n[i] + fabs(a) * (S[i] - a * n[i]) / b);
-    dn[i] = k * (sa * b * S[i] - fabs(a) * a * S[i] / b); /* dE/dn, |n| fixed */
+    dS[i] = k * (fabs(a) * S[i] / len + len * sa * n[i]);
+    dn[i] = k * len * sa * S[i]; /* dE/dn with |n| held */
   }
   /* dn/dx_t = (I - n n^T) H / |u|: chain rule through the tail's normal. */
   double pn = v3_dot(dn, n), tang[3];

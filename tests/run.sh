@@ -32,6 +32,7 @@ trap 'rm -rf "$out"' EXIT
       diff "tests/golden/$name.out" "$out/$name.got" | head -n 20 | sed 's/^/    /'
     fi
   done
+  sh tests/docs.sh
   for e in tests/evolver/*.sh; do
     [ -f "$e" ] || continue
     sh "$e" || echo "FAIL evolver/$(basename "$e" .sh): exit status $?"
