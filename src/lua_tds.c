@@ -8,9 +8,26 @@
 
 #include "prelude.inc"
 
+/* Push "file:line: " of the innermost user code on the stack (skipping C
+** functions and the embedded prelude), or "" if there is none. */
+static void where_user(lua_State *L) {
+  lua_Debug ar;
+  for (int level = 1; lua_getstack(L, level, &ar); level++) {
+    lua_getinfo(L, "Sl", &ar);
+    if (ar.currentline > 0 && strncmp(ar.source, "=[tds ", 6) != 0) {
+      lua_pushfstring(L, "%s:%d: ", ar.short_src, ar.currentline);
+      return;
+    }
+  }
+  lua_pushliteral(L, "");
+}
+
 int tds_lua_fail(lua_State *L, tds_state *st, int rc) {
   (void)rc;
-  return luaL_error(L, "%s", st->ctx.errmsg);
+  where_user(L);
+  lua_pushstring(L, st->ctx.errmsg);
+  lua_concat(L, 2);
+  return lua_error(L);
 }
 
 void tds_lua_register(lua_State *L, tds_state *st, const luaL_Reg *fns) {
