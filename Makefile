@@ -60,5 +60,8 @@ demo: $(TDS_BIN)
 bench: $(TDS_BIN)
 	sh bench/cube.sh ./$(TDS_BIN)
 
+bench-paper: $(TDS_BIN)
+	sh bench/paper.sh ./$(TDS_BIN)
+
 clean:
 	rm -rf build build-asan tds

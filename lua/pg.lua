@@ -83,29 +83,8 @@ function curvature(o)
 end
 
 -- Element attributes computed on demand: v.mean_curvature, f.min_angle.
-local props = {
-  vertex = { mean_curvature = function(h) return tds.vertex_mean_curvature(h) end },
-  facet = { min_angle = function(h) return tds.facet_min_angle(h) end },
-}
-do
-  local reg = debug.getregistry()
-  for kind, p in pairs(props) do
-    local mt = reg["tds." .. kind]
-    local old = mt and mt.__index
-    if old then
-      mt.__index = function(h, k)
-        local f = p[k]
-        if f then return f(h) end
-        return old(h, k)
-      end
-    end
-    -- also callable as methods: v:mean_curvature()
-    local methods = tds.methods and tds.methods[kind]
-    if methods then
-      for k, f in pairs(p) do methods[k] = methods[k] or f end
-    end
-  end
-end
+tds.props.vertex.mean_curvature = function(h) return tds.vertex_mean_curvature(h) end
+tds.props.facet.min_angle = function(h) return tds.facet_min_angle(h) end
 
 -- trimesh{ vertices = {...}, facets = {...}, bodies = {...} }: declare a
 -- surface from a triangle list. vertices[i] = { x, y, z, fixed = bool,

@@ -239,4 +239,7 @@ setmetatable(_G, {
 -- The REPL's reader of Evolver-style lines (g 5; r; u).
 tds.translate = require("evolver")
 
+-- The projected-gradient method and mesh metrics (lua/pg.lua).
+require("pg")
+
 return true

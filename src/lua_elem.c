@@ -324,8 +324,9 @@ static int (*const setters[TDS_NKINDS])(lua_State *, tds_state *, tds_id,
                                         const char *) = {vertex_set, edge_set,
                                                          facet_set, body_set};
 
-/* __index: id, built-in attributes, C methods, then Lua extensions in the
-** metatable's `methods` table. */
+/* __index: id, built-in attributes, then computed attributes (functions
+** in the metatable's `props` table, called with the handle: tds.props.<kind>),
+** then methods (tds.methods.<kind>: C methods and Lua extensions). */
 static int elem_index(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   int kind;
@@ -337,6 +338,13 @@ static int elem_index(lua_State *L) {
   }
   if (getters[kind](L, st, id, k)) return 1;
   lua_getmetatable(L, 1);
+  lua_getfield(L, -1, "props");
+  if (lua_getfield(L, -1, k) == LUA_TFUNCTION) {
+    lua_pushvalue(L, 1);
+    lua_call(L, 1, 1);
+    return 1;
+  }
+  lua_pop(L, 2);
   lua_getfield(L, -1, "methods");
   lua_getfield(L, -1, k);
   return 1;
@@ -444,20 +452,26 @@ void tds_open_elem(lua_State *L, tds_state *st) {
   static const luaL_Reg methods[] = {{"on_constraint", on_constraint},
                                      {"on_boundary", on_boundary},
                                      {NULL, NULL}};
-  lua_newtable(L); /* tds methods: one shared table of Lua-visible methods */
+  lua_newtable(L); /* tds.methods: per kind, methods (C ones, Lua extensions) */
+  lua_newtable(L); /* tds.props: per kind, computed attributes */
   for (int k = 0; k < TDS_NKINDS; k++) {
-    luaL_newmetatable(L, meta_name[k]);
+    luaL_newmetatable(L, meta_name[k]); /* tds methods props mt */
     tds_lua_register(L, st, meta);
     lua_pushinteger(L, k);
     lua_setfield(L, -2, "__tds_kind");
     lua_newtable(L);
     tds_lua_register(L, st, methods);
     lua_pushvalue(L, -1);
-    lua_setfield(L, -4, kind_name[k]); /* tds_methods.vertex = ... */
+    lua_setfield(L, -5, kind_name[k]); /* methods.vertex = ... */
     lua_setfield(L, -2, "methods");
+    lua_newtable(L);
+    lua_pushvalue(L, -1);
+    lua_setfield(L, -4, kind_name[k]); /* props.vertex = ... */
+    lua_setfield(L, -2, "props");
     lua_pop(L, 1);
   }
-  lua_setfield(L, -2, "methods"); /* tds.methods.<kind>: extend in Lua */
+  lua_setfield(L, -3, "props");
+  lua_setfield(L, -2, "methods");
   static const luaL_Reg fns[] = {{"next", l_next}, {"get", l_get},
                                  {"count", l_count}, {NULL, NULL}};
   tds_lua_register(L, st, fns);

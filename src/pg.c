@@ -64,7 +64,10 @@ static void pdel(pairset *ps, tds_id a, tds_id b) {
 /* Work arrays of one run; allocated once. */
 typedef struct pgw {
   int32_t nv, ne, nmov;
+  int rigid;              /* no fixed vertex: remove rigid drift of moves */
   uint8_t *kind;          /* per vertex slot: VK_* */
+  int32_t (*bnb)[2];      /* constrained vertex: its two neighbours along
+                             the film's border (edges of one facet), or -1 */
   int32_t *mov;           /* movable vertex ids */
   double (*grad)[3];      /* energy gradient from tds_eval */
   double (*nsum)[3];      /* sum of facet area vectors */
@@ -75,6 +78,7 @@ typedef struct pgw {
   double (*model)[3];     /* A0, A1, A2 along d */
   double (*vel)[3];       /* the move v_i */
   double (*rest)[3];      /* restoring motion */
+  double (*tan)[3];       /* tangential (mesh-quality) part of the move */
   double (*P)[9];         /* motion-space projector (constrained vertices) */
   double (*Jinv)[6];      /* boundary: dp = Jinv v (2 x 3) */
   double (*xbest)[3];
@@ -98,6 +102,7 @@ typedef struct pgw {
 
 static void work_free(pgw *w) {
   free(w->kind);
+  free(w->bnb);
   free(w->mov);
   free(w->grad);
   free(w->nsum);
@@ -108,6 +113,7 @@ static void work_free(pgw *w) {
   free(w->model);
   free(w->vel);
   free(w->rest);
+  free(w->tan);
   free(w->P);
   free(w->Jinv);
   free(w->xbest);
@@ -138,6 +144,7 @@ static void work_free(pgw *w) {
 static void classify(tds_surf *s, pgw *w) {
   tds_mesh *m = &s->m;
   w->nmov = 0;
+  w->rigid = 1;
   for (tds_id v = 0; v < m->nv; v++) {
     uint8_t k = VK_FIXED;
     if (tds_vertex_free(s, v) && m->vf_start[v + 1] > m->vf_start[v]) {
@@ -149,8 +156,27 @@ static void classify(tds_surf *s, pgw *w) {
           if (tds_edge_valence(m, TDS_OID(m->ve[i])) > 2) k = VK_JUNCTION;
     }
     w->kind[v] = k;
+    if ((k == VK_FIXED && m->vf_start[v + 1] > m->vf_start[v] &&
+         !(m->vflags[v] & TDS_DEAD)) || k == VK_BDRY)
+      w->rigid = 0;
+    w->bnb[v][0] = w->bnb[v][1] = -1;
+    if (k == VK_LEVEL || k == VK_BDRY) {
+      int nb = 0;
+      for (int32_t i = m->ve_start[v]; i < m->ve_start[v + 1]; i++) {
+        tds_id e = TDS_OID(m->ve[i]);
+        if (tds_edge_valence(m, e) != 1) continue;
+        if (nb < 2) w->bnb[v][nb] = m->ev[e][0] == v ? m->ev[e][1] : m->ev[e][0];
+        nb++;
+      }
+      if (nb != 2) w->bnb[v][0] = w->bnb[v][1] = -1;
+    }
     if (k != VK_FIXED) w->mov[w->nmov++] = v;
   }
+  /* Only a surface sliding on level sets (a drop on a table) is known to
+  ** drift; closed free surfaces converge without the correction. */
+  int level = 0;
+  for (int32_t j = 0; j < w->nmov; j++) level |= w->kind[w->mov[j]] == VK_LEVEL;
+  if (!level) w->rigid = 0;
 }
 
 static int work_init(tds_ctx *ctx, tds_surf *s, pgw *w, int depth) {
@@ -161,6 +187,7 @@ static int work_init(tds_ctx *ctx, tds_surf *s, pgw *w, int depth) {
   w->nv = m->nv;
   w->ne = m->ne;
   w->kind = tds_calloc(nv, 1);
+  w->bnb = tds_calloc(nv, sizeof *w->bnb);
   w->mov = tds_calloc(nv, sizeof *w->mov);
   w->grad = tds_calloc(nv, sizeof *w->grad);
   w->nsum = tds_calloc(nv, sizeof *w->nsum);
@@ -171,6 +198,7 @@ static int work_init(tds_ctx *ctx, tds_surf *s, pgw *w, int depth) {
   w->model = tds_calloc(nv, sizeof *w->model);
   w->vel = tds_calloc(nv, sizeof *w->vel);
   w->rest = tds_calloc(nv, sizeof *w->rest);
+  w->tan = tds_calloc(nv, sizeof *w->tan);
   w->P = tds_calloc(nv, sizeof *w->P);
   w->Jinv = tds_calloc(nv, sizeof *w->Jinv);
   w->xbest = tds_calloc(nv, sizeof *w->xbest);
@@ -178,8 +206,8 @@ static int work_init(tds_ctx *ctx, tds_surf *s, pgw *w, int depth) {
   w->stack = tds_calloc(ne, sizeof *w->stack);
   w->cand = tds_calloc(ne, sizeof *w->cand);
   w->queued = tds_calloc(ne, 1);
-  if (!w->kind || !w->mov || !w->grad || !w->nsum || !w->mom || !w->varea ||
-      !w->d || !w->nrm || !w->model || !w->vel || !w->rest || !w->P ||
+  if (!w->kind || !w->bnb || !w->mov || !w->grad || !w->nsum || !w->mom || !w->varea ||
+      !w->d || !w->nrm || !w->model || !w->vel || !w->rest || !w->tan || !w->P ||
       !w->Jinv || !w->xbest || !w->pbest || !w->stack || !w->cand || !w->queued)
     goto nomem;
   int rc = tds_fixq_build(ctx, s, &w->fq);
@@ -467,6 +495,88 @@ static inline void to_motion(const pgw *w, tds_id v, double a[3]) {
   }
 }
 
+/* A surface without fixed vertices may drift rigidly (slide or turn on a
+** table, float in space): the tangential moves are not a gradient, so a
+** steadily drifting mesh would never reach r = 0. Remove from the moves
+** their least-squares component along every rigid motion (translation,
+** rotation about the centroid) that lies in all vertices' motion spaces.
+** Only the tangential part of the moves is changed (drift comes from it),
+** using the tangential parts of the rigid motions. */
+static void tangent_part(const pgw *w, tds_id v, double a[3]) {
+  if (w->kind[v] == VK_FREE) {
+    v3_axpy(a, -v3_dot(a, w->nrm[v]), w->nrm[v]);
+  } else if (w->kind[v] == VK_JUNCTION) {
+    v3_zero(a);
+  } else {
+    mat3_apply(w->P[v], a, a);
+    v3_axpy(a, -v3_dot(a, w->d[v]), w->d[v]);
+  }
+}
+
+static void remove_drift(const tds_surf *s, pgw *w) {
+  const tds_mesh *m = &s->m;
+  double xc[3] = {0, 0, 0};
+  for (int32_t j = 0; j < w->nmov; j++) v3_add(xc, xc, m->x[w->mov[j]]);
+  if (w->nmov) v3_scale(xc, 1.0 / w->nmov);
+  int use[6] = {1, 1, 1, 1, 1, 1};
+  double G[36] = {0}, b[6] = {0};
+  for (int pass = 0; pass < 2; pass++)
+    for (int32_t j = 0; j < w->nmov; j++) {
+      tds_id v = w->mov[j];
+      double md[6][3], rel[3];
+      v3_sub(rel, m->x[v], xc);
+      for (int k = 0; k < 3; k++) {
+        double e[3] = {0, 0, 0};
+        e[k] = 1;
+        v3_copy(md[k], e);
+        v3_cross(md[3 + k], e, rel);
+      }
+      if (pass == 0) {
+        if (w->kind[v] == VK_LEVEL)
+          for (int k = 0; k < 6; k++) {
+            double pm[3], dd[3];
+            mat3_apply(w->P[v], md[k], pm);
+            v3_sub(dd, pm, md[k]);
+            if (v3_norm(dd) > 1e-9 * (1 + v3_norm(md[k]))) use[k] = 0;
+          }
+        continue;
+      }
+      for (int k = 0; k < 6; k++) tangent_part(w, v, md[k]);
+      for (int k = 0; k < 6; k++) {
+        if (!use[k]) continue;
+        b[k] += v3_dot(md[k], w->tan[v]);
+        for (int l = 0; l < 6; l++)
+          if (use[l]) G[6 * k + l] += v3_dot(md[k], md[l]);
+      }
+    }
+  int idx[6], n = 0;
+  double gmax = 0;
+  for (int k = 0; k < 6; k++) if (G[7 * k] > gmax) gmax = G[7 * k];
+  for (int k = 0; k < 6; k++)
+    if (use[k] && G[7 * k] > 1e-12 * gmax) idx[n++] = k;
+  double A[36], c[6];
+  for (int i = 0; i < n; i++) {
+    c[i] = b[idx[i]];
+    for (int j = 0; j < n; j++) A[n * i + j] = G[6 * idx[i] + idx[j]];
+    A[n * i + i] *= 1 + 1e-12;
+  }
+  if (n == 0 || tds_dense_solve(n, A, c) != 0) return;
+  for (int32_t j = 0; j < w->nmov; j++) {
+    tds_id v = w->mov[j];
+    double rel[3];
+    v3_sub(rel, m->x[v], xc);
+    for (int i = 0; i < n; i++) {
+      int k = idx[i];
+      double e[3] = {0, 0, 0}, md[3];
+      e[k % 3] = 1;
+      if (k < 3) v3_copy(md, e);
+      else v3_cross(md, e, rel);
+      tangent_part(w, v, md);
+      v3_axpy(w->tan[v], -c[i], md);
+    }
+  }
+}
+
 /* One evaluation: the move v_i of every movable vertex at the current
 ** positions. Returns r = max |v_i| (or NAN). */
 typedef struct stepinfo {
@@ -625,6 +735,12 @@ static int compute_move(tds_ctx *ctx, tds_surf *s, pgw *w, double sfac,
     if (k != VK_JUNCTION && w->varea[v] > 0) {
       double u[3];
       for (int i = 0; i < 3; i++) u[i] = w->mom[v][i] / w->varea[v];
+      if (k != VK_FREE && w->bnb[v][0] >= 0) {
+        /* On the film's border (a contact line): the centroid of the 1-D
+        ** Voronoi cell along the border, (x_prev + 2 x + x_next) / 4. */
+        const double *xa = m->x[w->bnb[v][0]], *xb = m->x[w->bnb[v][1]];
+        for (int i = 0; i < 3; i++) u[i] = 0.25 * (xa[i] + xb[i]) - 0.5 * m->x[v][i];
+      }
       if (k == VK_FREE) {
         double un = v3_dot(u, w->nrm[v]);
         v3_axpy(u, -un, w->nrm[v]);
@@ -633,8 +749,16 @@ static int compute_move(tds_ctx *ctx, tds_surf *s, pgw *w, double sfac,
         double ud = v3_dot(u, d);
         v3_axpy(u, -ud, d);
       }
-      v3_axpy(vel, sfac, u);
+      for (int i = 0; i < 3; i++) w->tan[v][i] = sfac * u[i];
+    } else {
+      v3_zero(w->tan[v]);
     }
+  }
+  if (w->rigid) remove_drift(s, w);
+  for (int32_t j = 0; j < w->nmov; j++) {
+    tds_id v = w->mov[j];
+    double *vel = w->vel[v];
+    v3_add(vel, vel, w->tan[v]);
     double vl = v3_dot(vel, vel);
     if (vl > r) r = vl;
   }
@@ -1020,6 +1144,15 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
       tds_printf(ctx, "pg %7lld  r %.3e  lambda % .12g  energy %.15g  flips %lld\n",
                  (long long)k, si.r, si.lambda0, si.energy, (long long)res->flips);
     if (until) {
+      if (accel && k - best >= o->nmax && rbest > 1e-13 * hbar) {
+        /* Anderson stalled above the noise level: go on plainly. */
+        accel = 0;
+        best = k;
+        rbest = INFINITY; /* judge the plain run on its own */
+        res->restarts++;
+        tds_printf(ctx, "pg %7lld  acceleration stalled at r %.3e: continuing plainly\n",
+                   (long long)k, rbest);
+      }
       if (rbest == 0 || k - best >= o->nmax ||
           (o->rtol > 0 && rbest < o->rtol * hbar)) {
         res->converged = 1;

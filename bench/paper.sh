@@ -1,0 +1,73 @@
+#!/bin/sh
+# paper.sh: the paper's experiments in tds (pg) and in Surface Evolver from
+# the same input, with the same metric code (doc/paper-results.md).
+# Usage: sh bench/paper.sh [TDS_BINARY] [EXPERIMENT ...]
+# Env: EVOLVER (default evolver-nox-d); PAPER_G_ITERS (g; u; V rounds, 1000).
+TDS=${1:-./tds}
+[ $# -gt 0 ] && shift
+case $TDS in /*) ;; *) TDS=$(pwd)/$TDS ;; esac
+EVOLVER=${EVOLVER:-evolver-nox-d}
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+EXPS=${*:-"hemisphere random_hemisphere catenoid schwarz_p cmc_1 cmc_2 cmc_3 pendant sessile"}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+have_evolver=1
+command -v "$EVOLVER" >/dev/null 2>&1 || have_evolver=0
+
+now() { date +%s.%N; }
+
+field() { # field NAME LINE
+  echo "$2" | tr ' ' '\n' | sed -n "s/^$1=//p"
+}
+
+row() { # row LABEL RESULT-LINE
+  l=$2
+  printf '%-16s %6s %6s %6s %9s %9s %9s %9s %7s %8s %9s\n' "$1" \
+    "$(printf %.2f "$(field mean "$l")")" "$(printf %.2f "$(field min "$l")")" \
+    "$(printf %.1f "$(field above50 "$l")")" \
+    "$(printf %.2e "$(field crms "$l")")" "$(printf %.2e "$(field cmax "$l")")" \
+    "$(printf %.1e "$(field verr "$l")")" "$(printf %.1e "$(field rrel "$l")")" \
+    "$(field iters "$l")" "$(printf %.3f "$(field secs "$l")")" \
+    "$(printf %.2e "$(field spvi "$l")")"
+}
+
+for exp in $EXPS; do
+  d=$work/$exp
+  mkdir -p "$d"
+  script=$ROOT/scripts/paper/$exp.tds
+  (cd "$d" && PAPER_FE=$d/in.fe PAPER_EVOLVER=$d "$TDS" -q "$script") > "$d/tds.out" 2>&1
+  tline=$(grep '^RESULT' "$d/tds.out")
+  (cd "$d" && PAPER_PLAIN=1 "$TDS" -q "$script") > "$d/plain.out" 2>&1
+  pline=$(grep '^RESULT' "$d/plain.out")
+  echo
+  echo "== $exp"
+  printf '%-16s %6s %6s %6s %9s %9s %9s %9s %7s %8s %9s\n' run mean min ">50%" \
+    "curv.rms" "curv.max" "vol.err" "r/edge" iters seconds "s/(v*it)"
+  if [ -z "$tline" ]; then
+    echo "tds failed:"; tail -n 5 "$d/tds.out"; continue
+  fi
+  row "tds pg" "$tline"
+  [ -n "$pline" ] && row "tds pg plain" "$pline"
+  if [ $have_evolver = 1 ]; then
+    if [ -n "$PAPER_G_ITERS" ]; then
+      sed -i "s/inx < [0-9]*/inx < $PAPER_G_ITERS/; s/ITERS [0-9]*/ITERS $PAPER_G_ITERS/" "$d/gloop.cmd"
+    fi
+    for mode in gloop relax; do
+      t0=$(now)
+      (cd "$d" && "$EVOLVER" -f "$mode.cmd" in.fe < /dev/null) > "$d/$mode.out" 2>&1
+      t1=$(now)
+      secs=$(echo "$t1 - $t0" | bc -l)
+      (cd "$d" && PAPER_DUMP=$d/$mode.out PAPER_LABEL=evolver-$mode PAPER_SECONDS=$secs \
+        "$TDS" -q "$script") > "$d/$mode.m" 2>&1
+      eline=$(grep '^RESULT' "$d/$mode.m")
+      if [ -n "$eline" ]; then
+        case $mode in gloop) lab="evolver g;u;V" ;; *) lab="evolver hessian" ;; esac
+        row "$lab" "$eline"
+      else
+        echo "evolver $mode: no result"; tail -n 3 "$d/$mode.m"
+      fi
+    done
+  fi
+  reached=$(field reached "$tline"); preached=$(field reached "$pline")
+  [ -n "$reached" ] && echo "r < 1e-13 x mean edge at iteration: pg $reached, plain $preached"
+done

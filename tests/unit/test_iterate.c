@@ -1,0 +1,166 @@
+/* test_iterate.c: gradient descent (tds_iterate, src/iterate.h) on the
+** cube of volume 1, against Surface Evolver's numbers. */
+#include "helpers.h"
+
+#include "eval.h"
+#include "iterate.h"
+
+/* The cube of scripts/cube.tds with volume target 1, unmoved; energy,
+** area and volume computed. TDS_OK or the failing status. */
+static int cube(tds_ctx *ctx, tds_surf *s) {
+  h_setup(ctx, s);
+  int rc = h_cube(ctx, s, 1);
+  return rc ? rc : tds_surf_update(ctx, s);
+}
+
+/* `g 5` on cube.fe: Evolver prints energy 5.11249312772740 after the
+** fifth step (tds reproduces the same sequence of scales). Evolver's
+** pressure line lags one iteration (3.40832875181479), so the pressure,
+** a Lagrange multiplier computed at the start of a step, gets 1e-6. */
+static void cube_g5(void) {
+  tds_ctx ctx;
+  tds_surf s;
+  REQUIRE_OK(&ctx, cube(&ctx, &s));
+  CHECK_NEAR(s.energy, 6, 1e-15);
+  CHECK_OK(&ctx, tds_iterate(&ctx, &s, 5));
+  CHECK(s.iterations == 5);
+  CHECK_MESH(&ctx, &s.m);
+  CHECK(fabs(s.energy - 5.11249312772740) <= 1e-10 * 5.11249312772740);
+  CHECK_NEAR(s.m.bvol[0], 1, 1e-12);
+  CHECK_NEAR(s.m.bpressure[0], 3.40832875, 1e-6);
+  /* s.energy is the energy at the final positions */
+  tds_eval_out out = {0};
+  CHECK_OK(&ctx, tds_eval(&ctx, &s, &out));
+  CHECK_NEAR(out.energy, s.energy, 1e-15);
+  CHECK_NEAR(out.area, s.area, 1e-15);
+  tds_surf_free(&s);
+}
+
+/* Ctrl-C: one step completes, then TDS_EINTR with the surface intact. */
+static void cube_interrupt(void) {
+  tds_ctx ctx, ctx1;
+  tds_surf s, s1;
+  REQUIRE_OK(&ctx, cube(&ctx, &s));
+  ctx.interrupt = 1;
+  int rc = tds_iterate(&ctx, &s, 100);
+  CHECK(rc == TDS_EINTR);
+  CHECK(strstr(ctx.errmsg, "1 of 100") != NULL);
+  CHECK(ctx.interrupt == 0); /* consumed */
+  CHECK(s.iterations == 1);
+  CHECK_MESH(&ctx, &s.m);
+  CHECK_NEAR(s.m.bvol[0], 1, 1e-12);
+
+  REQUIRE_OK(&ctx1, cube(&ctx1, &s1));
+  CHECK_OK(&ctx1, tds_iterate(&ctx1, &s1, 1));
+  CHECK(s1.iterations == 1);
+  CHECK(s.energy == s1.energy);
+  CHECK(s.scale == s1.scale);
+  CHECK(s.m.bpressure[0] == s1.m.bpressure[0]);
+  int same = s.m.nv == s1.m.nv;
+  for (tds_id v = 0; same && v < s.m.nv; v++)
+    for (int i = 0; i < 3; i++) same &= s.m.x[v][i] == s1.m.x[v][i];
+  CHECK(same);
+  CHECK(s.energy < 6);
+  /* and it can go on: the next steps behave like a run of 5 */
+  CHECK_OK(&ctx, tds_iterate(&ctx, &s, 4));
+  CHECK(fabs(s.energy - 5.11249312772740) <= 1e-10 * 5.11249312772740);
+  tds_surf_free(&s);
+  tds_surf_free(&s1);
+}
+
+/* With a fixed scale (Evolver's `m 0.01`) every step lowers the energy,
+** keeps the volume and moves by the given scale. */
+static void cube_fixed_scale(void) {
+  tds_ctx ctx;
+  tds_surf s;
+  REQUIRE_OK(&ctx, cube(&ctx, &s));
+  s.fixed_scale = 1;
+  s.scale = 0.01;
+  double prev = s.energy;
+  int down = 1;
+  for (int i = 0; i < 10; i++) {
+    CHECK_OK(&ctx, tds_iterate(&ctx, &s, 1));
+    if (!(s.energy < prev)) {
+      down = 0;
+      printf("  step %d: energy %.17g after %.17g\n", i + 1, s.energy, prev);
+    }
+    prev = s.energy;
+    CHECK_NEAR(s.m.bvol[0], 1, 1e-12);
+  }
+  CHECK(down);
+  CHECK(s.scale == 0.01);
+  CHECK(s.iterations == 10);
+  /* small steps: still well above the optimizing run's 5 steps */
+  CHECK(s.energy > 5.11249312772740 && s.energy < 6);
+  CHECK_MESH(&ctx, &s.m);
+  tds_surf_free(&s);
+}
+
+/* Fixed vertices stay where they are. */
+static void cube_fixed_vertex(void) {
+  tds_ctx ctx;
+  tds_surf s;
+  REQUIRE_OK(&ctx, cube(&ctx, &s));
+  s.m.vflags[0] |= TDS_FIXED;
+  s.m.vflags[8] |= TDS_FIXED; /* a face centre */
+  double x0[3], x8[3];
+  v3_copy(x0, s.m.x[0]);
+  v3_copy(x8, s.m.x[8]);
+  CHECK_OK(&ctx, tds_iterate(&ctx, &s, 5));
+  for (int i = 0; i < 3; i++) {
+    CHECK(s.m.x[0][i] == x0[i]);
+    CHECK(s.m.x[8][i] == x8[i]);
+  }
+  CHECK(s.m.x[6][0] != 1); /* the opposite corner did move */
+  CHECK_NEAR(s.m.bvol[0], 1, 1e-12);
+  tds_surf_free(&s);
+}
+
+/* Pressures without moving: the multiplier that makes grad E - p grad V
+** orthogonal to grad V, the same the first step computes. */
+static void cube_pressures(void) {
+  tds_ctx ctx;
+  tds_surf s;
+  REQUIRE_OK(&ctx, cube(&ctx, &s));
+  tds_mesh *m = &s.m;
+  /* off the symmetric shape, so that every gradient is nonzero */
+  uint64_t st = 11;
+  for (tds_id v = 0; v < m->nv; v++)
+    for (int i = 0; i < 3; i++) m->x[v][i] += h_uniform(&st, -0.05, 0.05);
+  double x[14][3];
+  memcpy(x, m->x, sizeof x);
+  CHECK_OK(&ctx, tds_pressures(&ctx, &s));
+  CHECK(memcmp(x, m->x, sizeof x) == 0);
+  double p = m->bpressure[0];
+  /* of the order of dA/dV = 4 for a uniformly scaled cube (A = 6 V^(2/3)) */
+  CHECK(p > 2 && p < 4);
+  double gA[14][3];
+  tds_fixq fq = {0};
+  CHECK_OK(&ctx, tds_mesh_adjacency(m));
+  CHECK_OK(&ctx, tds_fixq_build(&ctx, &s, &fq));
+  tds_eval_out out = {.grad = gA, .fq = &fq};
+  CHECK_OK(&ctx, tds_eval(&ctx, &s, &out));
+  double dot = 0, norm = 0;
+  for (tds_id v = 0; v < m->nv; v++)
+    for (int32_t i = fq.start[v]; i < fq.start[v + 1]; i++)
+      for (int k = 0; k < 3; k++) {
+        dot += (gA[v][k] - p * fq.g[i][k]) * fq.g[i][k];
+        norm += gA[v][k] * fq.g[i][k];
+      }
+  CHECK(norm > 0.1);
+  CHECK(fabs(dot) <= 1e-13 * norm);
+  tds_fixq_free(&fq);
+  /* the first step stores the pressure it computed before moving */
+  CHECK_OK(&ctx, tds_iterate(&ctx, &s, 1));
+  CHECK_NEAR(m->bpressure[0], p, 1e-14);
+  tds_surf_free(&s);
+}
+
+int main(void) {
+  RUN(cube_g5);
+  RUN(cube_interrupt);
+  RUN(cube_fixed_scale);
+  RUN(cube_fixed_vertex);
+  RUN(cube_pressures);
+  return check_done();
+}
