@@ -1113,6 +1113,23 @@ static int element_id(df *d, const char *kind, tds_id *id) {
   return TDS_OK;
 }
 
+/* Make room for slot id of `kind`, growing geometrically. (Workaround:
+** tds_mesh_claim reserves exactly id + 1 slots, so claiming ids one by one
+** would reallocate every column each time.) */
+static int room_for(df *d, int kind, tds_id id) {
+  const tds_mesh *m = &d->s->m;
+  int32_t cap = kind == TDS_VERTEX ? m->capv : kind == TDS_EDGE ? m->cape
+              : kind == TDS_FACET ? m->capf : m->capb;
+  if (id < cap) return TDS_OK;
+  int64_t want = (int64_t)cap + cap / 2;
+  if (want < id + 1) want = (int64_t)id + 1;
+  if (want < 64) want = 64;
+  if (want > d->maxid) want = d->maxid;
+  if (tds_mesh_reserve(&d->s->m, kind, (int32_t)want) != TDS_OK)
+    return derr(d, NULL, TDS_ENOMEM, "out of memory");
+  return TDS_OK;
+}
+
 static int vertex_line(df *d) {
   tds_id id;
   int rc = element_id(d, "vertex", &id);
@@ -1170,6 +1187,7 @@ static int vertex_line(df *d) {
     for (int k = 0; k < 3; k++) x[k] = val[k];
   }
   int line = line_of(d, NULL);
+  if ((rc = room_for(d, TDS_VERTEX, id))) return rc;
   rc = tds_decl_vertex(d->ctx, d->s, id, x, bd, p, flags, con);
   return rc ? dcore(d, line, rc, NULL) : TDS_OK;
 }
@@ -1229,6 +1247,7 @@ static int edge_line(df *d) {
   }
   if (rev) flags |= TDS_CONREV;
   int line = line_of(d, NULL);
+  if ((rc = room_for(d, TDS_EDGE, id))) return rc;
   rc = tds_decl_edge(d->ctx, d->s, id, (tds_id)ends[0] - 1, (tds_id)ends[1] - 1, flags,
                      con, bd, ten, color);
   return rc ? dcore(d, line, rc, NULL) : TDS_OK;
@@ -1306,7 +1325,21 @@ static int face_line(df *d) {
 /* Build the collected faces (end of the FACES section). */
 static int build_faces(df *d) {
   if (d->nfaces == 0) return TDS_OK;
-  if (tds_mesh_extend_dead(&d->s->m, TDS_FACET, d->maxface))
+  tds_mesh *m = &d->s->m;
+  /* Reserve for the split-off elements at once (tds_build_face reserves
+  ** exactly what each face needs, which is quadratic over many faces). */
+  int64_t nv = m->nv, ne = m->ne, nf = d->maxface;
+  for (int32_t i = 0; i < d->nfaces; i++)
+    if (d->faces[i].n > 3) {
+      nv += 1;
+      ne += d->faces[i].n;
+      nf += d->faces[i].n - 1;
+    }
+  if (nv > INT32_MAX / 8 || ne > INT32_MAX / 8 || nf > INT32_MAX / 8 ||
+      tds_mesh_reserve(m, TDS_VERTEX, (int32_t)nv) ||
+      tds_mesh_reserve(m, TDS_EDGE, (int32_t)ne) ||
+      tds_mesh_reserve(m, TDS_FACET, (int32_t)nf) ||
+      tds_mesh_extend_dead(m, TDS_FACET, d->maxface))
     return derr(d, NULL, TDS_ENOMEM, "out of memory");
   for (int32_t i = 0; i < d->nfaces; i++) {
     face_rec *r = &d->faces[i];
@@ -1373,6 +1406,7 @@ static int body_line(df *d) {
   if (has_vol && has_pr)
     return derr(d, NULL, TDS_ESYNTAX, "%s: give either VOLUME or PRESSURE, not both", what);
   int line = line_of(d, NULL);
+  if ((rc = room_for(d, TDS_BODY, id))) return rc;
   rc = tds_decl_body(d->ctx, d->s, id, n, d->oe + off);
   d->noe = off;
   if (rc) return dcore(d, line, rc, NULL);

@@ -17,10 +17,6 @@
 #include "eval_int.h"
 #include "vec3.h"
 
-const double tds_gauss1_t[TDS_GAUSS1_N] = {0.21132486540518711775,
-                                           0.78867513459481288225};
-const double tds_gauss1_w[TDS_GAUSS1_N] = {0.5, 0.5};
-
 void tds_eval_vars(const tds_surf *s, const double x[3], double vars[TDS_NVARS]) {
   vars[TDS_X] = x[0];
   vars[TDS_Y] = x[1];
@@ -29,12 +25,14 @@ void tds_eval_vars(const tds_surf *s, const double x[3], double vars[TDS_NVARS])
   vars[TDS_G] = s->gravity_on ? s->gravity : 0;
 }
 
-double tds_edge_vint(const tds_surf *s, tds_expr *const F[3], const double a[3],
-                     const double b[3], double ga[3], double gb[3]) {
+double tds_edge_vint(const tds_surf *s, tds_expr *const F[3], int npts,
+                     const double a[3], const double b[3], double ga[3],
+                     double gb[3]) {
+  const tds_rule *R = tds_edge_rule(npts);
   double d[3], sum = 0;
   v3_sub(d, b, a);
-  for (int i = 0; i < TDS_GAUSS1_N; i++) {
-    double t = tds_gauss1_t[i], w = tds_gauss1_w[i], p[3], vars[TDS_NVARS];
+  for (int i = 0; i < R->n; i++) {
+    double t = R->t[i], w = R->w[i], p[3], vars[TDS_NVARS];
     for (int k = 0; k < 3; k++) p[k] = a[k] + t * d[k];
     tds_eval_vars(s, p, vars);
     double f[3] = {0, 0, 0}, jtd[3] = {0, 0, 0};
@@ -92,12 +90,12 @@ static void add_content(tds_surf *s, tds_eval_out *out, tds_id e, double c,
 ** csign (+1 constraint, -1 boundary) orients the content. */
 static void integrals(tds_surf *s, tds_eval_out *out, tds_id e, double sign,
                       double csign, tds_expr *const energy[3],
-                      tds_expr *const content[3]) {
+                      tds_expr *const content[3], const int npts[2]) {
   tds_mesh *m = &s->m;
   const double *a = m->x[m->ev[e][0]], *b = m->x[m->ev[e][1]];
   if (has_any(energy)) {
     double ga[3] = {0, 0, 0}, gb[3] = {0, 0, 0};
-    double E = tds_edge_vint(s, energy, a, b, out->grad ? ga : NULL, gb);
+    double E = tds_edge_vint(s, energy, npts[0], a, b, out->grad ? ga : NULL, gb);
     out->energy += sign * E;
     if (out->grad) {
       v3_axpy(out->grad[m->ev[e][0]], sign, ga);
@@ -107,7 +105,7 @@ static void integrals(tds_surf *s, tds_eval_out *out, tds_id e, double sign,
   if (has_any(content)) {
     int need = out->fq != NULL;
     double ga[3] = {0, 0, 0}, gb[3] = {0, 0, 0};
-    double C = tds_edge_vint(s, content, a, b, need ? ga : NULL, gb);
+    double C = tds_edge_vint(s, content, npts[1], a, b, need ? ga : NULL, gb);
     v3_scale(ga, sign * csign);
     v3_scale(gb, sign * csign);
     add_content(s, out, e, sign * csign * C, ga, gb);
@@ -161,7 +159,7 @@ void tds_eval_edges(tds_surf *s, tds_eval_out *out) {
     double sign = (m->eflags[e] & TDS_CONREV) ? -1 : 1;
     if (m->ebdry[e] != TDS_NONE) {
       const tds_boundary *B = &s->bdry[m->ebdry[e]];
-      integrals(s, out, e, sign, -1, B->energy, B->content);
+      integrals(s, out, e, sign, -1, B->energy, B->content, B->npts);
     }
     tds_cmask mask = m->econ[e];
     if (!mask || (m->eflags[e] & TDS_FIXED)) continue;
@@ -169,7 +167,7 @@ void tds_eval_edges(tds_surf *s, tds_eval_out *out) {
       if (!(mask & ((tds_cmask)1 << c))) continue;
       mask &= ~((tds_cmask)1 << c);
       const tds_constraint *con = &s->con[c];
-      integrals(s, out, e, sign, 1, con->energy, con->content);
+      integrals(s, out, e, sign, 1, con->energy, con->content, con->npts);
       if ((con->flags & TDS_CON_CONVEX) && con->formula && s->gap_constant != 0)
         gap(s, out, e, con->formula);
     }

@@ -14,25 +14,6 @@
 #include "geom.h"
 #include "vec3.h"
 
-const double tds_gauss2_b[TDS_GAUSS2_N][3] = {
-#define A1 0.5014265096581629
-#define A2 0.24928674517091855 /* (1 - A1) / 2 */
-#define B1 0.8738219710169999
-#define B2 0.063089014491500050 /* (1 - B1) / 2 */
-#define C1 0.053145049844823246
-#define C2 0.31035245103377757
-#define C3 0.63650249912139918 /* 1 - C1 - C2 */
-    {A1, A2, A2}, {A2, A1, A2}, {A2, A2, A1}, {B1, B2, B2}, {B2, B1, B2},
-    {B2, B2, B1}, {C1, C2, C3}, {C1, C3, C2}, {C2, C1, C3}, {C2, C3, C1},
-    {C3, C1, C2}, {C3, C2, C1},
-};
-const double tds_gauss2_w[TDS_GAUSS2_N] = {
-    0.11678627572636473, 0.11678627572636473, 0.11678627572636473,
-    0.05084490637020388, 0.05084490637020388, 0.05084490637020388,
-    0.08285107561838234, 0.08285107561838234, 0.08285107561838234,
-    0.08285107561838234, 0.08285107561838234, 0.08285107561838234,
-};
-
 /* Where a method instance's gradient goes: scale * dvalue into the energy
 ** gradient (energy quantities) or into quantity q of the fixq. */
 typedef struct sink {
@@ -50,17 +31,18 @@ static void put(const sink *k, tds_id v, const double g[3]) {
 }
 
 /* int over facet of F . n dA = sum_q w_q F(p_q) . N / 2. */
-static double facet_vint(const tds_surf *s, tds_expr *const F[3], const double *x[3],
-                         double g[3][3]) {
+static double facet_vint(const tds_surf *s, tds_expr *const F[3], int npts,
+                         const double *x[3], double g[3][3]) {
+  const tds_rule *R = tds_facet_rule(npts);
   double N[3], ab[3], ac[3];
   v3_sub(ab, x[1], x[0]);
   v3_sub(ac, x[2], x[0]);
   v3_cross(N, ab, ac);
   double sum = 0, favg[3] = {0, 0, 0};
   if (g) memset(g, 0, sizeof(double[3][3]));
-  for (int i = 0; i < TDS_GAUSS2_N; i++) {
+  for (int i = 0; i < R->n; i++) {
     double p[3] = {0, 0, 0}, vars[TDS_NVARS], f[3] = {0, 0, 0}, jtn[3] = {0, 0, 0};
-    for (int k = 0; k < 3; k++) v3_axpy(p, tds_gauss2_b[i][k], x[k]);
+    for (int k = 0; k < 3; k++) v3_axpy(p, R->b[i][k], x[k]);
     tds_eval_vars(s, p, vars);
     for (int j = 0; j < 3; j++) {
       if (!F[j]) continue;
@@ -70,11 +52,11 @@ static double facet_vint(const tds_surf *s, tds_expr *const F[3], const double *
       if (g)
         for (int k = 0; k < 3; k++) jtn[k] += gr[k] * N[j];
     }
-    double w = tds_gauss2_w[i];
+    double w = R->w[i];
     sum += w * v3_dot(f, N) / 2;
     if (g) {
       v3_axpy(favg, w / 2, f);
-      for (int k = 0; k < 3; k++) v3_axpy(g[k], w * tds_gauss2_b[i][k] / 2, jtn);
+      for (int k = 0; k < 3; k++) v3_axpy(g[k], w * R->b[i][k] / 2, jtn);
     }
   }
   if (g) { /* d(F . N)/da = (b - c) x F, cyclic */
@@ -89,21 +71,22 @@ static double facet_vint(const tds_surf *s, tds_expr *const F[3], const double *
 }
 
 /* int over facet of f dA. */
-static double facet_sint(const tds_surf *s, const tds_expr *f, const double *x[3],
-                         double g[3][3]) {
+static double facet_sint(const tds_surf *s, const tds_expr *f, int npts,
+                         const double *x[3], double g[3][3]) {
+  const tds_rule *R = tds_facet_rule(npts);
   double ga[3][3];
   double A = geom_area(x[0], x[1], x[2], g ? ga : NULL);
   double avg = 0, grad_avg[3][3];
   if (g) memset(grad_avg, 0, sizeof grad_avg);
-  for (int i = 0; i < TDS_GAUSS2_N; i++) {
+  for (int i = 0; i < R->n; i++) {
     double p[3] = {0, 0, 0}, vars[TDS_NVARS], gr[TDS_NDIFF];
-    for (int k = 0; k < 3; k++) v3_axpy(p, tds_gauss2_b[i][k], x[k]);
+    for (int k = 0; k < 3; k++) v3_axpy(p, R->b[i][k], x[k]);
     tds_eval_vars(s, p, vars);
-    double w = tds_gauss2_w[i];
+    double w = R->w[i];
     avg += w * (g ? tds_expr_eval_grad(f, s->parval, vars, gr)
                   : tds_expr_eval(f, s->parval, vars));
     if (g)
-      for (int k = 0; k < 3; k++) v3_axpy(grad_avg[k], w * tds_gauss2_b[i][k], gr);
+      for (int k = 0; k < 3; k++) v3_axpy(grad_avg[k], w * R->b[i][k], gr);
   }
   if (g)
     for (int k = 0; k < 3; k++)
@@ -112,13 +95,15 @@ static double facet_sint(const tds_surf *s, const tds_expr *f, const double *x[3
 }
 
 /* int over edge of f ds. */
-static double edge_sint(const tds_surf *s, const tds_expr *f, const double *a,
-                        const double *b, double ga[3], double gb[3]) {
+static double edge_sint(const tds_surf *s, const tds_expr *f, int npts,
+                        const double *a, const double *b, double ga[3],
+                        double gb[3]) {
+  const tds_rule *R = tds_edge_rule(npts);
   double d[3];
   v3_sub(d, b, a);
   double len = v3_norm(d), avg = 0, gavg_a[3] = {0, 0, 0}, gavg_b[3] = {0, 0, 0};
-  for (int i = 0; i < TDS_GAUSS1_N; i++) {
-    double t = tds_gauss1_t[i], w = tds_gauss1_w[i], p[3], vars[TDS_NVARS], gr[TDS_NDIFF];
+  for (int i = 0; i < R->n; i++) {
+    double t = R->t[i], w = R->w[i], p[3], vars[TDS_NVARS], gr[TDS_NDIFF];
     for (int k = 0; k < 3; k++) p[k] = a[k] + t * d[k];
     tds_eval_vars(s, p, vars);
     avg += w * (ga ? tds_expr_eval_grad(f, s->parval, vars, gr)
@@ -152,8 +137,8 @@ static double method_value(tds_surf *s, const tds_method_inst *mi, const sink *k
       double g[3][3], val;
       switch (mi->method) {
       case TDS_M_FACET_AREA: val = geom_area(x[0], x[1], x[2], want ? g : NULL); break;
-      case TDS_M_FACET_VECTOR_INTEGRAL: val = facet_vint(s, mi->integrand, x, want ? g : NULL); break;
-      case TDS_M_FACET_SCALAR_INTEGRAL: val = facet_sint(s, mi->integrand[0], x, want ? g : NULL); break;
+      case TDS_M_FACET_VECTOR_INTEGRAL: val = facet_vint(s, mi->integrand, mi->npts, x, want ? g : NULL); break;
+      case TDS_M_FACET_SCALAR_INTEGRAL: val = facet_sint(s, mi->integrand[0], mi->npts, x, want ? g : NULL); break;
       default: { /* gravity: density-weighted z moment of the facet's bodies */
         double rho = 0;
         if (m->fb[f][0] != TDS_NONE) rho += m->bdensity[m->fb[f][0]];
@@ -185,9 +170,9 @@ static double method_value(tds_surf *s, const tds_method_inst *mi, const sink *k
           ga[i] = -gb[i];
         }
     } else if (mi->method == TDS_M_EDGE_VECTOR_INTEGRAL) {
-      val = tds_edge_vint(s, mi->integrand, a, b, want ? ga : NULL, gb);
+      val = tds_edge_vint(s, mi->integrand, mi->npts, a, b, want ? ga : NULL, gb);
     } else {
-      val = edge_sint(s, mi->integrand[0], a, b, want ? ga : NULL, gb);
+      val = edge_sint(s, mi->integrand[0], mi->npts, a, b, want ? ga : NULL, gb);
     }
     total += val;
     if (want) {

@@ -110,6 +110,11 @@ double tds_expr_eval_grad(const tds_expr *e, const double *params, const double 
 double tds_expr_eval_hess(const tds_expr *e, const double *params, const double vars[TDS_NVARS],
                           double grad[TDS_NDIFF], double hess[TDS_NDIFF][TDS_NDIFF]);
 
+/* Polynomial degree in x y z p1 p2 (parameters and G count as constants),
+   or -1 if the expression is not a polynomial (functions, division by a
+   variable, ?:, ...). Used to pick exact quadrature rules. */
+int tds_expr_degree(const tds_expr *e);
+
 #ifdef TDS_EXPR_INTERNAL
 /* Shared by expr_parse.c and expr_eval.c only. */
 #include <stdint.h>

@@ -299,3 +299,57 @@ double tds_expr_eval_hess(const tds_expr *e, const double *params,
                           double hess[TDS_NDIFF][TDS_NDIFF]) {
   return run_deriv(e, params, vars, grad, hess, 1);
 }
+
+int tds_expr_degree(const tds_expr *e) {
+  int st[TDS_EXPR_MAXSTACK + 1], sp = 0; /* -1: not a polynomial */
+  double kv[TDS_EXPR_MAXSTACK + 1];      /* constant value of a degree-0 slot */
+  int kc[TDS_EXPR_MAXSTACK + 1];         /* 1: slot is a known constant */
+  for (int pc = 0; pc < e->ncode; pc++) {
+    const tds_instr *in = &e->code[pc];
+    switch (in->op) {
+    case TDS_OP_PUSHK:
+      st[sp] = 0, kc[sp] = 1, kv[sp] = e->k[in->arg], sp++;
+      break;
+    case TDS_OP_PUSHP:
+      st[sp] = 0, kc[sp] = 0, sp++;
+      break;
+    case TDS_OP_PUSHV: /* G is a constant of the integration */
+      st[sp] = in->arg == TDS_G ? 0 : 1, kc[sp] = 0, sp++;
+      break;
+    case TDS_OP_NEG:
+      kv[sp - 1] = -kv[sp - 1];
+      break;
+    case TDS_OP_SQR:
+      st[sp - 1] = st[sp - 1] < 0 ? -1 : 2 * st[sp - 1];
+      kc[sp - 1] = 0;
+      break;
+    case TDS_OP_ADD: case TDS_OP_SUB: case TDS_OP_MUL: case TDS_OP_DIV:
+    case TDS_OP_POW: {
+      int a = st[sp - 2], b = st[sp - 1], r;
+      if (a < 0 || b < 0) r = -1;
+      else if (in->op == TDS_OP_MUL) r = a + b;
+      else if (in->op == TDS_OP_DIV) r = b == 0 ? a : -1;
+      else if (in->op == TDS_OP_POW) {
+        double n = kv[sp - 1];
+        r = b == 0 && kc[sp - 1] && n >= 0 && n <= 16 && n == (int)n ? a * (int)n
+            : (a == 0 && b == 0) ? 0 : -1;
+      } else r = a > b ? a : b;
+      sp--;
+      st[sp - 1] = r;
+      kc[sp - 1] = 0;
+      break;
+    }
+    default: /* any other function of a non-constant is not a polynomial */
+      if (in->op >= TDS_OP_BINARY0) {
+        sp--;
+        st[sp - 1] = (st[sp - 1] == 0 && st[sp] == 0) ? 0 : -1;
+      } else if (in->op >= TDS_OP_UNARY0) {
+        st[sp - 1] = st[sp - 1] == 0 ? 0 : -1;
+      } else {
+        return -1; /* jumps: ?: is piecewise */
+      }
+      kc[sp - 1] = 0;
+    }
+  }
+  return sp == 1 ? st[0] : -1;
+}

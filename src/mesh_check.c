@@ -65,26 +65,86 @@ static int check_rings(tds_ctx *ctx, const tds_mesh *m) {
   return TDS_OK;
 }
 
-static int check_adjacency(tds_ctx *ctx, const tds_mesh *m) {
-  if (m->adj_gen != m->topo_gen) return TDS_OK;
+/* Has `key` been seen in the list of vertex v already? With a mark array
+** (mark[key] holds the last vertex + 1 that listed it) in O(1), else by
+** scanning the entries list[lo..i-1]. */
+static int seen_before(int32_t *mark, const int32_t *list, int32_t lo,
+                       int32_t i, int32_t key, tds_id v) {
+  if (mark) {
+    if (mark[key] == v + 1) return 1;
+    mark[key] = v + 1;
+    return 0;
+  }
+  for (int32_t j = lo; j < i; j++)
+    if (list[j] == key) return 1;
+  return 0;
+}
+
+/* The derived stars, if current, must be exactly the incidences of the
+** primary arrays. Each vertex's lists are checked to hold only live
+** elements incident to it, each at most once; with the totals equal to
+** 3 per live facet and 2 per live edge, every list is then complete. */
+static int check_stars(tds_ctx *ctx, const tds_mesh *m, int32_t *fmark,
+                       int32_t *emark) {
+  int64_t nfs = 0, nes = 0;
+  for (tds_id f = 0; f < m->nf; f++)
+    if (tds_alive(m->fflags, f)) nfs += 3;
+  for (tds_id e = 0; e < m->ne; e++)
+    if (tds_alive(m->eflags, e)) nes += 2;
   for (tds_id v = 0; v < m->nv; v++) {
-    for (int32_t i = m->vf_start[v]; i < m->vf_start[v + 1]; i++) {
+    int32_t f0 = m->vf_start[v], f1 = m->vf_start[v + 1];
+    int32_t e0 = m->ve_start[v], e1 = m->ve_start[v + 1];
+    if (f0 < 0 || f1 < f0 || f1 > m->adj_cap[2] || e0 < 0 || e1 < e0 ||
+        e1 > m->adj_cap[3])
+      FAIL("vertex %d: star ranges are out of order", v + 1);
+    for (int32_t i = f0; i < f1; i++) {
       tds_id f = m->vf[i];
+      if (f < 0 || f >= m->nf || !tds_alive(m->fflags, f))
+        FAIL("vertex %d: star lists facet %d, which does not exist", v + 1,
+             f + 1);
       if (m->fv[f][0] != v && m->fv[f][1] != v && m->fv[f][2] != v)
         FAIL("vertex %d: star lists facet %d, which does not contain it",
              v + 1, f + 1);
+      if (seen_before(fmark, m->vf, f0, i, f, v))
+        FAIL("vertex %d: star lists facet %d twice", v + 1, f + 1);
     }
-    for (int32_t i = m->ve_start[v]; i < m->ve_start[v + 1]; i++)
-      if (tds_oe_tail(m, m->ve[i]) != v)
+    for (int32_t i = e0; i < e1; i++) {
+      int32_t oe = m->ve[i];
+      tds_id e = TDS_OID(oe);
+      if (oe < 0 || e >= m->ne || !tds_alive(m->eflags, e))
+        FAIL("vertex %d: star lists edge %d, which does not exist", v + 1,
+             e + 1);
+      if (tds_oe_tail(m, oe) != v)
         FAIL("vertex %d: star lists an edge that does not leave it", v + 1);
+      if (seen_before(emark, m->ve, e0, i, oe, v))
+        FAIL("vertex %d: star lists edge %s%d twice", v + 1,
+             TDS_OREV(oe) ? "-" : "", e + 1);
+    }
   }
-  int64_t nfs = 0;
-  for (tds_id f = 0; f < m->nf; f++)
-    if (tds_alive(m->fflags, f)) nfs += 3;
   if (m->nv > 0 && m->vf_start[m->nv] != nfs)
     FAIL("vertex stars hold %d facet corners, expected %lld",
          m->vf_start[m->nv], (long long)nfs);
+  if (m->nv > 0 && m->ve_start[m->nv] != nes)
+    FAIL("vertex stars hold %d edge ends, expected %lld", m->ve_start[m->nv],
+         (long long)nes);
   return TDS_OK;
+}
+
+static int check_adjacency(tds_ctx *ctx, const tds_mesh *m) {
+  if (m->adj_gen != m->topo_gen) return TDS_OK;
+  /* Mark arrays make the duplicate test linear; without memory it falls
+  ** back to scanning each star. */
+  int32_t *fmark = calloc((size_t)m->nf + 1, sizeof *fmark);
+  int32_t *emark = calloc(2 * (size_t)m->ne + 2, sizeof *emark);
+  if (!fmark || !emark) {
+    free(fmark);
+    free(emark);
+    fmark = emark = NULL;
+  }
+  int rc = check_stars(ctx, m, fmark, emark);
+  free(fmark);
+  free(emark);
+  return rc;
 }
 
 int tds_mesh_check(tds_ctx *ctx, tds_mesh *m) {

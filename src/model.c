@@ -44,8 +44,44 @@ static void free3(tds_expr *e[3]) {
   }
 }
 
+/* Move three integrands into dst; a constant 0 becomes NULL, so the
+** integrals skip it (dumps write NULL as 0). */
 static void take3(tds_expr *dst[3], tds_expr *src[3]) {
-  for (int i = 0; i < 3; i++) dst[i] = src ? src[i] : NULL;
+  for (int i = 0; i < 3; i++) {
+    dst[i] = src ? src[i] : NULL;
+    if (dst[i] && tds_expr_is_const(dst[i]) &&
+        tds_expr_eval(dst[i], NULL, (double[TDS_NVARS]){0}) == 0) {
+      tds_expr_free(dst[i]);
+      dst[i] = NULL;
+    }
+  }
+}
+
+/* Degree of a vector integrand (max over components), -1 if any is not a
+** polynomial. */
+static int degree3(tds_expr *const e[3]) {
+  int d = 0;
+  for (int i = 0; i < 3; i++) {
+    if (!e[i]) continue;
+    int k = tds_expr_degree(e[i]);
+    if (k < 0) return -1;
+    if (k > d) d = k;
+  }
+  return d;
+}
+
+/* Gauss points on an edge: the midpoint is exact for linear integrands;
+** otherwise Evolver's 2-point rule (exact for cubics). */
+static int edge_points(tds_expr *const e[3]) {
+  int d = degree3(e);
+  return d >= 0 && d <= 1 ? 1 : 2;
+}
+
+/* Points of the triangle rule: exact for the integrand's degree, or the
+** degree-6 rule Evolver uses for anything else. */
+static int facet_points(tds_expr *const e[3]) {
+  int d = degree3(e);
+  return d < 0 || d > 2 ? 12 : d == 2 ? 3 : 1;
 }
 
 int tds_model_constraint(tds_ctx *ctx, tds_surf *s, int number, int flags,
@@ -74,6 +110,8 @@ int tds_model_constraint(tds_ctx *ctx, tds_surf *s, int number, int flags,
   c->formula = formula;
   take3(c->energy, energy);
   take3(c->content, content);
+  c->npts[0] = edge_points(c->energy);
+  c->npts[1] = edge_points(c->content);
   return TDS_OK;
 }
 
@@ -116,9 +154,11 @@ int tds_model_boundary(tds_ctx *ctx, tds_surf *s, int number, int nparams,
   b->number = number;
   b->nparams = nparams;
   b->flags = flags;
-  take3(b->x, x);
+  for (int i = 0; i < 3; i++) b->x[i] = x[i]; /* positions stay, even 0 */
   take3(b->energy, energy);
   take3(b->content, content);
+  b->npts[0] = edge_points(b->energy);
+  b->npts[1] = edge_points(b->content);
   return TDS_OK;
 }
 
@@ -177,5 +217,8 @@ int tds_model_method(tds_ctx *ctx, tds_surf *s, int idx, int method,
   mi->method = method;
   mi->modulus = modulus;
   take3(mi->integrand, integrand);
+  mi->npts = method == TDS_M_EDGE_VECTOR_INTEGRAL || method == TDS_M_EDGE_SCALAR_INTEGRAL
+                 ? edge_points(mi->integrand)
+                 : facet_points(mi->integrand);
   return TDS_OK;
 }

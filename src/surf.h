@@ -27,6 +27,7 @@ typedef struct tds_constraint {
   tds_expr *formula;      /* level set: formula(x) = 0 */
   tds_expr *energy[3];    /* edge integrand (vector field), or NULL */
   tds_expr *content[3];   /* edge integrand added to body volumes */
+  int npts[2];            /* Gauss points for energy, content (1 or 2) */
 } tds_constraint;
 
 typedef struct tds_boundary {
@@ -36,6 +37,7 @@ typedef struct tds_boundary {
   tds_expr *x[3];         /* position as functions of p1, p2 */
   tds_expr *energy[3];
   tds_expr *content[3];
+  int npts[2];            /* Gauss points for energy, content (1 or 2) */
 } tds_boundary;
 
 enum { TDS_Q_ENERGY = 0, TDS_Q_FIXED, TDS_Q_INFO };
@@ -49,6 +51,7 @@ typedef struct tds_method_inst {
   int method;             /* TDS_M_* */
   double modulus;         /* multiplier of this instance */
   tds_expr *integrand[3]; /* vector integrand, or [0] scalar */
+  int npts;               /* quadrature points (exact for its degree) */
 } tds_method_inst;
 
 typedef struct tds_quantity {

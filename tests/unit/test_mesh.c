@@ -223,6 +223,24 @@ static void brk_star(tds_mesh *m) {
     }
 }
 
+/* Vertex 1's star lists one of its facets twice and omits another. */
+static void brk_star_dup(tds_mesh *m) {
+  tds_mesh_adjacency(m);
+  m->vf[m->vf_start[0] + 1] = m->vf[m->vf_start[0]];
+}
+/* Vertex 1's edge star lists one of its edges twice and omits another. */
+static void brk_edge_star_dup(tds_mesh *m) {
+  tds_mesh_adjacency(m);
+  m->ve[m->ve_start[0] + 1] = m->ve[m->ve_start[0]];
+}
+/* A facet of vertex 1 is killed, but the adjacency is marked current (as
+** an incremental patch that forgot the kill would leave it). */
+static void brk_star_dead(tds_mesh *m) {
+  tds_mesh_adjacency(m);
+  tds_mesh_kill(m, TDS_FACET, m->vf[m->vf_start[0]]);
+  m->adj_gen = m->topo_gen;
+}
+
 static void check_catches_breakage(void) {
   tds_ctx ctx;
   tds_surf tri, tet;
@@ -238,6 +256,9 @@ static void check_catches_breakage(void) {
   expect_broken(&tet.m, brk_fv, "facet 2:");
   expect_broken(&tet.m, brk_body, "facet 1: front body");
   expect_broken(&tet.m, brk_star, "vertex 1:");
+  expect_broken(&tet.m, brk_star_dup, "vertex 1:");
+  expect_broken(&tet.m, brk_edge_star_dup, "vertex 1:");
+  expect_broken(&tet.m, brk_star_dead, "vertex 1:");
   /* the originals are untouched */
   CHECK_MESH(&ctx, &tri.m);
   CHECK_MESH(&ctx, &tet.m);
@@ -344,6 +365,39 @@ static void refine_no_refine_edge(void) {
   CHECK(h_counts(&s.m, 4, 5, 2));
   CHECK_NEAR(s.area, 0.5, 1e-15);
   tds_surf_free(&s);
+
+  /* Two split edges (a0-a1 at m0, a1-a2 at m1; a2-a0 no_refine): the quad
+  ** a0 m0 m1 a2 is cut along its shorter diagonal. */
+  static const int ev[3][2] = {{1, 2}, {2, 3}, {3, 1}};
+  static const int loops[] = {1, 2, 3, 0};
+  static const double shapes[2][3][3] = {
+      {{0, 0, 0}, {4, 0, 0}, {0, 1, 0}},  /* |a0 m1|^2 = 4.25 < |m0 a2|^2 = 5 */
+      {{0, 0, 0}, {4, 0, 0}, {4, 1, 0}}}; /* 16.25 > 5 */
+  for (int k = 0; k < 2; k++) {
+    h_setup(&ctx, &s);
+    REQUIRE_OK(&ctx, h_mesh(&ctx, &s, 3, shapes[k], 3, ev, 1, loops));
+    s.m.eflags[2] |= TDS_NO_REFINE;
+    CHECK_OK(&ctx, tds_refine(&ctx, &s, NULL, &nsplit));
+    CHECK_MESH(&ctx, &s.m);
+    CHECK(h_counts(&s.m, 5, 7, 3));
+    double m0[3], m1[3];
+    for (int i = 0; i < 3; i++) {
+      m0[i] = (shapes[k][0][i] + shapes[k][1][i]) / 2;
+      m1[i] = (shapes[k][1][i] + shapes[k][2][i]) / 2;
+    }
+    tds_id vm0 = h_vertex_at(&s.m, m0), vm1 = h_vertex_at(&s.m, m1);
+    CHECK(vm0 != TDS_NONE && vm1 != TDS_NONE);
+    double d1 = 0, d2 = 0;
+    for (int i = 0; i < 3; i++) {
+      d1 += (m1[i] - shapes[k][0][i]) * (m1[i] - shapes[k][0][i]);
+      d2 += (m0[i] - shapes[k][2][i]) * (m0[i] - shapes[k][2][i]);
+    }
+    int a0m1 = d1 < d2;
+    CHECK((h_find_edge(&s.m, 0, vm1) != TDS_NONE) == a0m1);
+    CHECK((h_find_edge(&s.m, vm0, 2) != TDS_NONE) == !a0m1);
+    CHECK_NEAR(s.area, geom_area(shapes[k][0], shapes[k][1], shapes[k][2], NULL), 1e-15);
+    tds_surf_free(&s);
+  }
 }
 
 static void refine_selection(void) {
@@ -838,6 +892,105 @@ static void vertex_average_tent(void) {
   tds_surf_free(&s);
 }
 
+/* Three fins on a spine of two edges p0-p1-p2 (a triple line), each fin a
+** strip of two quads cut into triangles; built with tds_mesh_add_*.
+** The middle spine vertex is placed at height z1. */
+static int triple_line(tds_ctx *ctx, tds_surf *s, double z1) {
+  tds_mesh *m = &s->m;
+  const double pz[3] = {0, z1, 2};
+  for (int j = 0; j < 3; j++) {
+    double x[3] = {0, 0, pz[j]};
+    if (tds_mesh_add_vertex(m, x) == TDS_NONE) return TDS_ENOMEM;
+  }
+  for (int k = 0; k < 3; k++)
+    for (int j = 0; j < 3; j++) {
+      double a = 2 * TDS_PI * k / 3;
+      double x[3] = {cos(a), sin(a), j};
+      if (tds_mesh_add_vertex(m, x) == TDS_NONE) return TDS_ENOMEM;
+    }
+  for (int k = 0; k < 3; k++)
+    for (int j = 0; j < 2; j++) {
+      tds_id p0 = j, p1 = j + 1, q0 = 3 + 3 * k + j, q1 = q0 + 1;
+      tds_id tri[2][3] = {{p0, q0, q1}, {p0, q1, p1}};
+      for (int t = 0; t < 2; t++) {
+        int32_t oe[3];
+        for (int i = 0; i < 3; i++)
+          if ((oe[i] = h_edge_between(m, tri[t][i], tri[t][(i + 1) % 3])) < 0)
+            return TDS_ENOMEM;
+        if (!tds_mesh_edges_chain(m, oe)) return tds_seterr(ctx, TDS_ETOPO, "chain");
+        if (tds_mesh_add_facet(m, oe) == TDS_NONE) return TDS_ENOMEM;
+      }
+    }
+  return TDS_OK;
+}
+
+/* A vertex on a triple line moves along it, to the mean of its two
+** neighbours on the line; the line's ends and the fins' borders stay. */
+static void vertex_average_triple_line(void) {
+  tds_ctx ctx;
+  tds_surf s;
+  h_setup(&ctx, &s);
+  REQUIRE_OK(&ctx, triple_line(&ctx, &s, 1.3));
+  tds_mesh *m = &s.m;
+  CHECK_MESH(&ctx, m);
+  CHECK(h_counts(m, 12, 2 + 3 * 7, 12)); /* spine + 7 edges per fin */
+  tds_id e01 = h_find_edge(m, 0, 1), e12 = h_find_edge(m, 1, 2);
+  CHECK(e01 != TDS_NONE && e12 != TDS_NONE);
+  if (e01 == TDS_NONE || e12 == TDS_NONE) {
+    tds_surf_free(&s);
+    return;
+  }
+  CHECK(tds_edge_valence(m, e01) == 3 && tds_edge_valence(m, e12) == 3);
+  int32_t nmoved = -1;
+  CHECK_OK(&ctx, tds_vertex_average(&ctx, &s, NULL, &nmoved));
+  CHECK(nmoved == 1);
+  CHECK_MESH(&ctx, m);
+  CHECK_NEAR(m->x[1][0], 0, 1e-15);
+  CHECK_NEAR(m->x[1][1], 0, 1e-15);
+  CHECK_NEAR(m->x[1][2], 1, 1e-15);
+  /* refining keeps the line triple: 4 spine edges of valence 3 */
+  CHECK_OK(&ctx, tds_refine(&ctx, &s, NULL, NULL));
+  CHECK_MESH(&ctx, m);
+  int ntriple = 0;
+  for (tds_id e = 0; e < m->ne; e++) ntriple += tds_edge_valence(m, e) == 3;
+  CHECK(ntriple == 4);
+  CHECK(h_counts(m, 12 + 23, 46 + 36, 48));
+  tds_surf_free(&s);
+}
+
+/* Dead elements (a killed fin) are skipped by refine, flips and
+** averaging, and the mesh stays sound. */
+static void dead_elements_skipped(void) {
+  tds_ctx ctx;
+  tds_surf s;
+  h_setup(&ctx, &s);
+  REQUIRE_OK(&ctx, triple_line(&ctx, &s, 1.3));
+  tds_mesh *m = &s.m;
+  /* kill fin 3 (facets 9..12, its 3 outer vertices and their edges) */
+  for (tds_id f = 8; f < 12; f++) tds_mesh_kill(m, TDS_FACET, f);
+  for (tds_id e = 0; e < m->ne; e++)
+    if (m->ev[e][0] >= 9 || m->ev[e][1] >= 9) tds_mesh_kill(m, TDS_EDGE, e);
+  for (tds_id v = 9; v < 12; v++) tds_mesh_kill(m, TDS_VERTEX, v);
+  CHECK_MESH(&ctx, m);
+  CHECK(h_counts(m, 9, 16, 8));
+  CHECK(tds_edge_valence(m, h_find_edge(m, 0, 1)) == 2);
+  /* the spine is now an ordinary interior line between two fins */
+  int32_t n;
+  CHECK_OK(&ctx, tds_vertex_average(&ctx, &s, NULL, &n));
+  CHECK_MESH(&ctx, m);
+  CHECK_OK(&ctx, tds_equiangulate(&ctx, &s, NULL, &n));
+  CHECK_MESH(&ctx, m);
+  CHECK(h_counts(m, 9, 16, 8));
+  CHECK_OK(&ctx, tds_refine(&ctx, &s, NULL, &n));
+  CHECK(n == 16);
+  CHECK_MESH(&ctx, m);
+  CHECK(h_counts(m, 25, 32 + 24, 32));
+  for (tds_id f = 0; f < m->nf; f++)
+    if (!tds_alive(m->fflags, f)) CHECK(f >= 8 && f < 12); /* slots kept */
+  CHECK(h_stars_match(m));
+  tds_surf_free(&s);
+}
+
 /* On a closed surface every free vertex is averaged; one on a flat star
 ** stays in its plane. */
 static void vertex_average_closed(void) {
@@ -883,6 +1036,8 @@ int main(void) {
   RUN(flip_grid_adjacency);
   RUN(vertex_average_flat);
   RUN(vertex_average_tent);
+  RUN(vertex_average_triple_line);
+  RUN(dead_elements_skipped);
   RUN(vertex_average_closed);
   return check_done();
 }
