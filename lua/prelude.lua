@@ -198,6 +198,23 @@ quit, bye, exit = q, q, q
 
 function check() return tds.check() end
 
+-- help(): the commands at a glance; doc/ has the full manual.
+local HELP = [[
+Declarations  vertices{} edges{} faces{} bodies{}  parameter{}  constraint(n, {})
+              boundary(n, {})  quantity{}  gravity_constant(g)
+Evolving      g(n) iterate    r() refine    u() equiangulate    V() vertex_average
+              m(scale) / m()  optimize(limit)   U() conjugate gradient   G(g) gravity
+              pg(n) / pg() projected-gradient method (doc/method.md)
+Reporting     v()  total_energy  total_area  vertex_count ... body_count
+              vertex[i] edge[i] facet[i] body[i]   vertices(filter) ...
+              quality()  curvature{}  check()
+Files         tds file.fe (load a datafile)  dump("out.fe")
+Leaving       q()  (at the prompt: q, or Ctrl-D)
+At the prompt Evolver habits work: g 5; r; u   angle := 45   print total_area
+The manual: doc/language.md, doc/commands.md, doc/expressions.md, doc/repl.md,
+doc/evolver.md (coming from Surface Evolver), doc/method.md.]]
+function help() print(HELP) end
+
 -- near(a, b, tol): |a - b| <= tol * max(1, |b|), for self-checking scripts.
 function near(a, b, tol)
   tol = tol or 1e-9

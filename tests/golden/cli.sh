@@ -6,6 +6,7 @@ run bad_attr.tds
 run no_such_file.tds | sed 's/: No such file.*/: no such file/'
 run --bogus | head -n 1
 run -e 'print(1 + 1)'
+run -e 'help()' | head -n 1
 run -e 'error("boom")'
 run -e 'q(3)'
 run ../../scripts/cube.tds -e 'print(vertex_count, edge_count, facet_count, body_count)'
