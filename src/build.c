@@ -37,9 +37,9 @@ int tds_build_face(tds_ctx *ctx, tds_surf *s, tds_id f, int n,
     return tds_seterr(ctx, TDS_ERANGE, "face %d is declared twice", f + 1);
   /* Reserve everything first: nothing below may fail. */
   if (tds_mesh_extend_dead(m, TDS_FACET, f + 1) ||
-      tds_mesh_reserve(m, TDS_FACET, m->nf + (n > 3 ? n - 1 : 0)) ||
-      tds_mesh_reserve(m, TDS_EDGE, m->ne + (n > 3 ? n : 0)) ||
-      tds_mesh_reserve(m, TDS_VERTEX, m->nv + 1))
+      tds_mesh_room(m, TDS_FACET, m->nf + (n > 3 ? n - 1 : 0)) ||
+      tds_mesh_room(m, TDS_EDGE, m->ne + (n > 3 ? n : 0)) ||
+      tds_mesh_room(m, TDS_VERTEX, m->nv + 1))
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   tds_mesh_claim(m, TDS_FACET, f);
   apply_attr(m, f, f, at);
@@ -52,7 +52,7 @@ int tds_build_face(tds_ctx *ctx, tds_surf *s, tds_id f, int n,
   v3_scale(c, 1.0 / n);
   tds_id cv = tds_mesh_add_vertex(m, c);
   m->vflags[cv] = at->flags & TDS_FIXED;
-  m->vcon[cv] = at->con;
+  m->vcon[cv] = at->con | tds_surf_global_cons(s);
   tds_id spoke0 = m->ne; /* spoke k runs from the tail of oe[k] to cv */
   for (int k = 0; k < n; k++) {
     tds_id e = tds_mesh_add_edge(m, tds_oe_tail(m, oe[k]), cv);
@@ -70,7 +70,7 @@ int tds_build_face(tds_ctx *ctx, tds_surf *s, tds_id f, int n,
       tds_mesh_set_facet(m, f, t);
     }
   }
-  if (at->con) tds_motion_enforce(s, cv);
+  if (m->vcon[cv]) tds_motion_enforce(s, cv);
   m->coord_gen++;
   return TDS_OK;
 }
@@ -85,7 +85,7 @@ int tds_decl_vertex(tds_ctx *ctx, tds_surf *s, tds_id v, const double x[3],
   if (rc != TDS_OK) return tds_seterr(ctx, rc, "out of memory");
   v3_copy(m->x[v], x);
   m->vflags[v] = flags;
-  m->vcon[v] = con;
+  m->vcon[v] = con | (bdry == TDS_NONE ? tds_surf_global_cons(s) : 0);
   m->vbdry[v] = bdry;
   if (bdry != TDS_NONE) {
     m->vp[v][0] = p[0];
@@ -129,6 +129,32 @@ int tds_decl_edge(tds_ctx *ctx, tds_surf *s, tds_id e, tds_id t, tds_id h,
   return TDS_OK;
 }
 
+/* The facets of every declared face, by face slot (CSR over forig), built
+** once per topology and shared by all body declarations. */
+static int orig_index(tds_surf *s) {
+  tds_mesh *m = &s->m;
+  if (s->orig_start && s->orig_gen == m->topo_gen) return TDS_OK;
+  int32_t *start = calloc((size_t)m->nf + 2, sizeof *start);
+  int32_t *list = malloc((size_t)(m->nf > 0 ? m->nf : 1) * sizeof *list);
+  if (!start || !list) {
+    free(start);
+    free(list);
+    return TDS_ENOMEM;
+  }
+  for (tds_id f = 0; f < m->nf; f++)
+    if (tds_alive(m->fflags, f) && m->forig[f] != TDS_NONE) start[m->forig[f] + 2]++;
+  for (int32_t i = 0; i < m->nf; i++) start[i + 2] += start[i + 1];
+  for (tds_id f = 0; f < m->nf; f++)
+    if (tds_alive(m->fflags, f) && m->forig[f] != TDS_NONE)
+      list[start[m->forig[f] + 1]++] = f;
+  free(s->orig_start);
+  free(s->orig_facets);
+  s->orig_start = start; /* now start[o] .. start[o + 1] */
+  s->orig_facets = list;
+  s->orig_gen = m->topo_gen;
+  return TDS_OK;
+}
+
 int tds_decl_body(tds_ctx *ctx, tds_surf *s, tds_id b, int n,
                   const int32_t *faces) {
   tds_mesh *m = &s->m;
@@ -139,24 +165,17 @@ int tds_decl_body(tds_ctx *ctx, tds_surf *s, tds_id b, int n,
       return tds_seterr(ctx, TDS_ERANGE,
                         "body %d refers to face %d, which does not exist", b + 1, fid);
   }
+  if (orig_index(s) != TDS_OK) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+  uint64_t gen = m->topo_gen;
   int rc = tds_mesh_claim(m, TDS_BODY, b);
   if (rc == TDS_ERANGE)
     return tds_seterr(ctx, rc, "body %d is declared twice", b + 1);
   if (rc != TDS_OK) return tds_seterr(ctx, rc, "out of memory");
-  /* Sign of each face in the list, indexed by face slot. */
-  int8_t *sign = calloc((size_t)m->nf, 1);
-  if (!sign) {
-    m->bflags[b] |= TDS_DEAD;
-    return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+  m->topo_gen = gen; /* a new body slot changes no facet adjacency */
+  for (int i = 0; i < n; i++) {
+    int32_t o = (faces[i] < 0 ? -faces[i] : faces[i]) - 1;
+    for (int32_t k = s->orig_start[o]; k < s->orig_start[o + 1]; k++)
+      m->fb[s->orig_facets[k]][faces[i] > 0 ? 0 : 1] = b;
   }
-  for (int i = 0; i < n; i++)
-    sign[(faces[i] < 0 ? -faces[i] : faces[i]) - 1] = faces[i] < 0 ? -1 : 1;
-  for (tds_id f = 0; f < m->nf; f++) {
-    if (!tds_alive(m->fflags, f) || m->forig[f] == TDS_NONE) continue;
-    int8_t sg = sign[m->forig[f]];
-    if (sg) m->fb[f][sg > 0 ? 0 : 1] = b;
-  }
-  free(sign);
-  m->topo_gen++;
   return TDS_OK;
 }

@@ -57,9 +57,6 @@ typedef struct df {
   int has_read;
   size_t read_at;
   int split;           /* several values in a row: element lines, matrices */
-  char *scratch;       /* split_copy's buffer and offset map */
-  size_t *map;
-  size_t capscratch;
 } df;
 
 /* ---- characters and messages ---- */
@@ -277,64 +274,10 @@ static int read_int(df *d, int sign, const char *what, int64_t *v) {
 /* ---- expressions ---- */
 
 /* Scratch copy of the rest of the line for a list context (see below). */
-#define SPLIT_MAX 65536
-
-static int operand_end(int c) { return is_alnum(c) || c == ')' || c == '.'; }
-
-/* Evolver's rule where several values follow each other (element lines,
-** VIEW_MATRIX): after a complete operand, a '-' preceded by whitespace and
-** followed by anything but whitespace starts a new value ("5 -1 0",
-** "5 -rad 0", "5 -(2) 0" are three values each), while '+' never does
-** ("5 +1 0" is 6 and 0). Verified with evolver-nox-d 2.70. The expression
-** parser's TDS_EXPR_DATAFILE rule splits only at a sign followed by a digit
-** or '.', so the copy handed to it has "-name" written "-1*name" (the same
-** value wherever the minus is an operator) and "+1" written "+ 1".
-** map[i] is the offset in the line of scratch byte i. */
-static int split_copy(df *d, const char *a, size_t *n) {
-  size_t need = strlen(a);
-  if (need > SPLIT_MAX) need = SPLIT_MAX;
-  need = 3 * need + 1;
-  if (need > d->capscratch) {
-    char *b = realloc(d->scratch, need);
-    if (!b) return TDS_ENOMEM;
-    d->scratch = b;
-    size_t *m = realloc(d->map, need * sizeof *m);
-    if (!m) return TDS_ENOMEM;
-    d->map = m;
-    d->capscratch = need;
-  }
-  size_t j = 0;
-  int last = 'a'; /* as if an operand preceded: harmless at the start */
-  for (size_t i = 0; a[i] && i < SPLIT_MAX; i++) {
-    int c = (unsigned char)a[i];
-    int before = i > 0 ? (unsigned char)a[i - 1] : ' ';
-    int next = (unsigned char)a[i + 1];
-    d->scratch[j] = (char)c;
-    d->map[j++] = i;
-    if (is_ws(before) && operand_end(last)) {
-      if (c == '-' && next && !is_ws(next) && !is_digit(next) && next != '.' &&
-          next != '-' && next != '+') {
-        d->scratch[j] = '1';
-        d->map[j++] = i + 1;
-        d->scratch[j] = '*';
-        d->map[j++] = i + 1;
-      } else if (c == '+' && (is_digit(next) || next == '.')) {
-        d->scratch[j] = ' ';
-        d->map[j++] = i + 1;
-      }
-    }
-    if (!is_ws(c)) last = c;
-  }
-  d->scratch[j] = 0;
-  d->map[j] = strlen(a) < SPLIT_MAX ? strlen(a) : SPLIT_MAX;
-  *n = j;
-  return TDS_OK;
-}
-
 /* Parse the longest expression at the cursor (same line). In the top
 ** section an expression is one value and '-' is always an operator
 ** ("parameter c = 1 -2" is -1, as in Evolver); in lists (d->split) the
-** rule of split_copy applies. */
+** signed-number rule of TDS_EXPR_DATAFILE separates values. */
 static int parse_expr(df *d, int flags, tds_expr **out, const char *what) {
   char b[64];
   ws(d);
@@ -346,23 +289,9 @@ static int parse_expr(df *d, int flags, tds_expr **out, const char *what) {
                 describe(a, b, sizeof b));
   tds_expr_env env;
   tds_model_env(d->s, flags | (d->split ? TDS_EXPR_DATAFILE : 0), &env);
-  size_t used = 0, n = 0;
-  const char *text = a;
-  if (d->split) {
-    if (split_copy(d, a, &n)) return derr(d, a, TDS_ENOMEM, "out of memory");
-    text = d->scratch;
-  }
-  int rc = tds_expr_parse(d->ctx, text, &used, &env, out);
+  size_t used = 0;
+  int rc = tds_expr_parse(d->ctx, a, &used, &env, out);
   if (rc != TDS_OK) return dcore(d, line_of(d, a), rc, what);
-  if (d->split) {
-    if (used >= n && a[d->map[n]]) {
-      tds_expr_free(*out);
-      *out = NULL;
-      return derr(d, a, TDS_ESYNTAX, "%s: expression longer than %d characters", what,
-                  SPLIT_MAX);
-    }
-    used = d->map[used];
-  }
   d->p = a + used;
   return TDS_OK;
 }
@@ -1629,8 +1558,6 @@ int tds_datafile_load_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
   int rc = parse(&d);
   if (rc == TDS_OK) rc = finish(&d);
   df_lex_free(&d.lx);
-  free(d.scratch);
-  free(d.map);
   free(d.faces);
   free(d.oe);
   if (rc != TDS_OK) {

@@ -8,9 +8,11 @@
 ** kept verbatim in s->read_text and not run. Lexical rules: keywords are
 ** case-insensitive, // and C comments, backslash-newline joins lines,
 ** ',' ':' ';' are whitespace, `#define NAME text` macros (names are case
-** sensitive, substituted as separate tokens and rescanned), constant
-** expressions wherever a number goes, and the signed-number rule
-** ("1 -1 0" is three numbers). Element ids of the file are kept as they
+** sensitive, plain text substitution, rescanned), constant expressions
+** wherever a number goes, and Evolver's rule for values in a row: in
+** element lines "5 -1 0" and "5 -rad 0" are three values, "5 - 1 0" and
+** "5 +1 0" two; in the top section '-' is always an operator (details in
+** doc/datafile.md). Element ids of the file are kept as they
 ** are (user id = slot + 1; gaps stay dead slots); faces of more than three
 ** edges are split around a centre vertex, with the extra facets numbered
 ** after the highest face id, as Evolver does.

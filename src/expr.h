@@ -48,9 +48,10 @@ typedef struct tds_expr_env {
 
 enum {
   TDS_EXPR_FORMULA  = 1,  /* '=' is a low-precedence minus (level-set formulas): "x^2+y^2 = R^2" */
-  TDS_EXPR_DATAFILE = 2,  /* datafile lexing: the signed-number rule (a + or - preceded by whitespace
-                             and immediately followed by a digit or '.' starts a NEW expression, so
-                             "1 -1 0" is three expressions and "1 - 1 0" is two), and ',' ':' ';' are whitespace */
+  TDS_EXPR_DATAFILE = 2,  /* datafile lexing: the signed-number rule (after a complete operand, a
+                             '-' preceded by whitespace and not followed by whitespace starts a NEW
+                             expression: "1 -1 0" and "1 -a 0" are three, "1 - 1 0" is two, "1 +1" is
+                             one), and ',' ':' ';' are whitespace */
   TDS_EXPR_PARAMS   = 4,  /* p1, p2 (also P1, P2) are allowed (boundary parametrisations) */
   TDS_EXPR_NOCOORD  = 8   /* constant context: x y z p1 p2 are errors ("x is not allowed here") */
 };

@@ -35,7 +35,7 @@ typedef struct tok {
   size_t pos, len;     /* byte range in the text */
   double num;          /* T_NUM */
   const char *bad;     /* why a T_BAD / T_NUM token is unusable, or NULL */
-  int signnum;         /* + or - preceded by whitespace, followed by digit or '.' */
+  int signnum;         /* '-' preceded by whitespace and followed by none */
 } tok;
 
 /* Operand descriptor. */
@@ -343,9 +343,8 @@ static void lex(parser *p) {
     default: t->t = T_BAD; break;
     }
     t->len = two ? 2 : 1;
-    if ((t->t == T_PLUS || t->t == T_MINUS) && i > 0 &&
-        is_space(p, (unsigned char)s[i - 1]) &&
-        (is_digit(c1) || c1 == '.'))
+    if (t->t == T_MINUS && i > 0 && is_space(p, (unsigned char)s[i - 1]) &&
+        i + 1 < p->n && !is_space(p, c1) && c1 != '-' && c1 != '+')
       t->signnum = 1;
   }
   p->lexpos = t->pos + t->len;
@@ -606,7 +605,10 @@ static int parse_mul(parser *p, opnd *o) {
   return TDS_OK;
 }
 
-/* The datafile signed-number rule: "1 -1" is two expressions. */
+/* The datafile signed-number rule, as evolver-nox-d 2.70 reads element
+   lines: after a complete operand, a '-' preceded by whitespace and not
+   followed by whitespace starts a new value ("5 -1 0", "5 -rad 0" and
+   "5 -(2) 0" are three values), while '+' never does ("5 +1" is 6). */
 static int sign_breaks(const parser *p) {
   return (p->flags & TDS_EXPR_DATAFILE) && p->pdepth == 0 && p->cur.signnum;
 }

@@ -243,8 +243,8 @@ static int l_decl_body(lua_State *L) {
     m->bpressure[id - 1] = pr;
     m->bflags[id - 1] |= TDS_PRESSURE;
   }
-  m->bdensity[id - 1] = num_field(L, 2, "density", 0, NULL);
-  if (m->bdensity[id - 1] != 0) st->s.gravity_on = 1;
+  m->bdensity[id - 1] = num_field(L, 2, "density", 0, &given);
+  if (given) st->s.gravity_on = 1; /* Evolver: any declared density, even 0 */
   m->bvolconst[id - 1] = num_field(L, 2, "volconst", 0, &given);
   if (given) m->bflags[id - 1] |= TDS_VOLCONST;
   tds_push_elem(L, TDS_BODY, id - 1);

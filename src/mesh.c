@@ -93,12 +93,16 @@ int tds_mesh_reserve(tds_mesh *m, int kind, int32_t n) {
   return TDS_OK;
 }
 
-/* Room for one more slot, growing geometrically. */
-static int room(tds_mesh *m, int kind) {
-  int32_t n = FIELD(m, kinds[kind].n_off, int32_t);
+int tds_mesh_room(tds_mesh *m, int kind, int32_t n) {
   int32_t cap = FIELD(m, kinds[kind].cap_off, int32_t);
-  if (n < cap) return TDS_OK;
-  return tds_mesh_reserve(m, kind, cap < 16 ? 16 : cap + cap / 2);
+  if (n <= cap) return TDS_OK;
+  int32_t grown = cap < 16 ? 16 : cap + cap / 2;
+  return tds_mesh_reserve(m, kind, n > grown ? n : grown);
+}
+
+/* Room for one more slot. */
+static int room(tds_mesh *m, int kind) {
+  return tds_mesh_room(m, kind, FIELD(m, kinds[kind].n_off, int32_t) + 1);
 }
 
 static void set_defaults(tds_mesh *m, int kind, tds_id i) {
@@ -152,7 +156,7 @@ static tds_id append(tds_mesh *m, int kind) {
 int tds_mesh_extend_dead(tds_mesh *m, int kind, int32_t n) {
   int32_t *cnt = &FIELD(m, kinds[kind].n_off, int32_t);
   if (n <= *cnt) return TDS_OK;
-  if (tds_mesh_reserve(m, kind, n) != TDS_OK) return TDS_ENOMEM;
+  if (tds_mesh_room(m, kind, n) != TDS_OK) return TDS_ENOMEM;
   for (int32_t i = *cnt; i < n; i++) {
     set_defaults(m, kind, i);
     FIELD(m, flag_off[kind], uint32_t *)[i] = TDS_DEAD;

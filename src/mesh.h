@@ -95,6 +95,10 @@ int tds_mesh_copy(tds_mesh *dst, const tds_mesh *src);
 ** TDS_OK or TDS_ENOMEM; on failure nothing observable changes. */
 int tds_mesh_reserve(tds_mesh *m, int kind, int32_t n);
 
+/* Like tds_mesh_reserve, but grows by at least half the capacity, so
+** that many small requests cost amortised constant time. */
+int tds_mesh_room(tds_mesh *m, int kind, int32_t n);
+
 /* Append a vertex at x; returns its index or TDS_NONE (out of memory). */
 tds_id tds_mesh_add_vertex(tds_mesh *m, const double x[3]);
 /* Append an edge from v0 to v1; index or TDS_NONE. Vertices must exist. */

@@ -47,6 +47,8 @@ void tds_surf_free(tds_surf *s) {
   }
   free(s->quant);
   free(s->read_text);
+  free(s->orig_start);
+  free(s->orig_facets);
   free(s->cg_dir);
   free(s->cg_prev);
   tds_surf_init(s);
@@ -87,4 +89,12 @@ int tds_surf_con_slot(const tds_surf *s, int number) {
   for (int i = 0; i < TDS_MAX_CON; i++)
     if (s->con[i].number == number && number != 0) return i;
   return -1;
+}
+
+tds_cmask tds_surf_global_cons(const tds_surf *s) {
+  tds_cmask mask = 0;
+  for (int i = 0; i < TDS_MAX_CON; i++)
+    if (s->con[i].number && (s->con[i].flags & TDS_CON_GLOBAL))
+      mask |= (tds_cmask)1 << i;
+  return mask;
 }

@@ -102,6 +102,10 @@ typedef struct tds_surf {
 
   char *read_text;        /* a datafile's read section, kept verbatim */
 
+  /* derived: facets of each declared face (CSR by forig), for bodies */
+  int32_t *orig_start, *orig_facets;
+  uint64_t orig_gen;      /* topo_gen the index was built for */
+
   /* last computed totals */
   double energy, area;
 } tds_surf;
@@ -123,5 +127,9 @@ int tds_surf_param_set(tds_surf *s, const char *name, double value);
 
 /* Constraint slot for a user number, or -1 if not declared. */
 int tds_surf_con_slot(const tds_surf *s, int number);
+
+/* The constraints declared GLOBAL: every vertex is on them, also vertices
+** made later by refining or splitting faces. */
+tds_cmask tds_surf_global_cons(const tds_surf *s);
 
 #endif

@@ -30,8 +30,11 @@ int tds_refine(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nsplit);
 int tds_equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
                      int32_t *nflips);
 
-/* Whether edge e may be flipped (the rules above), and if so the two
-** facets and the opposite vertices: f1 contains e forwards, f2 backwards. */
+/* Whether edge e may be flipped by the local rules above (fixed,
+** constrained, valence, facet attributes, orientation, c != d), and if so
+** the two facets: f1 contains e forwards, f2 backwards. Whether the new
+** edge already exists is the caller's check (tds_equiangulate keeps a set
+** of vertex pairs for it). */
 int tds_flip_ok(const tds_surf *s, tds_id e, tds_id *f1, tds_id *f2);
 
 /* Flip edge e (tds_flip_ok must hold and the new edge must not exist). */
@@ -40,9 +43,10 @@ void tds_flip(tds_surf *s, tds_id e, tds_id f1, tds_id f2);
 /* Vertex averaging (Evolver's V): every free vertex moves to the
 ** area-weighted mean of the centroids of its facets, minus the normal
 ** component of that move (volume kept to first order); vertices on
-** constraints, boundaries, triple or border edges are averaged along
+** triple edges, or on constraints along border edges, are averaged along
 ** those edges only, if they have exactly two such neighbours, then
-** projected back. All new positions are computed before any move.
+** projected back; vertices on parametric boundaries do not move. All new
+** positions are computed before any move.
 ** sel as for tds_refine but over vertices. *nmoved: vertices moved. */
 int tds_vertex_average(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
                        int32_t *nmoved);

@@ -113,7 +113,7 @@ static tds_id split_edge(tds_surf *s, tds_id e, int32_t *e2) {
   v3_scale(x, 0.5);
   tds_id v = tds_mesh_add_vertex(m, x);
   m->vflags[v] = m->eflags[e] & TDS_FIXED;
-  m->vcon[v] = m->econ[e];
+  m->vcon[v] = m->econ[e] | tds_surf_global_cons(s);
   m->vbdry[v] = m->ebdry[e];
   if (m->ebdry[e] != TDS_NONE) {
     tds_id from = m->vbdry[h] == m->ebdry[e] ? h : t;

@@ -369,14 +369,19 @@ static void test_datafile(void) {
   CHECK(v[0] == 1 && v[1] == -1 && v[2] == 0 && rest == 6);
   CHECK(parse_seq("1 - 1 0", D, v, 8, NULL) == 2);
   CHECK(v[0] == 0 && v[1] == 0);
-  CHECK(parse_seq("1 +2 -.5", D, v, 8, NULL) == 3);
-  CHECK(v[0] == 1 && v[1] == 2 && v[2] == -0.5);
+  /* '+' never starts a value (evolver-nox-d reads "5 +1 0" as 6 and 0) */
+  CHECK(parse_seq("1 +2 -.5", D, v, 8, NULL) == 2);
+  CHECK(v[0] == 3 && v[1] == -0.5);
   CHECK(parse_seq("1,-1,2", D, v, 8, NULL) == 3);
   CHECK(v[0] == 1 && v[1] == -1 && v[2] == 2);
   CHECK(parse_seq("(1 -1) 2*3", D, v, 8, NULL) == 2);    /* rule off inside () */
   CHECK(v[0] == 0 && v[1] == 6);
-  CHECK(parse_seq("1 -x 2", D, v, 8, NULL) == 2);        /* only digits start numbers */
-  CHECK(v[0] == 1 && v[1] == 2);
+  /* any '-' after a space and before a non-space starts a value, as
+     evolver-nox-d reads "5 -rad 0" and "5 -(2) 0" (x is 0 here) */
+  CHECK(parse_seq("1 -x 2", D, v, 8, NULL) == 3);
+  CHECK(v[0] == 1 && v[1] == 0 && v[2] == 2);
+  CHECK(parse_seq("5 -(2) 0", D, v, 8, NULL) == 3);
+  CHECK(v[0] == 5 && v[1] == -2 && v[2] == 0);
   CHECK(parse_seq("-(WALLT*y) 4", D, v, 8, NULL) == 2);
   CHECK(v[0] == -6 && v[1] == 4);
   CHECK(parse_seq(", 3", D, v, 8, NULL) == 1 && v[0] == 3);
