@@ -92,4 +92,15 @@ static inline double geom_zmoment(const double a[3], const double b[3],
   return Nz * S / 24;
 }
 
+/* The angle at p between the directions to q and r, in [0, pi]; atan2
+** keeps it accurate near 0 and pi. */
+static inline double geom_angle(const double p[3], const double q[3],
+                                const double r[3]) {
+  double u[3], v[3], w[3];
+  v3_sub(u, q, p);
+  v3_sub(v, r, p);
+  v3_cross(w, u, v);
+  return atan2(v3_norm(w), v3_dot(u, v));
+}
+
 #endif

@@ -33,45 +33,44 @@ static int l_iterate(lua_State *L) {
   return 0;
 }
 
+typedef int (*set_cmd)(tds_ctx *, tds_surf *, const uint8_t *, int32_t *);
+
+/* Run a command on an optional element set (argument 1) and push the
+** count it reports. */
+static int32_t run_on_set(lua_State *L, tds_state *st, int kind, set_cmd fn) {
+  uint8_t *sel = tds_lua_selection(L, st, 1, kind);
+  int32_t n = 0;
+  int rc = fn(&st->ctx, &st->s, sel, &n);
+  free(sel);
+  check_rc(L, st, rc);
+  lua_pushinteger(L, n);
+  return n;
+}
+
 /* tds.refine([edges]) -> number of edges split */
 static int l_refine(lua_State *L) {
   tds_state *st = TDS_STATE(L);
-  uint8_t *sel = tds_lua_selection(L, st, 1, TDS_EDGE);
-  int32_t n = 0;
-  int rc = tds_refine(&st->ctx, &st->s, sel, &n);
-  free(sel);
-  check_rc(L, st, rc);
+  int32_t n = run_on_set(L, st, TDS_EDGE, tds_refine);
   if (lua_isnoneornil(L, 1))
     print_counts(st);
   else
     tds_printf(&st->ctx, "Edges refined: %d\n", n);
-  lua_pushinteger(L, n);
   return 1;
 }
 
 /* tds.equiangulate([edges]) -> flips */
 static int l_equiangulate(lua_State *L) {
   tds_state *st = TDS_STATE(L);
-  uint8_t *sel = tds_lua_selection(L, st, 1, TDS_EDGE);
-  int32_t n = 0;
-  int rc = tds_equiangulate(&st->ctx, &st->s, sel, &n);
-  free(sel);
-  check_rc(L, st, rc);
+  int32_t n = run_on_set(L, st, TDS_EDGE, tds_equiangulate);
   tds_printf(&st->ctx, "Edges switched in equiangulation: %d\n", n);
-  lua_pushinteger(L, n);
   return 1;
 }
 
 /* tds.vertex_average([vertices]) -> vertices moved */
 static int l_vertex_average(lua_State *L) {
   tds_state *st = TDS_STATE(L);
-  uint8_t *sel = tds_lua_selection(L, st, 1, TDS_VERTEX);
-  int32_t n = 0;
-  int rc = tds_vertex_average(&st->ctx, &st->s, sel, &n);
-  free(sel);
-  check_rc(L, st, rc);
+  run_on_set(L, st, TDS_VERTEX, tds_vertex_average);
   tds_printf(&st->ctx, "Vertex averaging done.\n");
-  lua_pushinteger(L, n);
   return 1;
 }
 

@@ -5,7 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "vec3.h"
+#include "geom.h"
+#include "pairset.h"
 
 /* The side of facet f that lies on edge e (0..2). */
 static int side_of(const tds_mesh *m, tds_id f, tds_id e) {
@@ -54,83 +55,25 @@ void tds_flip(tds_surf *s, tds_id e, tds_id f1, tds_id f2) {
   tds_mesh_set_facet(m, f2, t2);
 }
 
-/* Angle at p between the directions to q and r. */
-static double angle_at(const double *p, const double *q, const double *r) {
-  double u[3], v[3], w[3];
-  v3_sub(u, q, p);
-  v3_sub(v, r, p);
-  v3_cross(w, u, v);
-  return atan2(v3_norm(w), v3_dot(u, v));
-}
-
 /* Sum of the two angles opposite edge e (f1 forwards, f2 backwards). */
 static double opposite_sum(const tds_mesh *m, tds_id e, tds_id f1, tds_id f2) {
   tds_id a = m->ev[e][0], b = m->ev[e][1];
   int k1 = side_of(m, f1, e), k2 = side_of(m, f2, e);
   tds_id c = m->fv[f1][(k1 + 2) % 3], d = m->fv[f2][(k2 + 2) % 3];
-  return angle_at(m->x[c], m->x[a], m->x[b]) +
-         angle_at(m->x[d], m->x[a], m->x[b]);
-}
-
-/* A set of vertex pairs (undirected edges), open addressing. */
-typedef struct {
-  uint64_t *key;
-  size_t cap;
-} pairset;
-
-static uint64_t pkey(tds_id a, tds_id b) {
-  uint64_t lo = (uint32_t)(a < b ? a : b), hi = (uint32_t)(a < b ? b : a);
-  return (hi << 32 | lo) + 1; /* 0 marks an empty slot */
-}
-static size_t phash(uint64_t k, size_t cap) {
-  k ^= k >> 33;
-  k *= 0xff51afd7ed558ccdULL;
-  k ^= k >> 33;
-  return (size_t)k & (cap - 1);
-}
-static size_t pfind(const pairset *ps, uint64_t k) {
-  size_t i = phash(k, ps->cap);
-  while (ps->key[i] && ps->key[i] != k) i = (i + 1) & (ps->cap - 1);
-  return i;
-}
-static int phas(const pairset *ps, tds_id a, tds_id b) {
-  return ps->key[pfind(ps, pkey(a, b))] != 0;
-}
-static void pput(pairset *ps, tds_id a, tds_id b) {
-  uint64_t k = pkey(a, b);
-  ps->key[pfind(ps, k)] = k;
-}
-/* Deletion with backward-shift, keeping probe chains intact. */
-static void pdel(pairset *ps, tds_id a, tds_id b) {
-  size_t i = pfind(ps, pkey(a, b));
-  if (!ps->key[i]) return;
-  size_t j = i;
-  for (;;) {
-    ps->key[i] = 0;
-    for (;;) {
-      j = (j + 1) & (ps->cap - 1);
-      if (!ps->key[j]) return;
-      size_t h = phash(ps->key[j], ps->cap);
-      if (i <= j ? (i < h && h <= j) : (i < h || h <= j)) continue;
-      break;
-    }
-    ps->key[i] = ps->key[j];
-    i = j;
-  }
+  return geom_angle(m->x[c], m->x[a], m->x[b]) +
+         geom_angle(m->x[d], m->x[a], m->x[b]);
 }
 
 int tds_equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
                      int32_t *nflips) {
   tds_mesh *m = &s->m;
   int32_t ne = m->ne, flips = 0;
-  pairset ps = {0};
-  ps.cap = 16;
-  while (ps.cap < 2 * (size_t)ne + 16) ps.cap *= 2;
-  ps.key = calloc(ps.cap, sizeof *ps.key);
+  tds_pairset ps;
+  int prc = tds_pairset_init(&ps, (size_t)ne);
   tds_id *stack = malloc((size_t)(ne > 0 ? ne : 1) * sizeof *stack);
   uint8_t *queued = calloc((size_t)(ne > 0 ? ne : 1), 1);
-  if (!ps.key || !stack || !queued) {
-    free(ps.key);
+  if (prc != TDS_OK || !stack || !queued) {
+    tds_pairset_free(&ps);
     free(stack);
     free(queued);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
@@ -138,7 +81,7 @@ int tds_equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
   int32_t top = 0;
   for (tds_id e = 0; e < ne; e++)
     if (tds_alive(m->eflags, e)) {
-      pput(&ps, m->ev[e][0], m->ev[e][1]);
+      tds_pairset_add(&ps, m->ev[e][0], m->ev[e][1]);
       if (!sel || sel[e]) {
         stack[top++] = e;
         queued[e] = 1;
@@ -154,10 +97,10 @@ int tds_equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
     if (opposite_sum(m, e, f1, f2) <= TDS_PI + 1e-12) continue;
     int k1 = side_of(m, f1, e), k2 = side_of(m, f2, e);
     tds_id c = m->fv[f1][(k1 + 2) % 3], d = m->fv[f2][(k2 + 2) % 3];
-    if (phas(&ps, c, d)) continue;
-    pdel(&ps, m->ev[e][0], m->ev[e][1]);
+    if (tds_pairset_has(&ps, c, d)) continue;
+    tds_pairset_remove(&ps, m->ev[e][0], m->ev[e][1]);
     tds_flip(s, e, f1, f2);
-    pput(&ps, c, d);
+    tds_pairset_add(&ps, c, d);
     flips++;
     for (int k = 0; k < 3; k++) {
       tds_id q1 = TDS_OID(m->fe[f1][k]), q2 = TDS_OID(m->fe[f2][k]);
@@ -171,7 +114,7 @@ int tds_equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
       }
     }
   }
-  free(ps.key);
+  tds_pairset_free(&ps);
   free(stack);
   free(queued);
   if (nflips) *nflips = flips;
