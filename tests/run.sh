@@ -6,6 +6,9 @@ TDS=$1
 BUILD=$2
 export TDS
 cd "$(dirname "$0")/.." || exit 1
+# Evolver's outputs are cached across runs of the suite (see lib.sh).
+TDS_EVOLVER_CACHE=${TDS_EVOLVER_CACHE:-$(pwd)/build/evolver-cache}
+export TDS_EVOLVER_CACHE
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
