@@ -4,21 +4,15 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "geom.h"
 #include "pg.h"
 #include "vec3.h"
 
-static double angle_at(const double *p, const double *q, const double *r) {
-  double u[3], v[3], w[3];
-  v3_sub(u, q, p);
-  v3_sub(v, r, p);
-  v3_cross(w, u, v);
-  return atan2(v3_norm(w), v3_dot(u, v));
-}
 
 double tds_facet_min_angle(const tds_mesh *m, tds_id f) {
   const double *a = m->x[m->fv[f][0]], *b = m->x[m->fv[f][1]],
                *c = m->x[m->fv[f][2]];
-  double A = angle_at(a, b, c), B = angle_at(b, c, a), C = TDS_PI - A - B;
+  double A = geom_angle(a, b, c), B = geom_angle(b, c, a), C = TDS_PI - A - B;
   double mn = A < B ? A : B;
   if (C < mn) mn = C;
   if (!(mn > 0)) mn = 0;

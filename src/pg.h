@@ -15,8 +15,9 @@
 **   u_i  the tangential part of (G_i - x_i), G_i the centroid of the
 **        restricted Voronoi cell of the vertex in its star; s = 2.
 ** All moves are computed from the same positions and applied together;
-** then non-Delaunay edges are flipped (Algorithm 1). r = max_i |v_i|.
-** The method is described in doc/method.md.
+** non-Delaunay edges are flipped (Algorithm 1) at the start of each
+** iteration, before the moves are computed. r = max_i |v_i|.
+** The method is described in doc/method.md; the files in pg_int.h.
 */
 #ifndef TDS_PG_H
 #define TDS_PG_H
@@ -29,7 +30,7 @@ typedef struct tds_pg_opts {
   int nmax;               /* N_max of the termination criterion (200) */
   double s;               /* tangential over-relaxation (2) */
   int accel;              /* 1: Anderson acceleration (default); 0: plain */
-  int depth;              /* Anderson history depth (8) */
+  int depth;              /* Anderson history depth (20) */
   int flips;              /* 1: Delaunay edge flips every iteration (default) */
   int64_t every;          /* progress line period; 0: automatic; < 0: none */
   double rtol;            /* > 0: also stop once r < rtol * mean edge length */
@@ -52,7 +53,8 @@ typedef struct tds_pg_result {
   int converged;          /* stopped by the termination criterion */
 } tds_pg_result;
 
-/* Defaults: until converged, N_max 200, s = 2, accelerated, flips on. */
+/* Defaults: until converged, N_max 200, s = 2, accelerated (depth 20),
+** flips on. */
 void tds_pg_defaults(tds_pg_opts *o);
 
 /* Run the method. Allocates its work arrays once; the loop allocates
@@ -102,5 +104,14 @@ int tds_pg_flip_all(tds_ctx *ctx, tds_surf *s, int32_t *nflips);
 ** without a target) in Evolver's sign (pressure = -lambda of the paper).
 ** TDS_OK, TDS_ENOMEM, TDS_ENUM. */
 int tds_pg_multipliers(tds_ctx *ctx, tds_surf *s, double *mult);
+
+/* One evaluation of the method at the current positions, moving nothing
+** (for the tests): the total energy and, for every movable vertex, the
+** energy gradient grad[v], the direction of its normal move dir[v] and
+** the star model model[v] = A0, A1, A2 along it (dir and model are zero
+** rows for fixed vertices; grad is then incomplete), all from the fused pass (pg_pass.c). TDS_OK,
+** TDS_ENOMEM, TDS_ENUM. */
+int tds_pg_probe(tds_ctx *ctx, tds_surf *s, double *energy, double (*grad)[3],
+                 double (*dir)[3], double (*model)[3]);
 
 #endif

@@ -151,7 +151,7 @@ function C.run(exp)
   else
     print("input:")
     quality()
-    res = pg{ plain = env("PAPER_PLAIN") ~= nil, every = tonumber(env("PAPER_EVERY") or 500), depth = tonumber(env("PAPER_DEPTH") or 8) }
+    res = pg{ plain = env("PAPER_PLAIN") ~= nil, every = tonumber(env("PAPER_EVERY") or 500), depth = tonumber(env("PAPER_DEPTH") or "") }
   end
   print("result:")
   local q = quality()

@@ -232,6 +232,59 @@ function M.cylinder(n, rows, z0, z1, o)
   return { vertices = V, facets = F }
 end
 
+-- An irregular cylinder of radius 1 between z0 and z1: n fixed vertices on
+-- each end ring and nint interior points sampled uniformly at random
+-- (seeded), kept at least o.gap * h from each other and from the rings
+-- (h the mean spacing; default gap 0.3, a random sampling with the worst
+-- slivers removed). Triangulated by Delaunay in the conformal image of
+-- the cylinder, the annulus (theta, z) -> e^z (cos theta, sin theta), so
+-- the triangles are Delaunay on the cylinder up to the map's distortion.
+-- Facets face outwards; o.caps as for M.cylinder.
+function M.random_cylinder(n, nint, z0, z1, o)
+  o = o or {}
+  local rng = M.rng(o.seed or 2016)
+  local h = sqrt(2 * pi * (z1 - z0) / (nint * sqrt(3) / 2))
+  local gap = (o.gap or 0.3) * h
+  local pts, cyl = {}, {}
+  local function add(th, z, fixed)
+    local rho = math.exp(z)
+    pts[#pts + 1] = { rho * cos(th), rho * sin(th) }
+    cyl[#cyl + 1] = { cos(th), sin(th), z, fixed = fixed or nil }
+  end
+  for j, z in ipairs { z0, z1 } do
+    for i = 0, n - 1 do add(2 * pi * (i + 0.5 * (j - 1)) / n, z, true) end
+  end
+  local function near(x, y, z)
+    for _, q in ipairs(cyl) do
+      local d2 = (q[1] - x)^2 + (q[2] - y)^2 + (q[3] - z)^2
+      if d2 < gap * gap then return true end
+    end
+    return false
+  end
+  local k = 0
+  while k < nint do
+    local th, z = 2 * pi * rng(), z0 + (z1 - z0) * rng()
+    if not near(cos(th), sin(th), z) then k = k + 1; add(th, z) end
+  end
+  local F = {}
+  for _, t in ipairs(M.delaunay(pts)) do -- drop the hole (inner ring only)
+    if t[1] > n or t[2] > n or t[3] > n then F[#F + 1] = { t[1], t[3], t[2] } end
+  end
+  local V = cyl
+  if o.caps then -- fixed, tensionless end caps closing a body
+    V[#V + 1] = { 0, 0, z0, fixed = true }
+    local c0 = #V
+    V[#V + 1] = { 0, 0, z1, fixed = true }
+    local c1 = #V
+    for i = 0, n - 1 do
+      local a, b = 1 + i, 1 + (i + 1) % n
+      F[#F + 1] = { c0, b, a, tension = 0, fixed = true }
+      F[#F + 1] = { c1, n + a, n + b, tension = 0, fixed = true }
+    end
+  end
+  return { vertices = V, facets = F }
+end
+
 -- The surface of the cube [-1,1]^3 with a hole of radius rho in each face
 -- (the circles fixed), interior points pulled towards the centre.
 function M.schwarz_p(rho, h, shrink)

@@ -1,0 +1,150 @@
+/*
+** pg_int.h: internals shared by the files of the projected-gradient method.
+**
+**   pg.c        the driver: work arrays, the iteration loop, termination
+**   pg_kernel.c per-facet and per-star kernels (Voronoi cells, the star
+**               model, the closed-form normal root); exported in pg.h
+**   pg_pass.c   the fused evaluation pass over the facets (energy, its
+**               gradient, volume gradients, Voronoi moments, star model,
+**               cotangents) and the non-facet energy terms
+**   pg_step.c   motion frames, directions, multipliers, the move of every
+**               vertex, rigid-motion gauge, applying moves, state vectors
+**   pg_flip.c   Delaunay edge flips (Algorithm 1)
+**   pg_accel.c  Anderson acceleration with its safeguards
+**
+** One iteration: pg_pass() at the current positions; pg_flip_check() on
+** the cotangents of that pass (flip, then pass again when anything
+** flipped); pg_step() computes every move; the driver applies them
+** (pg_apply()) and mixes with the history (pg_accel_mix()).
+*/
+#ifndef TDS_PG_INT_H
+#define TDS_PG_INT_H
+
+#include "fixq.h"
+#include "pairset.h"
+#include "pg.h"
+
+/* Vertex kinds: how a vertex moves. */
+enum { VK_FIXED = 0, VK_FREE, VK_LEVEL, VK_BDRY, VK_JUNCTION };
+
+/* Per-vertex sums of one pass (array of structures: one vertex's sums are
+** adjacent in memory, the facet loop scatter-adds into three of them). */
+typedef struct pg_acc {
+  double N[3];   /* sum of facet area vectors (tension facets) */
+  double ga[3];  /* gradient of the tension-weighted star area */
+  double H[6];   /* Hessian of the star area in x_v: xx yy zz xy xz yz */
+  double mom[3]; /* Voronoi moment: sum area * (centroid - x_v) */
+  double area;   /* restricted Voronoi area */
+  double A0;     /* tension-weighted star area */
+} pg_acc;
+
+/* Anderson history (pg_accel.c). */
+typedef struct pg_accel {
+  int depth;              /* history depth m */
+  int hist, head;         /* columns held, next column to write */
+  int32_t N;              /* state length (3 per movable vertex) */
+  double *X, *G;          /* state before / after the plain move */
+  double *Fprev, *Gprev;  /* last residual and plain image */
+  double *dF, *dG;        /* N x m columns */
+  double *M;              /* m x m Gram matrix of the dF columns */
+  double *Ms, *gam;       /* scratch for the solve */
+  int have_prev;
+  double fbest;           /* smallest |F|^2 since the last restart */
+  double fref;            /* |F|^2 at the last progress (halving) */
+  int64_t kbest;          /* step of the last progress */
+  int64_t steps;          /* steps in this run */
+  int64_t cool;           /* plain steps left after a stagnation */
+  int64_t cooldown;       /* length of the next such plain phase */
+  int64_t restarts;       /* resets by safeguards */
+} pg_accel;
+
+/* Work arrays of one run; allocated once (pg.c). */
+typedef struct pgw {
+  int32_t nv, ne, nf, nmov;
+  int rigid;              /* no fixed vertex: rigid gauge (pg_step.c) */
+  int nrig;               /* rigid motions in the gauge (<= 6) */
+  int rig[6];             /* their indices: 0-2 translations, 3-5 rotations */
+  uint8_t *kind;          /* per vertex slot: VK_* */
+  int32_t (*bnb)[2];      /* constrained vertex: its two neighbours along
+                             the film's border, or -1 */
+  int32_t *mov;           /* movable vertex ids */
+  pg_acc *acc;            /* per vertex slot: sums of the pass */
+  double (*grad)[3];      /* gradient of the energies other than the
+                             tension-weighted area (gravity, constraint
+                             integrals, quantities, pressures, edges) */
+  double *fcot;           /* per facet side 3f+k: cot of the angle at k */
+  double (*d)[3];         /* direction of the normal move (unit) */
+  double (*nrm)[3];       /* unit vertex normal */
+  double (*model)[3];     /* A0, A1, A2 along d */
+  double (*vel)[3];       /* the move v_i */
+  double (*rest)[3];      /* restoring motion */
+  double (*tan)[3];       /* tangential (mesh-quality) part of the move */
+  double (*P)[9];         /* motion-space projector (constrained vertices) */
+  double (*Jinv)[6];      /* boundary: dp = Jinv v (2 x 3) */
+  double (*xbest)[3];
+  double (*pbest)[2];
+  tds_fixq fq;
+  double *an;             /* normal component of each fq entry */
+  double *gram, *rhs, *mult;
+  int has_edge_tension;   /* some edge has a tension */
+  /* flips (pg_flip.c) */
+  tds_pairset ps;         /* the mesh's edges as vertex pairs */
+  double flip_tol;        /* flip when sin(a + b) < -flip_tol */
+  int32_t *stack, *cand, ncand;
+  int32_t (*copp)[2];     /* per candidate: the two opposite facet sides */
+  uint8_t *queued;
+  uint64_t cand_gen;
+  pg_accel aa;
+} pgw;
+
+/* Results of one pg_step. */
+typedef struct pg_stepinfo {
+  double r, energy, lambda0;
+  int64_t clamps;
+} pg_stepinfo;
+
+/* pg_pass.c: evaluate at the current positions. Fills w->acc, w->grad,
+** w->fcot, the constrained quantities w->fq (values and gradients), body
+** volumes, s->energy and s->area; *energy gets the total energy. Facets
+** without a movable vertex contribute only to energy and volumes. The
+** energy, gradient and quantities equal tds_eval's (eval.c: the facet
+** terms are mirrored here, the edge and quantity terms are eval.c's own).
+** TDS_OK or TDS_ENUM (energy not finite). */
+int pg_pass(tds_ctx *ctx, tds_surf *s, pgw *w, double *energy);
+
+/* pg_step.c: from a pass, the move of every movable vertex (w->vel), the
+** multipliers (w->mult) and r = max |v_i|. TDS_OK, TDS_ENUM. */
+int pg_step(tds_ctx *ctx, tds_surf *s, pgw *w, double sfac, pg_stepinfo *si);
+/* Choose the rigid motions of the gauge (after classification). */
+void pg_gauge_init(const tds_surf *s, pgw *w);
+/* Apply the moves w->vel: every vertex at once, constraints enforced.
+** Returns nonzero if a vertex could not be projected. */
+int pg_apply(tds_surf *s, pgw *w);
+/* State vector of the movable vertices (x, or boundary parameters), and
+** setting it (constraints enforced; nonzero if a projection failed). */
+void pg_get_state(const tds_surf *s, const pgw *w, double *X);
+int pg_set_state(tds_surf *s, const pgw *w, const double *X);
+/* Store the multipliers as body / quantity pressures. */
+void pg_store_pressures(tds_surf *s, const pgw *w);
+
+/* pg_flip.c */
+int pg_flip_init(tds_surf *s, pgw *w);   /* TDS_OK or TDS_ENOMEM */
+void pg_flip_free(pgw *w);
+/* Nonzero when some candidate edge is not Delaunay by the cotangents of
+** the last pass (w->fcot). */
+int pg_flip_needed(tds_surf *s, pgw *w);
+/* Flip every non-Delaunay edge at the current positions (work set,
+** Algorithm 1). Returns the number of flips. */
+int32_t pg_flip_pass(tds_surf *s, pgw *w);
+
+/* pg_accel.c */
+int pg_accel_init(pg_accel *a, int32_t nstate, int depth); /* TDS_OK/ENOMEM */
+void pg_accel_free(pg_accel *a);
+void pg_accel_reset(pg_accel *a);
+/* Given a->X (state before) and a->G (after the plain move), write the
+** next state into a->X. Returns 1 if the history was used (a->X differs
+** from a->G), 0 for a plain step. lim2: largest squared distance of a
+** vertex's mixed position from its plain one. */
+int pg_accel_mix(pg_accel *a, double lim2);
+
+#endif
