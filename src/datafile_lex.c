@@ -1,9 +1,9 @@
 /*
-** datafile_lex.c: the datafile preprocessor. Turns raw text into logical
-** lines, one at a time: comments become a space, backslash-newline joins
-** lines, #define lines define macros, and macro names (case sensitive,
-** whole identifiers outside strings and numbers) are replaced by their
-** bodies, rescanned, as separate tokens.
+** datafile_lex.c: the datafile preprocessor (contract in datafile_int.h).
+** Turns raw text into logical lines, one at a time: comments become a
+** space, backslash-newline joins lines, #define lines define macros, and
+** macro names (case sensitive, whole identifiers outside strings and
+** numbers) are replaced by their bodies, rescanned, as separate tokens.
 **
 ** Substitution is textual, as in Evolver: only where a body would merge
 ** with its neighbours into one token is a space put between them. So
@@ -16,20 +16,13 @@
 ** not in memory exhaustion. Recursion is refused when a macro is met
 ** inside its own expansion.
 */
-#define TDS_DATAFILE_INTERNAL
-#include "datafile.h"
+#include "datafile_int.h"
 
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-
-static int is_alpha(int c) {
-  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
-}
-static int is_digit(int c) { return c >= '0' && c <= '9'; }
-static int is_alnum(int c) { return is_alpha(c) || is_digit(c); }
 
 void df_lex_init(df_lex *lx, tds_ctx *ctx, const char *name, const char *text,
                  size_t n) {

@@ -1,0 +1,444 @@
+/*
+** datafile_elements.c: the lines of the VERTICES, EDGES, FACES and BODIES
+** sections (contracts in datafile_int.h). Each line is an element id, its
+** data (coordinates or boundary parameters, vertex ids, signed edge or
+** face ids) and attribute words with their values. Ids of the file are
+** kept (user id = slot + 1). Faces are collected and built when their
+** section ends, after reserving facet slots up to the highest face id, so
+** split-off facets come after every declared id.
+*/
+#include "datafile_int.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include "model.h"
+#include "topo.h"
+
+/* ---- shared pieces ---- */
+
+/* Refuse attribute word w (at `at`) of `what`: "not supported yet" for
+** Evolver features tds lacks and for named quantities, else unknown. */
+static int unknown_attr(df *d, const char *at, const char *w, const char *what) {
+  char u[64];
+  if (df_unsupported(w))
+    return df_err(d, at, TDS_ESYNTAX, "%s: %s is not supported yet", what,
+                  df_upper(w, u, sizeof u));
+  if (tds_model_quantity_find(d->s, w) >= 0)
+    return df_err(d, at, TDS_ESYNTAX,
+                  "%s: named quantities on single elements (%s) are not supported yet",
+                  what, w);
+  if (!*w) {
+    char b[64];
+    return df_err(d, at, TDS_ESYNTAX, "%s: unexpected %s", what,
+                  df_describe(at, b, sizeof b));
+  }
+  return df_err(d, at, TDS_ESYNTAX, "%s: unknown attribute '%s'", what, w);
+}
+
+/* Flag words of element lines; each kind accepts some of them. */
+static const struct { const char *word; uint32_t flag; } flag_words[] = {
+    {"fixed", TDS_FIXED},           {"bare", TDS_BARE},
+    {"no_refine", TDS_NO_REFINE},   {"norefine", TDS_NO_REFINE},
+    {"noncontent", TDS_NONCONTENT}, {"nodisplay", TDS_NODISPLAY},
+    {"no_display", TDS_NODISPLAY},  {NULL, 0}};
+
+/* If w is a flag word among `allowed`, add its flag to *flags: 1, else 0. */
+static int flag_word(const char *w, uint32_t allowed, uint32_t *flags) {
+  for (int i = 0; flag_words[i].word; i++)
+    if ((flag_words[i].flag & allowed) && !strcmp(w, flag_words[i].word)) {
+      *flags |= flag_words[i].flag;
+      return 1;
+    }
+  return 0;
+}
+
+static int is_color_word(const char *w) {
+  return !strcmp(w, "color") || !strcmp(w, "colour");
+}
+
+/* ORIGINAL n: the id of the element this one came from, ignored. */
+static int skip_original(df *d, const char *what) {
+  int64_t o;
+  return df_read_int(d, 0, what, &o);
+}
+
+/* CONSTRAINT(S) c1 c2 ...: *rev set if a number is negative. */
+static int con_list(df *d, const char *what, tds_cmask *mask, int *rev) {
+  int n = 0;
+  while (df_looks_int(d)) {
+    int64_t c;
+    const char *a = d->p;
+    int rc = df_read_int(d, 1, what, &c);
+    if (rc) return rc;
+    if (c < 0) {
+      if (rev) *rev = 1;
+      c = -c;
+    }
+    int slot = c > 0 && c <= 1000000000 ? tds_surf_con_slot(d->s, (int)c) : -1;
+    if (slot < 0)
+      return df_err(d, a, TDS_ERANGE, "%s: constraint %lld is not defined", what,
+                    (long long)c);
+    *mask |= (tds_cmask)1 << slot;
+    n++;
+  }
+  if (!n) {
+    char b[64];
+    return df_err(d, d->p, TDS_ESYNTAX, "%s: expected constraint numbers, found %s", what,
+                  df_describe(d->p, b, sizeof b));
+  }
+  return TDS_OK;
+}
+
+static int is_con_word(const char *w) {
+  return !strcmp(w, "constraint") || !strcmp(w, "constraints");
+}
+
+/* BOUNDARY b: its slot. */
+static int bdry_ref(df *d, const char *what, int32_t *slot) {
+  int64_t b;
+  const char *a = d->p;
+  int rc = df_read_int(d, 0, what, &b);
+  if (rc) return rc;
+  *slot = b > 0 && b <= 1000000000 ? tds_model_boundary_slot(d->s, (int)b) : -1;
+  if (*slot < 0)
+    return df_err(d, a, TDS_ERANGE, "%s: boundary %lld is not defined", what, (long long)b);
+  return TDS_OK;
+}
+
+/* The element id at the start of a line (0-based into *id); what =
+** "kind N" for later messages. */
+static int element_id(df *d, const char *kind, tds_id *id, char *what, size_t cap) {
+  int64_t v;
+  const char *a = d->p;
+  snprintf(what, cap, "%s id", kind);
+  int rc = df_read_int(d, 0, what, &v);
+  if (rc) return rc;
+  if (v < 1 || v > d->maxid)
+    return df_err(d, a, TDS_ERANGE, "%s id %lld is out of range (1 to %lld)", kind,
+                  (long long)v, (long long)d->maxid);
+  *id = (tds_id)(v - 1);
+  snprintf(what, cap, "%s %d", kind, *id + 1);
+  return TDS_OK;
+}
+
+/* The next attribute word of an element line into w (lowercase): 1, or 0
+** at the end of the line; a non-word is refused as "unexpected". */
+static int next_attr(df *d, char *w, size_t cap, const char **at, const char *what,
+                     int *rc) {
+  *rc = TDS_OK;
+  if (df_at_eol(d)) return 0;
+  *at = d->p;
+  if (!df_take_word(d, w, cap)) {
+    char b[64];
+    *rc = df_err(d, *at, TDS_ESYNTAX, "%s: unexpected %s", what,
+                 df_describe(*at, b, sizeof b));
+    return 0;
+  }
+  return 1;
+}
+
+/* Append one entry to the scratch list d->oe (at: where for messages). */
+static int push_oe(df *d, const char *at, int32_t v) {
+  if (tds_grow((void **)&d->oe, sizeof *d->oe, &d->capoe, d->noe + 1))
+    return df_err(d, at, TDS_ENOMEM, "out of memory");
+  d->oe[d->noe++] = v;
+  return TDS_OK;
+}
+
+/* Make room for slot id of `kind`, growing geometrically. (Workaround:
+** tds_mesh_claim reserves exactly id + 1 slots, so claiming ids one by one
+** would reallocate every column each time.) */
+static int room_for(df *d, int kind, tds_id id) {
+  const tds_mesh *m = &d->s->m;
+  int32_t cap = kind == TDS_VERTEX ? m->capv : kind == TDS_EDGE ? m->cape
+              : kind == TDS_FACET ? m->capf : m->capb;
+  if (id < cap) return TDS_OK;
+  int64_t want = (int64_t)cap + cap / 2;
+  if (want < id + 1) want = (int64_t)id + 1;
+  if (want < 64) want = 64;
+  if (want > d->maxid) want = d->maxid;
+  if (tds_mesh_reserve(&d->s->m, kind, (int32_t)want) != TDS_OK)
+    return df_err(d, NULL, TDS_ENOMEM, "out of memory");
+  return TDS_OK;
+}
+
+/* ---- the four kinds of lines ---- */
+
+static int vertex_line(df *d) {
+  tds_id id;
+  char what[48], w[64];
+  int rc = element_id(d, "vertex", &id, what, sizeof what);
+  if (rc) return rc;
+  double val[3];
+  int nval = 0;
+  while (df_looks_value(d)) {
+    if (nval == 3)
+      return df_err(d, d->p, TDS_ESYNTAX, "%s: more than 3 coordinates "
+                    "(SPACE_DIMENSION is not supported yet)", what);
+    if ((rc = df_read_value(d, &val[nval], what))) return rc;
+    nval++;
+  }
+  uint32_t flags = 0;
+  tds_cmask con = 0;
+  int32_t bd = TDS_NONE;
+  const char *at, *bdat = NULL;
+  while (next_attr(d, w, sizeof w, &at, what, &rc)) {
+    if (flag_word(w, TDS_FIXED | TDS_BARE, &flags)) continue;
+    if (is_con_word(w)) {
+      rc = con_list(d, what, &con, NULL);
+    } else if (!strcmp(w, "boundary")) {
+      bdat = at;
+      rc = bdry_ref(d, what, &bd);
+    } else if (is_color_word(w)) {
+      int16_t c;
+      rc = df_read_color(d, &c, what); /* vertices have no colour: display only */
+    } else if (!strcmp(w, "original")) {
+      rc = skip_original(d, what);
+    } else {
+      return unknown_attr(d, at, w, what);
+    }
+    if (rc) return rc;
+  }
+  if (rc) return rc;
+  double x[3] = {0, 0, 0}, p[2] = {0, 0};
+  if (bd != TDS_NONE) {
+    int np = d->s->bdry[bd].nparams;
+    if (con)
+      return df_err(d, bdat, TDS_ESYNTAX,
+                    "%s: a vertex on a boundary cannot also be on a constraint", what);
+    if (nval != np)
+      return df_err(d, NULL, TDS_ESYNTAX, "%s on boundary %d needs %d parameter%s, got %d",
+                    what, d->s->bdry[bd].number, np, np > 1 ? "s" : "", nval);
+    for (int k = 0; k < np; k++) p[k] = val[k];
+  } else {
+    if (nval != 3)
+      return df_err(d, NULL, TDS_ESYNTAX, "%s needs 3 coordinates, got %d", what, nval);
+    for (int k = 0; k < 3; k++) x[k] = val[k];
+  }
+  int line = df_line_of(d, NULL);
+  if ((rc = room_for(d, TDS_VERTEX, id))) return rc;
+  rc = tds_decl_vertex(d->ctx, d->s, id, x, bd, p, flags, con);
+  return rc ? df_core(d, line, rc, NULL) : TDS_OK;
+}
+
+static int edge_line(df *d) {
+  tds_id id;
+  char what[48], w[64];
+  int rc = element_id(d, "edge", &id, what, sizeof what);
+  if (rc) return rc;
+  int64_t ends[2];
+  for (int k = 0; k < 2; k++) {
+    if ((rc = df_read_int(d, 0, what, &ends[k]))) return rc;
+    if (ends[k] < 1 || ends[k] > d->s->m.nv ||
+        !tds_alive(d->s->m.vflags, (tds_id)(ends[k] - 1)))
+      return df_err(d, NULL, TDS_ERANGE, "%s refers to vertex %lld, which does not exist",
+                    what, (long long)ends[k]);
+  }
+  df_ws(d);
+  if (df_looks_int(d))
+    return df_err(d, d->p, TDS_ESYNTAX,
+                  "%s: a third vertex (QUADRATIC midpoint) is not supported yet", what);
+  if (*d->p == '*' || *d->p == '+' || *d->p == '-')
+    return df_err(d, d->p, TDS_ESYNTAX,
+                  "%s: torus wrap signs (TORUS) are not supported yet", what);
+  uint32_t flags = 0;
+  tds_cmask con = 0;
+  int rev = 0;
+  int32_t bd = TDS_NONE;
+  double ten = 0;
+  int16_t color = 0;
+  const char *at;
+  while (next_attr(d, w, sizeof w, &at, what, &rc)) {
+    if (flag_word(w, TDS_FIXED | TDS_NO_REFINE | TDS_BARE | TDS_NONCONTENT, &flags))
+      continue;
+    if (is_con_word(w)) {
+      rc = con_list(d, what, &con, &rev);
+    } else if (!strcmp(w, "boundary")) {
+      rc = bdry_ref(d, what, &bd);
+    } else if (!strcmp(w, "tension") || !strcmp(w, "density")) {
+      rc = df_read_value(d, &ten, what);
+    } else if (is_color_word(w)) {
+      rc = df_read_color(d, &color, what);
+    } else if (!strcmp(w, "original")) {
+      rc = skip_original(d, what);
+    } else {
+      return unknown_attr(d, at, w, what);
+    }
+    if (rc) return rc;
+  }
+  if (rc) return rc;
+  if (rev) flags |= TDS_CONREV;
+  int line = df_line_of(d, NULL);
+  if ((rc = room_for(d, TDS_EDGE, id))) return rc;
+  rc = tds_decl_edge(d->ctx, d->s, id, (tds_id)ends[0] - 1, (tds_id)ends[1] - 1, flags,
+                     con, bd, ten, color);
+  return rc ? df_core(d, line, rc, NULL) : TDS_OK;
+}
+
+static int face_line(df *d) {
+  tds_id id;
+  char what[48], w[64];
+  int rc = element_id(d, "face", &id, what, sizeof what);
+  if (rc) return rc;
+  int32_t off = d->noe;
+  int n = 0;
+  while (df_looks_int(d)) {
+    int64_t e;
+    const char *a = d->p;
+    if ((rc = df_read_int(d, 1, what, &e))) return rc;
+    int64_t ae = e < 0 ? -e : e;
+    if (e == 0 || ae > d->s->m.ne || !tds_alive(d->s->m.eflags, (tds_id)(ae - 1)))
+      return df_err(d, a, TDS_ERANGE, "%s refers to edge %lld, which does not exist", what,
+                    (long long)ae);
+    if ((rc = push_oe(d, a, TDS_OREF((tds_id)(ae - 1), e < 0)))) return rc;
+    n++;
+  }
+  tds_face_attr fa = {0};
+  fa.tension = 1;
+  const char *at;
+  while (next_attr(d, w, sizeof w, &at, what, &rc)) {
+    if (flag_word(w, TDS_FIXED | TDS_NO_REFINE | TDS_NODISPLAY | TDS_NONCONTENT,
+                  &fa.flags))
+      continue;
+    if (is_con_word(w)) {
+      rc = con_list(d, what, &fa.con, NULL);
+    } else if (!strcmp(w, "tension") || !strcmp(w, "density")) {
+      rc = df_read_value(d, &fa.tension, what);
+    } else if (is_color_word(w) || !strcmp(w, "frontcolor")) {
+      rc = df_read_color(d, &fa.color, what);
+    } else if (!strcmp(w, "backcolor")) {
+      int16_t c; /* one colour per facet in tds: the back colour is dropped */
+      rc = df_read_color(d, &c, what);
+    } else if (!strcmp(w, "original")) {
+      rc = skip_original(d, what);
+    } else if (!strcmp(w, "boundary")) {
+      return df_err(d, at, TDS_ESYNTAX, "%s: faces on a BOUNDARY are not supported yet",
+                    what);
+    } else {
+      return unknown_attr(d, at, w, what);
+    }
+    if (rc) return rc;
+  }
+  if (rc) return rc;
+  if (n < 3)
+    return df_err(d, NULL, TDS_ETOPO, "%s has %d edge%s; at least 3 are needed", what, n,
+                  n == 1 ? "" : "s");
+  if (tds_grow((void **)&d->faces, sizeof *d->faces, &d->capfaces, d->nfaces + 1))
+    return df_err(d, NULL, TDS_ENOMEM, "out of memory");
+  df_face *r = &d->faces[d->nfaces++];
+  r->id = id;
+  r->line = df_line_of(d, NULL);
+  r->n = n;
+  r->off = off;
+  r->at = fa;
+  if (id + 1 > d->maxface) d->maxface = id + 1;
+  return TDS_OK;
+}
+
+int df_build_faces(df *d) {
+  if (d->nfaces == 0) return TDS_OK;
+  tds_mesh *m = &d->s->m;
+  /* Reserve for the split-off elements at once (tds_build_face reserves
+  ** exactly what each face needs, which is quadratic over many faces). */
+  int64_t nv = m->nv, ne = m->ne, nf = d->maxface;
+  for (int32_t i = 0; i < d->nfaces; i++)
+    if (d->faces[i].n > 3) {
+      nv += 1;
+      ne += d->faces[i].n;
+      nf += d->faces[i].n - 1;
+    }
+  if (nv > INT32_MAX / 8 || ne > INT32_MAX / 8 || nf > INT32_MAX / 8 ||
+      tds_mesh_reserve(m, TDS_VERTEX, (int32_t)nv) ||
+      tds_mesh_reserve(m, TDS_EDGE, (int32_t)ne) ||
+      tds_mesh_reserve(m, TDS_FACET, (int32_t)nf) ||
+      tds_mesh_extend_dead(m, TDS_FACET, d->maxface))
+    return df_err(d, NULL, TDS_ENOMEM, "out of memory");
+  for (int32_t i = 0; i < d->nfaces; i++) {
+    df_face *r = &d->faces[i];
+    int rc = tds_build_face(d->ctx, d->s, r->id, r->n, d->oe + r->off, &r->at);
+    if (rc) return df_core(d, r->line, rc, NULL);
+  }
+  d->nfaces = 0;
+  return TDS_OK;
+}
+
+/* Values a body line may set, each with a flag of whether it was given. */
+enum { B_VOLUME, B_VOLCONST, B_DENSITY, B_PRESSURE, B_LAGRANGE, B_N };
+static const char *const body_words[B_N] = {"volume", "volconst", "density",
+                                            "pressure", "lagrange_multiplier"};
+
+static int body_line(df *d) {
+  tds_id id;
+  char what[48], w[64];
+  int rc = element_id(d, "body", &id, what, sizeof what);
+  if (rc) return rc;
+  int32_t off = d->noe;
+  int n = 0;
+  while (df_looks_int(d)) {
+    int64_t f;
+    const char *a = d->p;
+    if ((rc = df_read_int(d, 1, what, &f))) return rc;
+    int64_t af = f < 0 ? -f : f;
+    if (f == 0 || af > d->s->m.nf || !tds_alive(d->s->m.fflags, (tds_id)(af - 1)) ||
+        d->s->m.forig[af - 1] != (tds_id)(af - 1))
+      return df_err(d, a, TDS_ERANGE, "%s refers to face %lld, which does not exist", what,
+                    (long long)af);
+    if ((rc = push_oe(d, a, (int32_t)f))) return rc;
+    n++;
+  }
+  double val[B_N] = {0};
+  int has[B_N] = {0};
+  const char *at;
+  while (next_attr(d, w, sizeof w, &at, what, &rc)) {
+    int k = 0;
+    while (k < B_N && strcmp(w, body_words[k])) k++;
+    if (k < B_N) {
+      rc = df_read_value(d, &val[k], what);
+      has[k] = 1;
+    } else if (!strcmp(w, "centerofmass")) {
+      /* display option of Evolver's dumps */
+    } else if (!strcmp(w, "original")) {
+      rc = skip_original(d, what);
+    } else {
+      return unknown_attr(d, at, w, what);
+    }
+    if (rc) return rc;
+  }
+  if (rc) return rc;
+  if (has[B_VOLUME] && has[B_PRESSURE])
+    return df_err(d, NULL, TDS_ESYNTAX, "%s: give either VOLUME or PRESSURE, not both", what);
+  int line = df_line_of(d, NULL);
+  if ((rc = room_for(d, TDS_BODY, id))) return rc;
+  rc = tds_decl_body(d->ctx, d->s, id, n, d->oe + off);
+  d->noe = off;
+  if (rc) return df_core(d, line, rc, NULL);
+  tds_mesh *m = &d->s->m;
+  if (has[B_VOLUME]) {
+    m->btarget[id] = val[B_VOLUME];
+    m->bflags[id] |= TDS_TARGET;
+    if (has[B_LAGRANGE]) m->bpressure[id] = val[B_LAGRANGE];
+  }
+  if (has[B_PRESSURE]) {
+    m->bpressure[id] = val[B_PRESSURE];
+    m->bflags[id] |= TDS_PRESSURE;
+  }
+  if (has[B_VOLCONST]) {
+    m->bvolconst[id] = val[B_VOLCONST];
+    m->bflags[id] |= TDS_VOLCONST;
+  }
+  if (has[B_DENSITY]) {
+    m->bdensity[id] = val[B_DENSITY];
+    d->density_given = 1;
+  }
+  return TDS_OK;
+}
+
+int df_element_line(df *d) {
+  switch (d->section) {
+  case S_VERTICES: return vertex_line(d);
+  case S_EDGES: return edge_line(d);
+  case S_FACES: return face_line(d);
+  default: return body_line(d);
+  }
+}

@@ -1,0 +1,572 @@
+/*
+** datafile_header.c: the keywords of a datafile's top section (PARAMETER,
+** CONSTRAINT, BOUNDARY, QUANTITY, GRAVITY_CONSTANT, display hints, ...)
+** and the table of Evolver keywords tds refuses as "not supported yet"
+** (contracts in datafile_int.h).
+*/
+#include "datafile_int.h"
+
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+#include <strings.h>
+
+#include "model.h"
+
+/* ---- not supported yet ---- */
+
+/* Evolver keywords whose features the core does not have yet. */
+static const char *const unsupported[] = {
+    "torus", "torus_filled", "periods", "display_periods", "display_origin",
+    "string", "quadratic", "lagrange", "lagrange_order", "simplex_representation",
+    "symmetry_group", "metric", "conformal_metric", "klein_metric", "define",
+    "method_instance", "optimizing_parameter", "optimising_parameter", "wulff",
+    "phasefile", "diffusion", "pressure", "squared_curvature",
+    "square_curvature", "mean_curvature_integral", "gauss_curvature",
+    "squared_gaussian_curvature", "square_gaussian_curvature", "sqgauss",
+    "insulating_knot_energy", "conducting_knot_energy", "mobility",
+    "mobility_tensor", "integral_order", "integral_order_1d",
+    "integral_order_2d", "runge_kutta", "homothety", "autopop", "autochop",
+    "area_normalization", "approximate_curvature", "effective_area", "jiggle",
+    "temperature", "length_method_name", "area_method_name",
+    "volume_method_name", "hessian_special_normal_vector", "fixed_area",
+    "area_fixed", "load_library", "interp_bdry_param",
+    "view_transform_generators", "function", "procedure", "total_time",
+    "gradient_mode", "parameter_file", "ideal_gas", "knot_energy",
+    "conserved", "on_assign_call", "nonwall", "content_rank", "axial_point",
+    "wrap", "phase", "actual_volume", "form_integrand", "k_form_order",
+    "parameter_1", "element_modulus", "clip_coeff", NULL};
+
+int df_unsupported(const char *w) {
+  for (int i = 0; unsupported[i]; i++)
+    if (!strcmp(w, unsupported[i])) return 1;
+  return 0;
+}
+
+int df_not_supported(df *d, const char *at, const char *w) {
+  char u[64];
+  return df_err(d, at, TDS_ESYNTAX, "%s is not supported yet", df_upper(w, u, sizeof u));
+}
+
+/* ---- handlers: the keyword table is at the end ---- */
+
+typedef struct hdr_kw hdr_kw;
+/* Read what follows keyword k (the cursor is just after it). */
+typedef int (*hdr_fn)(df *d, const hdr_kw *k);
+struct hdr_kw {
+  const char *name;   /* lowercase */
+  hdr_fn fn;
+  /* for h_value and h_scale only: */
+  ptrdiff_t off;      /* offset of the double in tds_surf set, or NOWHERE */
+  int check;          /* ANY, POSITIVE or NONNEG */
+};
+#define NOWHERE (-1)
+#define AT(field) offsetof(tds_surf, field)
+enum { ANY, POSITIVE, NONNEG };
+
+/* The name after keyword KW (upper case) into name[cap]; *at = where it
+** starts. */
+static int take_name(df *d, const char *kw, char *name, size_t cap, const char **at) {
+  int have, rc = df_more(d, &have);
+  if (rc) return rc;
+  const char *a = *at = d->p;
+  char b[64];
+  size_t n = df_word_len(a);
+  if (!n)
+    return df_err(d, a, TDS_ESYNTAX, "%s: expected a name, found %s", kw,
+                  df_describe(a, b, sizeof b));
+  if (n >= cap) return df_err(d, a, TDS_ESYNTAX, "%s: name too long", kw);
+  memcpy(name, a, n);
+  name[n] = 0;
+  d->p += n;
+  return TDS_OK;
+}
+
+/* n values in a row, display only (matrices, slice coefficients). */
+static int skip_values(df *d, int n, const char *what) {
+  int rc = TDS_OK;
+  d->split = 1;
+  for (int i = 0; i < n && !rc; i++) {
+    double v;
+    rc = df_header_value(d, &v, what);
+  }
+  d->split = 0;
+  return rc;
+}
+
+/* ---- parameters ---- */
+
+static int h_parameter(df *d, const hdr_kw *k) {
+  (void)k;
+  const char *a;
+  char name[256];
+  int rc = take_name(d, "PARAMETER", name, sizeof name, &a);
+  if (rc) return rc;
+  if (df_expr_word(name, strlen(name)))
+    return df_err(d, a, TDS_ESYNTAX, "PARAMETER: '%s' is a reserved name", name);
+  static const char *const coord[] = {"x", "y", "z", "w", "x1", "x2", "x3",
+                                      "x4", "p1", "p2", NULL};
+  for (int i = 0; coord[i]; i++)
+    if (!strcasecmp(name, coord[i]))
+      return df_err(d, a, TDS_ESYNTAX, "PARAMETER: '%s' is a reserved name", name);
+  df_ws(d);
+  if (*d->p == '=') d->p++;
+  char what[300];
+  snprintf(what, sizeof what, "PARAMETER %s", name);
+  double v;
+  if ((rc = df_header_value(d, &v, what))) return rc;
+  if (df_peek(d, "on_assign_call")) return df_not_supported(d, d->p, "on_assign_call");
+  if (df_peek(d, "pdelta") || df_peek(d, "pscale"))
+    return df_not_supported(d, d->p, "optimizing_parameter");
+  if (tds_surf_param_set(d->s, name, v) < 0)
+    return df_err(d, NULL, TDS_ENOMEM, "out of memory");
+  return TDS_OK;
+}
+
+/* ---- constraints and boundaries ---- */
+
+/* Optional ENERGY and CONTENT integrands of a constraint or boundary. */
+static int integrals(df *d, tds_expr *en[3], tds_expr *ct[3], int flags,
+                     const char *what) {
+  for (;;) {
+    int have, rc = df_more(d, &have);
+    if (rc || !have) return rc;
+    const char *a = d->p;
+    char w2[300];
+    if (df_accept(d, "energy")) {
+      if (en[0] || en[1] || en[2])
+        return df_err(d, a, TDS_ESYNTAX, "%s: ENERGY given twice", what);
+      snprintf(w2, sizeof w2, "%s ENERGY", what);
+      if ((rc = df_components(d, 'e', flags, en, w2))) return rc;
+    } else if (df_accept(d, "content")) {
+      if (ct[0] || ct[1] || ct[2])
+        return df_err(d, a, TDS_ESYNTAX, "%s: CONTENT given twice", what);
+      snprintf(w2, sizeof w2, "%s CONTENT", what);
+      if ((rc = df_components(d, 'c', flags, ct, w2))) return rc;
+    } else {
+      return TDS_OK;
+    }
+  }
+}
+
+/* The number after keyword kw (constraint, boundary): in 1..1e9 and not
+** declared before (slot_of finds declared ones); what = "kw N". */
+static int decl_number(df *d, const char *kw, int (*slot_of)(const tds_surf *, int),
+                       int64_t *n, char *what, size_t cap) {
+  char u[64];
+  int rc = df_header_int(d, 0, df_upper(kw, u, sizeof u), n);
+  if (rc) return rc;
+  if (*n < 1 || *n > 1000000000)
+    return df_err(d, NULL, TDS_ESYNTAX, "%s: number %lld out of range", u, (long long)*n);
+  snprintf(what, cap, "%s %lld", kw, (long long)*n);
+  if (slot_of(d->s, (int)*n) >= 0)
+    return df_err(d, NULL, TDS_ESYNTAX, "%s is declared twice", what);
+  return TDS_OK;
+}
+
+static int h_constraint(df *d, const hdr_kw *k) {
+  int64_t n;
+  char what[64], w[64];
+  int rc = decl_number(d, k->name, tds_surf_con_slot, &n, what, sizeof what);
+  if (rc) return rc;
+  int flags = 0;
+  for (;;) {
+    int have;
+    if ((rc = df_more(d, &have))) return rc;
+    if (!have)
+      return df_err(d, NULL, TDS_ESYNTAX, "%s: expected FORMULA, found end of file", what);
+    const char *a = d->p;
+    df_take_word(d, w, sizeof w);
+    if (!strcmp(w, "global")) flags |= TDS_CON_GLOBAL;
+    else if (!strcmp(w, "convex")) flags |= TDS_CON_CONVEX;
+    else if (!strcmp(w, "nonnegative")) flags |= TDS_CON_NONNEG;
+    else if (!strcmp(w, "nonpositive")) flags |= TDS_CON_NONPOS;
+    else if (!strcmp(w, "formula") || !strcmp(w, "function") || !strcmp(w, "equation"))
+      break;
+    else if (df_unsupported(w)) {
+      char u[64];
+      return df_err(d, a, TDS_ESYNTAX, "%s: %s is not supported yet", what,
+                    df_upper(w, u, sizeof u));
+    } else {
+      char b[64];
+      d->p = a;
+      return df_err(d, a, TDS_ESYNTAX, "%s: expected FORMULA, found %s", what,
+                    df_describe(a, b, sizeof b));
+    }
+  }
+  if ((flags & TDS_CON_NONNEG) && (flags & TDS_CON_NONPOS))
+    return df_err(d, NULL, TDS_ESYNTAX, "%s: both NONNEGATIVE and NONPOSITIVE", what);
+  tds_expr *f = NULL, *en[3] = {0}, *ct[3] = {0};
+  char w2[80];
+  snprintf(w2, sizeof w2, "%s FORMULA", what);
+  if ((rc = df_header_expr(d, TDS_EXPR_FORMULA, &f, w2)) ||
+      (rc = integrals(d, en, ct, 0, what))) {
+    tds_expr_free(f);
+    df_free3(en);
+    df_free3(ct);
+    return rc;
+  }
+  int line = df_line_of(d, NULL);
+  rc = tds_model_constraint(d->ctx, d->s, (int)n, flags, f, en, ct);
+  return rc ? df_core(d, line, rc, NULL) : TDS_OK;
+}
+
+static int h_boundary(df *d, const hdr_kw *k) {
+  int64_t n, np;
+  char what[64];
+  int rc = decl_number(d, k->name, tds_model_boundary_slot, &n, what, sizeof what);
+  if (rc) return rc;
+  int have;
+  if ((rc = df_more(d, &have))) return rc;
+  if (!have || !df_accept(d, "parameters")) {
+    char b[64];
+    return df_err(d, d->p, TDS_ESYNTAX, "%s: expected PARAMETERS, found %s", what,
+                  df_describe(d->p, b, sizeof b));
+  }
+  if ((rc = df_header_int(d, 0, what, &np))) return rc;
+  if (np < 1 || np > 2)
+    return df_err(d, NULL, TDS_ESYNTAX, "%s: %lld parameters (1 or 2 are supported)",
+                  what, (long long)np);
+  int flags = 0;
+  if ((rc = df_more(d, &have))) return rc;
+  if (have && df_accept(d, "convex")) flags |= TDS_CON_CONVEX;
+  tds_expr *x[3] = {0}, *en[3] = {0}, *ct[3] = {0};
+  rc = df_components(d, 'x', TDS_EXPR_PARAMS, x, what);
+  if (!rc && (!x[0] || !x[1] || !x[2]))
+    rc = df_err(d, d->p, TDS_ESYNTAX, "%s: needs X1, X2 and X3", what);
+  if (!rc) rc = integrals(d, en, ct, 0, what);
+  if (rc) {
+    df_free3(x);
+    df_free3(en);
+    df_free3(ct);
+    return rc;
+  }
+  int line = df_line_of(d, NULL);
+  rc = tds_model_boundary(d->ctx, d->s, (int)n, (int)np, flags, x, en, ct);
+  return rc ? df_core(d, line, rc, NULL) : TDS_OK;
+}
+
+/* ---- named quantities ---- */
+
+typedef struct meth {
+  int method;
+  int global;
+  double modulus;
+  tds_expr *in[3];
+  int line;
+} meth;
+
+static int h_quantity(df *d, const hdr_kw *k) {
+  (void)k;
+  const char *a;
+  char name[128], w[64], b[64];
+  int have, rc = take_name(d, "QUANTITY", name, sizeof name, &a);
+  if (rc) return rc;
+  int qline = df_line_of(d, a);
+  char what[160];
+  snprintf(what, sizeof what, "quantity %s", name);
+  int sameline = !df_at_eol(d);
+  if ((rc = df_more(d, &have))) return rc;
+  static const char *const kinds[] = {"energy", "fixed", "info_only", "conserved", NULL};
+  size_t wl = have ? df_word_len(d->p) : 0;
+  int kind = -1;
+  for (int i = 0; kinds[i] && wl; i++)
+    if (df_word_eq(d->p, wl, kinds[i])) kind = i;
+  if (kind < 0) {
+    if (!sameline) return TDS_OK; /* "quantity name;" forward declaration */
+    return df_err(d, d->p, TDS_ESYNTAX,
+                  "%s: expected ENERGY, FIXED = value or INFO_ONLY, found %s", what,
+                  df_describe(d->p, b, sizeof b));
+  }
+  if (tds_model_quantity_find(d->s, name) >= 0)
+    return df_err_line(d, qline, TDS_ESYNTAX, "%s is declared twice", what);
+  if (kind == 3) return df_not_supported(d, d->p, "conserved");
+  d->p += wl;
+  double target = 0, modulus = 1, lagrange = 0, volconst = 0;
+  int qkind = kind == 0 ? TDS_Q_ENERGY : kind == 1 ? TDS_Q_FIXED : TDS_Q_INFO;
+  if (kind == 1) {
+    df_ws(d);
+    if (*d->p == '=') d->p++;
+    if ((rc = df_header_value(d, &target, what))) return rc;
+  }
+  meth ms[4];
+  int nm = 0;
+  memset(ms, 0, sizeof ms);
+  for (;;) {
+    if ((rc = df_more(d, &have))) goto fail;
+    if (!have) break;
+    const char *at = d->p;
+    df_take_word(d, w, sizeof w);
+    if (!strcmp(w, "lagrange_multiplier")) {
+      rc = df_header_value(d, &lagrange, what);
+    } else if (!strcmp(w, "tolerance")) {
+      double tol;
+      rc = df_header_value(d, &tol, what);
+    } else if (!strcmp(w, "volconst")) {
+      rc = df_header_value(d, &volconst, what);
+    } else if (!strcmp(w, "modulus")) {
+      rc = df_header_value(d, nm ? &ms[nm - 1].modulus : &modulus, what);
+    } else if (!strcmp(w, "method") || !strcmp(w, "global_method")) {
+      if (nm == 4) {
+        rc = df_err(d, at, TDS_ESYNTAX, "%s: at most 4 methods are supported", what);
+        goto fail;
+      }
+      int gm = w[0] == 'g';
+      if ((rc = df_more(d, &have))) goto fail;
+      const char *ma = d->p;
+      char mname[64];
+      if (!have || !df_take_word(d, mname, sizeof mname)) {
+        rc = df_err(d, ma, TDS_ESYNTAX, "%s: expected a method name, found %s", what,
+                    df_describe(ma, b, sizeof b));
+        goto fail;
+      }
+      int mi = tds_method_by_name(mname);
+      if (mi < 0) {
+        char u[64];
+        rc = df_err(d, ma, TDS_ESYNTAX, "method %s is not supported yet",
+                    df_upper(mname, u, sizeof u));
+        goto fail;
+      }
+      meth *m = &ms[nm++];
+      m->method = mi;
+      m->global = gm;
+      m->modulus = 1;
+      m->line = df_line_of(d, ma);
+      if (!gm && df_accept(d, "global")) m->global = 1;
+    } else if (!strcmp(w, "global")) {
+      if (!nm) {
+        rc = df_err(d, at, TDS_ESYNTAX, "%s: GLOBAL before any METHOD", what);
+        goto fail;
+      }
+      ms[nm - 1].global = 1;
+    } else if (!strcmp(w, "scalar_integrand") || !strcmp(w, "vector_integrand")) {
+      if (!nm) {
+        rc = df_err(d, at, TDS_ESYNTAX, "%s: %s before any METHOD", what, w);
+        goto fail;
+      }
+      meth *m = &ms[nm - 1];
+      if (m->in[0] || m->in[1] || m->in[2]) {
+        rc = df_err(d, at, TDS_ESYNTAX, "%s: method has two integrands", what);
+        goto fail;
+      }
+      if (w[0] == 's')
+        rc = df_header_expr(d, 0, &m->in[0], what);
+      else
+        rc = df_components(d, 'q', 0, m->in, what);
+    } else if (df_unsupported(w)) {
+      rc = df_not_supported(d, at, w);
+    } else {
+      d->p = at;
+      break;
+    }
+    if (rc) goto fail;
+  }
+  if (!nm) {
+    rc = df_err(d, d->p, TDS_ESYNTAX, "%s: no METHOD given", what);
+    goto fail;
+  }
+  for (int i = 0; i < nm; i++)
+    if (!ms[i].global) {
+      char u[64];
+      rc = df_err_line(d, ms[i].line, TDS_ESYNTAX,
+                       "%s: method %s without GLOBAL (applied to listed elements) is "
+                       "not supported yet", what,
+                       df_upper(tds_method_names[ms[i].method], u, sizeof u));
+      goto fail;
+    }
+  int idx;
+  rc = tds_model_quantity(d->ctx, d->s, name, qkind, modulus, target, &idx);
+  if (rc) {
+    rc = df_core(d, qline, rc, NULL);
+    goto fail;
+  }
+  d->s->quant[idx].pressure = lagrange;
+  d->s->quant[idx].volconst = volconst;
+  for (int i = 0; i < nm; i++) {
+    rc = tds_model_method(d->ctx, d->s, idx, ms[i].method, ms[i].modulus, ms[i].in);
+    memset(ms[i].in, 0, sizeof ms[i].in); /* taken, also on failure */
+    if (rc) {
+      rc = df_core(d, ms[i].line, rc, NULL);
+      goto fail;
+    }
+  }
+  return TDS_OK;
+fail:
+  for (int i = 0; i < 4; i++) df_free3(ms[i].in);
+  return rc;
+}
+
+/* ---- settings and display hints ---- */
+
+/* One value, checked as k->check says ("KW must be positive") and stored
+** at k->off (NOWHERE: read and ignored, as dump hints and warnings). */
+static int h_value(df *d, const hdr_kw *k) {
+  char u[64];
+  double v;
+  df_upper(k->name, u, sizeof u);
+  int rc = df_header_value(d, &v, u);
+  if (rc) return rc;
+  if (k->check == POSITIVE && v <= 0)
+    return df_err(d, NULL, TDS_ESYNTAX, "%s must be positive", u);
+  if (k->check == NONNEG && v < 0)
+    return df_err(d, NULL, TDS_ESYNTAX, "%s must not be negative", u);
+  if (k->off != NOWHERE) *(double *)((char *)d->s + k->off) = v;
+  return TDS_OK;
+}
+
+/* SCALE value [FIXED] */
+static int h_scale(df *d, const hdr_kw *k) {
+  int rc = h_value(d, k);
+  if (!rc && df_accept(d, "fixed")) d->s->fixed_scale = 1;
+  return rc;
+}
+
+static int h_symmetric(df *d, const hdr_kw *k) {
+  (void)k;
+  d->s->symmetric_content = 1;
+  return TDS_OK;
+}
+
+/* SPACE_DIMENSION 3, SURFACE_DIMENSION 2: anything else is refused. */
+static int h_dimension(df *d, const hdr_kw *k) {
+  int64_t n;
+  char u[64];
+  df_upper(k->name, u, sizeof u);
+  int rc = df_header_int(d, 0, u, &n);
+  if (rc) return rc;
+  int want = k->name[1] == 'p' ? 3 : 2;
+  if (n != want)
+    return df_err(d, NULL, TDS_ESYNTAX, "%s %lld is not supported yet", u, (long long)n);
+  return TDS_OK;
+}
+
+/* VIEW_MATRIX: 16 numbers, display only. */
+static int h_view_matrix(df *d, const hdr_kw *k) {
+  (void)k;
+  return skip_values(d, 16, "VIEW_MATRIX");
+}
+
+/* slice_coeff = { a, b, c, d } (written by Evolver's dump), display only. */
+static int h_slice(df *d, const hdr_kw *k) {
+  (void)k;
+  int have, rc = df_more(d, &have);
+  if (rc) return rc;
+  if (have && *d->p == '=') d->p++;
+  if ((rc = df_more(d, &have))) return rc;
+  int brace = have && *d->p == '{';
+  if (brace) d->p++;
+  if ((rc = skip_values(d, 4, "SLICE_COEFF"))) return rc;
+  if (brace) {
+    if ((rc = df_more(d, &have))) return rc;
+    if (!have || *d->p != '}') {
+      char b[64];
+      return df_err(d, d->p, TDS_ESYNTAX, "SLICE_COEFF: expected '}', found %s",
+                    df_describe(d->p, b, sizeof b));
+    }
+    d->p++;
+  }
+  return TDS_OK;
+}
+
+/* VIEW_TRANSFORMS n, then n matrices each optionally preceded by COLOR c
+** or SWAP_COLORS; display only. */
+static int h_view_transforms(df *d, const hdr_kw *k) {
+  (void)k;
+  int64_t n;
+  int rc = df_header_int(d, 0, "VIEW_TRANSFORMS", &n);
+  if (rc) return rc;
+  if (n > 100000)
+    return df_err(d, NULL, TDS_ESYNTAX, "VIEW_TRANSFORMS: too many (%lld)", (long long)n);
+  for (int64_t t = 0; t < n; t++) {
+    int have;
+    for (;;) {
+      if ((rc = df_more(d, &have))) return rc;
+      if (have && df_accept(d, "swap_colors")) continue;
+      if (have && df_accept(d, "color")) {
+        int16_t c;
+        if ((rc = df_more(d, &have)) || (rc = df_read_color(d, &c, "VIEW_TRANSFORMS")))
+          return rc;
+        continue;
+      }
+      break;
+    }
+    if ((rc = skip_values(d, 16, "VIEW_TRANSFORMS"))) return rc;
+  }
+  return TDS_OK;
+}
+
+/* A keyword asking for what tds does anyway. */
+static int h_nothing(df *d, const hdr_kw *k) {
+  (void)d;
+  (void)k;
+  return TDS_OK;
+}
+
+/* EVOLVER_VERSION "x" */
+static int h_version(df *d, const hdr_kw *k) {
+  (void)k;
+  int have, rc = df_more(d, &have);
+  if (rc) return rc;
+  if (!have || *d->p != '"') {
+    char b[64];
+    return df_err(d, d->p, TDS_ESYNTAX,
+                  "EVOLVER_VERSION: expected a quoted version, found %s",
+                  df_describe(d->p, b, sizeof b));
+  }
+  const char *q = strchr(d->p + 1, '"');
+  d->p = q ? q + 1 : d->p + strlen(d->p);
+  return TDS_OK;
+}
+
+static const hdr_kw header_kw[] = {
+    {"parameter", h_parameter, 0, 0},
+    {"constraint", h_constraint, 0, 0},
+    {"boundary", h_boundary, 0, 0},
+    {"quantity", h_quantity, 0, 0},
+    {"gravity_constant", h_value, AT(gravity), ANY},
+    {"spring_constant", h_value, AT(gap_constant), ANY},
+    {"gap_constant", h_value, AT(gap_constant), ANY},
+    {"symmetric_content", h_symmetric, 0, 0},
+    {"constraint_tolerance", h_value, AT(constraint_tol), POSITIVE},
+    {"space_dimension", h_dimension, 0, 0},
+    {"surface_dimension", h_dimension, 0, 0},
+    {"scale", h_scale, AT(scale), NONNEG},
+    {"scale_limit", h_value, AT(scale_limit), POSITIVE},
+    {"view_matrix", h_view_matrix, 0, 0},
+    {"slice_coeff", h_slice, 0, 0},
+    {"view_transforms", h_view_transforms, 0, 0},
+    {"evolver_version", h_version, 0, 0},
+    {"soapfilm", h_nothing, 0, 0},
+    {"linear", h_nothing, 0, 0},
+    {"keep_originals", h_nothing, 0, 0},
+    {"keep_macros", h_nothing, 0, 0},
+    {"everything_quantities", h_nothing, 0, 0},
+    {"merit_factor", h_nothing, 0, 0},
+    {"vertices_predicted", h_value, NOWHERE, ANY},
+    {"edges_predicted", h_value, NOWHERE, ANY},
+    {"facets_predicted", h_value, NOWHERE, ANY},
+    {"facetedges_predicted", h_value, NOWHERE, ANY},
+    {"bodies_predicted", h_value, NOWHERE, ANY},
+    {"quantities_predicted", h_value, NOWHERE, ANY},
+    {"method_instances_predicted", h_value, NOWHERE, ANY},
+    {"suppress_warning", h_value, NOWHERE, ANY},
+    {"unsuppress_warning", h_value, NOWHERE, ANY},
+    {"zoom_vertex", h_value, NOWHERE, ANY},
+    {"zoom_radius", h_value, NOWHERE, ANY},
+    {NULL, NULL, 0, 0}};
+
+static const hdr_kw *find_kw(const char *w) {
+  for (int i = 0; header_kw[i].name; i++)
+    if (!strcmp(w, header_kw[i].name)) return &header_kw[i];
+  return NULL;
+}
+
+int df_header_word(const char *w) { return find_kw(w) || df_unsupported(w); }
+
+int df_header_keyword(df *d, const char *w, const char *at) {
+  const hdr_kw *k = find_kw(w);
+  if (k) return k->fn(d, k);
+  if (df_unsupported(w)) return df_not_supported(d, at, w);
+  char b[64];
+  return df_err(d, at, TDS_ESYNTAX, "unknown keyword %s", df_describe(at, b, sizeof b));
+}
