@@ -15,7 +15,7 @@ typedef struct work {
   double (*p0)[2];   /* boundary parameters at the start */
   double (*grad)[3]; /* energy gradient */
   double (*vel)[3];  /* motion-space velocity */
-  double (*rest)[3]; /* restoring motion */
+  double (*rest)[3]; /* restoring motion of a projection step */
   tds_fixq fq;
   int unconverged;   /* a projection hit its step limit */
   double E0;         /* energy at the start of the step */
@@ -50,6 +50,12 @@ static int work_init(tds_ctx *ctx, tds_surf *s, work *w) {
   return rc;
 }
 
+/* How far a constrained quantity may be from its target: 1e-12 relative
+** (absolute for a target of 0). */
+static double target_tol(double target) {
+  return 1e-12 * (fabs(target) > 0 ? fabs(target) : 1);
+}
+
 /* Store multipliers as pressures of their bodies and quantities. */
 static void store_pressures(tds_surf *s, const tds_fixq *fq) {
   for (int32_t q = 0; q < fq->nq; q++) {
@@ -61,7 +67,8 @@ static void store_pressures(tds_surf *s, const tds_fixq *fq) {
 }
 
 /* Evaluate gradient and quantities, then map into motion space and take
-** out the constraint directions. Leaves vel, rest and pressures set. */
+** out the constraint directions. Leaves vel, slope, E0 and the pressures
+** set. */
 static int direction(tds_ctx *ctx, tds_surf *s, work *w) {
   tds_mesh *m = &s->m;
   tds_eval_out out = {.grad = w->grad, .fq = &w->fq};
@@ -71,8 +78,7 @@ static int direction(tds_ctx *ctx, tds_surf *s, work *w) {
   w->E0 = out.energy;
   w->at_target = 1;
   for (int32_t q = 0; q < fq->nq; q++)
-    if (!(fabs(fq->target[q] - fq->value[q]) <=
-          1e-12 * (fabs(fq->target[q]) > 1e-300 ? fabs(fq->target[q]) : 1)))
+    if (!(fabs(fq->target[q] - fq->value[q]) <= target_tol(fq->target[q])))
       w->at_target = 0;
   for (tds_id v = 0; v < m->nv; v++) {
     if (m->vflags[v] & TDS_DEAD) continue;
@@ -116,8 +122,7 @@ static int project_quantities(tds_ctx *ctx, tds_surf *s, work *w) {
     s->area = out.area;
     double worst = 0;
     for (int32_t q = 0; q < fq->nq; q++) {
-      double tol = 1e-12 * (fabs(fq->target[q]) > 1e-300 ? fabs(fq->target[q]) : 1);
-      double err = fabs(fq->target[q] - fq->value[q]) / tol;
+      double err = fabs(fq->target[q] - fq->value[q]) / target_tol(fq->target[q]);
       if (!(err <= worst)) worst = err; /* NaN propagates as failure */
     }
     if (worst <= 1) return 0;
