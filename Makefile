@@ -5,7 +5,7 @@ CC ?= cc
 BUILD ?= build
 OPT ?= -O2
 SAN ?=
-CFLAGS_ALL = -std=c11 $(OPT) -g -Wall -Wextra -D_POSIX_C_SOURCE=200809L $(SAN) $(CFLAGS)
+CFLAGS_ALL = -std=c11 $(OPT) -g -fopenmp -Wall -Wextra -D_POSIX_C_SOURCE=200809L $(SAN) $(CFLAGS)
 # Evaluated when a recipe runs, so after `deps` has installed pkg-config/Lua.
 LUA_CFLAGS = $(shell pkg-config --cflags lua5.4)
 LUA_LIBS = $(shell pkg-config --libs lua5.4)

@@ -2,7 +2,7 @@
 **
 ** Raw primitives (lua/pg.lua gives them their user names):
 **   tds.pg{ iterations=, max=, nmax=, s=, plain=, depth=, flips=, every=,
-**           rtol= }                        -> result table
+**           rtol=, threads= }                        -> result table
 **   tds.quality()                          -> statistics table
 **   tds.curvature(mode [, value])          -> statistics table with
 **                                             per-vertex values
@@ -73,7 +73,9 @@ static int l_pg(lua_State *L) {
     o.flips = opt_bool(L, 1, "flips", 1);
     o.every = opt_int(L, 1, "every", 0);
     o.rtol = opt_num(L, 1, "rtol", 0);
+    o.threads = (int)opt_int(L, 1, "threads", 1);
   }
+  luaL_argcheck(L, o.threads >= 1 && o.threads <= 2, 1, "threads must be 1 or 2");
   luaL_argcheck(L, o.iterations >= 0, 1, "iterations must not be negative");
   luaL_argcheck(L, o.nmax >= 1, 1, "nmax must be at least 1");
   luaL_argcheck(L, o.depth >= 0 && o.depth <= 50, 1, "depth must be in 0..50");
@@ -98,6 +100,8 @@ static int l_pg(lua_State *L) {
   setnum(L, "energy", st->s.energy);
   setnum(L, "mean_edge", r.mean_edge);
   setnum(L, "seconds", r.seconds);
+  setnum(L, "cpu_seconds", r.cpu_seconds);
+  setint(L, "threaded_passes", r.threaded);
   setint(L, "vertices", r.nfree);
   setnum(L, "seconds_per_vertex_iteration",
          r.iterations > 0 && r.nfree > 0

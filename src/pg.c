@@ -6,12 +6,15 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "motion.h"
 #include "pg_int.h"
 #include "vec3.h"
 
-static void work_free(pgw *w) {
+void pg_work_free(pgw *w) {
   free(w->kind);
   free(w->bnb);
   free(w->mov);
@@ -35,6 +38,7 @@ static void work_free(pgw *w) {
   free(w->mult);
   pg_flip_free(w);
   pg_accel_free(&w->aa);
+  pg_plan_free(w);
   memset(w, 0, sizeof *w);
 }
 
@@ -81,7 +85,7 @@ static void classify(tds_surf *s, pgw *w) {
 
 /* Allocate and fill the work arrays; depth > 0 also the Anderson history.
 ** TDS_OK or TDS_ENOMEM (w freed). */
-static int work_init(tds_ctx *ctx, tds_surf *s, pgw *w, int depth) {
+int pg_work_init(tds_ctx *ctx, tds_surf *s, pgw *w, int depth) {
   tds_mesh *m = &s->m;
   memset(w, 0, sizeof *w);
   if (tds_mesh_adjacency(m) != TDS_OK) goto nomem;
@@ -92,8 +96,12 @@ static int work_init(tds_ctx *ctx, tds_surf *s, pgw *w, int depth) {
   w->kind = tds_calloc(nv, 1);
   w->bnb = tds_calloc(nv, sizeof *w->bnb);
   w->mov = tds_calloc(nv, sizeof *w->mov);
-  w->acc = tds_calloc(nv, sizeof *w->acc);
-  w->grad = tds_calloc(nv, sizeof *w->grad);
+  /* one vertex's sums on cache lines of their own: the two halves of
+  ** the pass may add into neighbouring slots from two threads */
+  size_t accb = (2 * nv * sizeof *w->acc + 63) / 64 * 64;
+  w->acc = aligned_alloc(64, accb);
+  if (w->acc) memset(w->acc, 0, accb);
+  w->grad = tds_calloc(2 * nv, sizeof *w->grad);
   w->fcot = tds_calloc(3 * nf, sizeof *w->fcot);
   w->d = tds_calloc(nv, sizeof *w->d);
   w->nrm = tds_calloc(nv, sizeof *w->nrm);
@@ -111,7 +119,7 @@ static int work_init(tds_ctx *ctx, tds_surf *s, pgw *w, int depth) {
     goto nomem;
   int rc = tds_fixq_build(ctx, s, &w->fq);
   if (rc != TDS_OK) {
-    work_free(w);
+    pg_work_free(w);
     return rc;
   }
   int32_t nq = w->fq.nq;
@@ -121,31 +129,35 @@ static int work_init(tds_ctx *ctx, tds_surf *s, pgw *w, int depth) {
   w->mult = tds_calloc((size_t)nq + 1, sizeof *w->mult);
   if (!w->an || !w->gram || !w->rhs || !w->mult) goto nomem;
   if (pg_flip_init(s, w) != TDS_OK) goto nomem;
+  if (pg_plan_init(s, w) != TDS_OK) goto nomem;
+  w->threads = 1;
+  w->isa = pg_pass_isa(1);
   w->flip_tol = 1e-12;
   for (tds_id e = 0; e < m->ne; e++)
     if (!(m->eflags[e] & TDS_DEAD) && m->eten[e] != 0) w->has_edge_tension = 1;
   classify(s, w);
   pg_gauge_init(s, w);
   if (depth > 0 && pg_accel_init(&w->aa, 3 * w->nmov, depth) != TDS_OK) goto nomem;
+  w->aa.isa = w->isa;
   return TDS_OK;
 nomem:
-  work_free(w);
+  pg_work_free(w);
   return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
 }
 
 int tds_pg_flip_all(tds_ctx *ctx, tds_surf *s, int32_t *nflips) {
   pgw w;
-  int rc = work_init(ctx, s, &w, 0);
+  int rc = pg_work_init(ctx, s, &w, 0);
   if (rc != TDS_OK) return rc;
   int32_t n = pg_flip_pass(s, &w);
-  work_free(&w);
+  pg_work_free(&w);
   if (nflips) *nflips = n;
   return tds_surf_update(ctx, s);
 }
 
 int tds_pg_multipliers(tds_ctx *ctx, tds_surf *s, double *mult) {
   pgw w;
-  int rc = work_init(ctx, s, &w, 0);
+  int rc = pg_work_init(ctx, s, &w, 0);
   if (rc != TDS_OK) return rc;
   pg_stepinfo si;
   double energy;
@@ -155,14 +167,14 @@ int tds_pg_multipliers(tds_ctx *ctx, tds_surf *s, double *mult) {
   if (rc == TDS_OK)
     for (int32_t q = 0; q < w.fq.nq; q++)
       if (w.fq.qbody[q] != TDS_NONE) mult[w.fq.qbody[q]] = w.mult[q];
-  work_free(&w);
+  pg_work_free(&w);
   return rc;
 }
 
 int tds_pg_probe(tds_ctx *ctx, tds_surf *s, double *energy, double (*grad)[3],
                  double (*dir)[3], double (*model)[3]) {
   pgw w;
-  int rc = work_init(ctx, s, &w, 0);
+  int rc = pg_work_init(ctx, s, &w, 0);
   if (rc != TDS_OK) return rc;
   pg_stepinfo si;
   rc = pg_pass(ctx, s, &w, energy);
@@ -178,7 +190,7 @@ int tds_pg_probe(tds_ctx *ctx, tds_surf *s, double *energy, double (*grad)[3],
       v3_copy(model[v], w.model[v]);
     }
   }
-  work_free(&w);
+  pg_work_free(&w);
   return rc;
 }
 
@@ -207,6 +219,12 @@ static double mean_edge(const tds_mesh *m) {
   return n ? sum / (double)n : 0;
 }
 
+static double cpu_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 static double now(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -230,6 +248,7 @@ static int evaluate(tds_ctx *ctx, tds_surf *s, pgw *w, int flips, double sfac,
                     pg_stepinfo *si, int32_t *nflips) {
   *nflips = 0;
   int rc = pg_pass(ctx, s, w, &si->energy);
+  if (w->threads > 1) w->threaded++;
   if (rc != TDS_OK) return rc;
   if (flips && pg_flip_needed(s, w)) {
     *nflips = pg_flip_pass(s, w);
@@ -247,14 +266,19 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   memset(res, 0, sizeof *res);
   pgw w;
   int accel = o->accel && o->depth > 0;
-  int rc = work_init(ctx, s, &w, accel ? o->depth : 0);
+  int rc = pg_work_init(ctx, s, &w, accel ? o->depth : 0);
   if (rc != TDS_OK) return rc;
   tds_mesh *m = &s->m;
   w.flip_tol = 1e-3; /* hysteresis: no flipping back and forth */
+#ifdef _OPENMP
+  w.threads = o->threads == 2 ? 2 : 1;
+#endif
+  double c0 = cpu_now();
   res->nfree = w.nmov;
   double hbar = mean_edge(m);
   double lim2 = (0.5 * hbar) * (0.5 * hbar);
   double noise = 1e-12 * hbar; /* below this r is at rounding level */
+  double fine = 1e-13 * hbar;  /* converged enough to stop an accelerated run */
   int until = o->iterations <= 0;
   int64_t nmaxit = until ? (o->max_iterations > 0 ? o->max_iterations : 100000)
                          : o->iterations;
@@ -262,7 +286,7 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   if (every == 0) every = until ? 100 : (nmaxit <= 20 ? 1 : (nmaxit + 9) / 10);
   double sfac = o->s;
   double rbest = INFINITY, ebest = 0, lbest = 0;
-  int64_t best = 0, since_flip = 0;
+  int64_t best = 0, progress = 0, since_flip = 0;
   const int warm = 5; /* plain iterations after a flip before mixing */
   pg_stepinfo si = {0};
   int64_t k;
@@ -287,6 +311,10 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
     res->r_last = si.r;
     if (!res->reached && si.r < 1e-13 * hbar) res->reached = k;
     if (si.r < rbest) {
+      /* Below 1e-13 x mean edge r wanders at rounding level; a new best
+      ** there counts as progress (for the patience below) only when it
+      ** halves r. */
+      if (rbest > fine || si.r < 0.5 * rbest) progress = k;
       rbest = si.r;
       best = k;
       ebest = si.energy;
@@ -302,14 +330,18 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
       ** rounding level r may rise for a while on a slow mode and fall
       ** again, so there the patience is five times longer; an accelerated
       ** run that stalls there goes on plainly first. */
-      int64_t idle = k - best;
-      if (accel && idle >= o->nmax && rbest > noise) {
+      int64_t idle = k - progress;
+      if (accel && idle >= o->nmax && rbest > fine) {
+        /* Stalled: above the rounding level the plain run is judged on
+        ** its own; near it (Anderson's least squares amplify rounding,
+        ** so its floor can sit a little above the plain iteration's) the
+        ** plain steps must beat the kept mesh. */
         accel = 0;
         res->restarts++;
         tds_printf(ctx, "pg %7lld  acceleration stalled at r %.3e: continuing plainly\n",
                    (long long)k, rbest);
-        best = k;
-        rbest = INFINITY; /* judge the plain run on its own */
+        progress = k;
+        if (rbest > noise) rbest = INFINITY;
         idle = 0;
       }
       if (rbest == 0 || (o->rtol > 0 && rbest < o->rtol * hbar) ||
@@ -358,7 +390,9 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
     res->lambda = si.lambda0;
   }
   res->restarts += w.aa.restarts;
-  work_free(&w);
+  res->threaded = w.threaded;
+  res->cpu_seconds = cpu_now() - c0;
+  pg_work_free(&w);
   int rc2 = tds_surf_update(ctx, s);
   if (rc == TDS_OK) rc = rc2;
   res->mean_edge = mean_edge(m);

@@ -34,6 +34,8 @@ typedef struct tds_pg_opts {
   int flips;              /* 1: Delaunay edge flips every iteration (default) */
   int64_t every;          /* progress line period; 0: automatic; < 0: none */
   double rtol;            /* > 0: also stop once r < rtol * mean edge length */
+  int threads;            /* threads of the facet pass: 1 (default) or 2;
+                             the results do not depend on it */
 } tds_pg_opts;
 
 typedef struct tds_pg_result {
@@ -49,6 +51,9 @@ typedef struct tds_pg_result {
   double energy;          /* total energy of the kept mesh */
   double mean_edge;       /* mean edge length (for r relative to it) */
   double seconds;         /* wall time of the run */
+  double cpu_seconds;     /* processor time of the process during the run
+                             (all threads) */
+  int64_t threaded;       /* passes run on two threads */
   int32_t nfree;          /* movable vertices */
   int converged;          /* stopped by the termination criterion */
 } tds_pg_result;

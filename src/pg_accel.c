@@ -22,6 +22,127 @@
 
 #include "pg_int.h"
 
+/* Vector arithmetic (GCC/Clang vector extensions): two lanes, unaligned
+** loads (SSE2 on x86-64). Every sum below has a fixed order (eight
+** partial sums, added in a fixed order), so the results do not depend on
+** the instruction set. */
+typedef double v2d __attribute__((vector_size(16), aligned(8)));
+
+static inline v2d ld2(const double *p) {
+  v2d v;
+  memcpy(&v, p, sizeof v);
+  return v;
+}
+
+static inline double hsum4(v2d a, v2d b, v2d c, v2d d) {
+  v2d e = (a + b) + (c + d);
+  return e[0] + e[1];
+}
+
+/* (a . b, a . c) over n entries. */
+static inline __attribute__((always_inline)) void dot2_impl(const double *restrict a, const double *restrict b,
+                 const double *restrict c, int32_t n, double *ab, double *ac) {
+  v2d s0 = {0, 0}, s1 = s0, s2 = s0, s3 = s0, t0 = s0, t1 = s0, t2 = s0, t3 = s0;
+  int32_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    v2d a0 = ld2(a + i), a1 = ld2(a + i + 2), a2 = ld2(a + i + 4), a3 = ld2(a + i + 6);
+    s0 += a0 * ld2(b + i);
+    s1 += a1 * ld2(b + i + 2);
+    s2 += a2 * ld2(b + i + 4);
+    s3 += a3 * ld2(b + i + 6);
+    t0 += a0 * ld2(c + i);
+    t1 += a1 * ld2(c + i + 2);
+    t2 += a2 * ld2(c + i + 4);
+    t3 += a3 * ld2(c + i + 6);
+  }
+  double s = hsum4(s0, s1, s2, s3), t = hsum4(t0, t1, t2, t3);
+  for (; i < n; i++) {
+    s += a[i] * b[i];
+    t += a[i] * c[i];
+  }
+  *ab = s;
+  *ac = t;
+}
+
+/* x = g - sum_c gam[c] col_c (the columns in order), n entries. */
+static inline __attribute__((always_inline)) void mix_impl(double *restrict x, const double *restrict g,
+                const double *cols, size_t stride, const double *gam, int h,
+                int32_t n) {
+  int32_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    v2d x0 = ld2(g + i), x1 = ld2(g + i + 2), x2 = ld2(g + i + 4), x3 = ld2(g + i + 6);
+    for (int c = 0; c < h; c++) {
+      const double *d = cols + (size_t)c * stride + i;
+      v2d gc = {gam[c], gam[c]};
+      x0 -= gc * ld2(d);
+      x1 -= gc * ld2(d + 2);
+      x2 -= gc * ld2(d + 4);
+      x3 -= gc * ld2(d + 6);
+    }
+    memcpy(x + i, &x0, sizeof x0);
+    memcpy(x + i + 2, &x1, sizeof x1);
+    memcpy(x + i + 4, &x2, sizeof x2);
+    memcpy(x + i + 6, &x3, sizeof x3);
+  }
+  for (; i < n; i++) {
+    double t = g[i];
+    for (int c = 0; c < h; c++) t -= gam[c] * cols[(size_t)c * stride + i];
+    x[i] = t;
+  }
+}
+
+/* The same code for the widest vector unit (the same operations in the
+** same order: the same bits); isa as pg_accel.isa. */
+
+static void dot2_generic(const double *a, const double *b, const double *c,
+                         int32_t n, double *ab, double *ac) {
+  dot2_impl(a, b, c, n, ab, ac);
+}
+
+static void mix_generic(double *x, const double *g, const double *cols,
+                        size_t stride, const double *gam, int h, int32_t n) {
+  mix_impl(x, g, cols, stride, gam, h, n);
+}
+
+#if defined(__GNUC__) && defined(__x86_64__)
+__attribute__((target("avx2"))) static void dot2_avx2(const double *a, const double *b,
+                                                      const double *c, int32_t n,
+                                                      double *ab, double *ac) {
+  dot2_impl(a, b, c, n, ab, ac);
+}
+
+__attribute__((target("avx2"))) static void mix_avx2(double *x, const double *g,
+                                                     const double *cols, size_t stride,
+                                                     const double *gam, int h, int32_t n) {
+  mix_impl(x, g, cols, stride, gam, h, n);
+}
+#define HAVE_AVX2_PATH 1
+#endif
+
+static void dot2(int isa, const double *a, const double *b, const double *c,
+                 int32_t n, double *ab, double *ac) {
+  (void)isa;
+#ifdef HAVE_AVX2_PATH
+  if (isa > 0) {
+    dot2_avx2(a, b, c, n, ab, ac);
+    return;
+  }
+#endif
+  dot2_generic(a, b, c, n, ab, ac);
+}
+
+static void mix(int isa, double *x, const double *g, const double *cols,
+                size_t stride, const double *gam, int h, int32_t n) {
+  (void)isa;
+#ifdef HAVE_AVX2_PATH
+  if (isa > 0) {
+    mix_avx2(x, g, cols, stride, gam, h, n);
+    return;
+  }
+#endif
+  mix_generic(x, g, cols, stride, gam, h, n);
+}
+
 int pg_accel_init(pg_accel *a, int32_t nstate, int depth) {
   memset(a, 0, sizeof *a);
   a->depth = depth;
@@ -36,13 +157,15 @@ int pg_accel_init(pg_accel *a, int32_t nstate, int depth) {
   a->M = tds_calloc(m * m, sizeof *a->M);
   a->Ms = tds_calloc(m * m, sizeof *a->Ms);
   a->gam = tds_calloc(m, sizeof *a->gam);
+  a->sc = tds_calloc(m, sizeof *a->sc);
   if (!a->X || !a->G || !a->Fprev || !a->Gprev || !a->dF || !a->dG || !a->M ||
-      !a->Ms || !a->gam) {
+      !a->Ms || !a->gam || !a->sc) {
     pg_accel_free(a);
     return TDS_ENOMEM;
   }
   pg_accel_reset(a);
   a->cooldown = 2 * depth;
+  a->isa = pg_pass_isa(1);
   return TDS_OK;
 }
 
@@ -56,6 +179,7 @@ void pg_accel_free(pg_accel *a) {
   free(a->M);
   free(a->Ms);
   free(a->gam);
+  free(a->sc);
   memset(a, 0, sizeof *a);
 }
 
@@ -125,21 +249,10 @@ int pg_accel_mix(pg_accel *a, double lim2) {
     if (a->hist < m) a->hist++;
     /* One sweep: M[c][col] = dF_c . dF_col and gam[c] = dF_c . F. */
     for (int c = 0; c < a->hist; c++) {
-      const double *restrict dc = a->dF + (size_t)c * N;
-      double s0 = 0, s1 = 0, t0 = 0, t1 = 0;
-      int32_t i = 0;
-      for (; i + 1 < N; i += 2) {
-        s0 += dc[i] * dF[i];
-        s1 += dc[i + 1] * dF[i + 1];
-        t0 += dc[i] * Fp[i];
-        t1 += dc[i + 1] * Fp[i + 1];
-      }
-      if (i < N) {
-        s0 += dc[i] * dF[i];
-        t0 += dc[i] * Fp[i];
-      }
-      a->M[c * m + col] = a->M[col * m + c] = s0 + s1;
-      a->gam[c] = t0 + t1;
+      double mc, gc;
+      dot2(a->isa, a->dF + (size_t)c * N, dF, Fp, N, &mc, &gc);
+      a->M[c * m + col] = a->M[col * m + c] = mc;
+      a->gam[c] = gc;
     }
   } else {
     for (int32_t i = 0; i < N; i++) {
@@ -153,24 +266,27 @@ int pg_accel_mix(pg_accel *a, double lim2) {
     memcpy(X, G, (size_t)N * sizeof *X);
     return 0;
   }
-  /* gamma = argmin |F - dF gamma|: (dF^T dF + eps) gamma = dF^T F. */
-  double tr = 0;
-  for (int c = 0; c < h; c++) tr += a->M[c * m + c];
-  for (int i = 0; i < h; i++) {
-    for (int j = 0; j < h; j++) a->Ms[i * h + j] = a->M[i * m + j];
-    a->Ms[i * h + i] += 1e-12 * tr + 1e-300;
+  /* gamma = argmin |F - dF gamma|: the normal equations, with the columns
+  ** scaled to unit length (the columns' lengths span many orders of
+  ** magnitude as the run converges) and a small relative ridge. */
+  double *sc = a->sc;
+  for (int c = 0; c < h; c++) {
+    double d = a->M[c * m + c];
+    sc[c] = d > 0 ? 1 / sqrt(d) : 0;
   }
-  if (tds_dense_solve(h, a->Ms, a->gam) != 0) {
+  double rhs[64];
+  for (int i = 0; i < h; i++) {
+    for (int j = 0; j < h; j++) a->Ms[i * h + j] = a->M[i * m + j] * sc[i] * sc[j];
+    a->Ms[i * h + i] = 1 + 1e-10;
+    rhs[i] = a->gam[i] * sc[i];
+  }
+  if (tds_dense_solve(h, a->Ms, rhs) != 0) {
     restart(a);
     memcpy(X, G, (size_t)N * sizeof *X);
     return 0;
   }
-  memcpy(X, G, (size_t)N * sizeof *X);
-  for (int c = 0; c < h; c++) {
-    const double *restrict dG = a->dG + (size_t)c * N;
-    double g = a->gam[c];
-    for (int32_t i = 0; i < N; i++) X[i] -= g * dG[i];
-  }
+  for (int c = 0; c < h; c++) a->gam[c] = rhs[c] * sc[c];
+  mix(a->isa, X, G, a->dG, (size_t)N, a->gam, h, N);
   /* No vertex may jump far from its plain move. */
   for (int32_t j = 0; j + 2 < N; j += 3) {
     double dx = X[j] - G[j], dy = X[j + 1] - G[j + 1], dz = X[j + 2] - G[j + 2];

@@ -69,7 +69,8 @@ static int not_delaunay(const double *a, const double *b, const double *c,
 }
 
 /* Candidate edges and, for each, the facet sides (3f + k) of the corners
-** opposite it: the entries of w->fcot to add. */
+** opposite it: the entries of w->fcot to add (facets by their position
+** in the pass's order). */
 static void build_candidates(tds_surf *s, pgw *w) {
   tds_mesh *m = &s->m;
   w->ncand = 0;
@@ -77,8 +78,8 @@ static void build_candidates(tds_surf *s, pgw *w) {
     tds_id f1, f2;
     if (!tds_flip_ok(s, e, &f1, &f2)) continue;
     int32_t h = m->eside[e], h2 = m->side_next[h];
-    w->copp[w->ncand][0] = 3 * (h / 3) + (h % 3 + 2) % 3;
-    w->copp[w->ncand][1] = 3 * (h2 / 3) + (h2 % 3 + 2) % 3;
+    w->copp[w->ncand][0] = 3 * w->fpos[h / 3] + (h % 3 + 2) % 3;
+    w->copp[w->ncand][1] = 3 * w->fpos[h2 / 3] + (h2 % 3 + 2) % 3;
     w->cand[w->ncand++] = e;
   }
   w->cand_gen = m->topo_gen;

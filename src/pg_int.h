@@ -28,15 +28,31 @@
 enum { VK_FIXED = 0, VK_FREE, VK_LEVEL, VK_BDRY, VK_JUNCTION };
 
 /* Per-vertex sums of one pass (array of structures: one vertex's sums are
-** adjacent in memory, the facet loop scatter-adds into three of them). */
+** adjacent in memory, the facet loop adds into three of them, four
+** doubles at a time: keep the layout). */
 typedef struct pg_acc {
   double N[3];   /* sum of facet area vectors (tension facets) */
+  double A0;     /* tension-weighted star area */
   double ga[3];  /* gradient of the tension-weighted star area */
+  double area;   /* restricted Voronoi area */
   double H[6];   /* Hessian of the star area in x_v: xx yy zz xy xz yz */
   double mom[3]; /* Voronoi moment: sum area * (centroid - x_v) */
-  double area;   /* restricted Voronoi area */
-  double A0;     /* tension-weighted star area */
-} pg_acc;
+  double pad_;
+  double vg[3];  /* one-body facets: gradient of the body's volume (for
+                    the vertex's fixq entry pgw.vent) */
+  double gg[3];  /* one-body facets: gradient of gravity (into grad) */
+} pg_acc;        /* 24 doubles: three cache lines */
+_Static_assert(sizeof(pg_acc) == 24 * sizeof(double), "pg_acc: three cache lines");
+
+/* The pass's plan (pg_pass.c): the facets in processing order, split in
+** two halves by a plane (so that few vertices have facets in both), and
+** where each facet corner adds its sums. The halves may run on two
+** threads; the results do not depend on it, to the last bit. */
+typedef struct pg_half {
+  int32_t i0, i1;         /* range of pgw.forder */
+  double energy, area;
+  double *bvol;           /* per body: this half's volume sums */
+} pg_half;
 
 /* Anderson history (pg_accel.c). */
 typedef struct pg_accel {
@@ -47,7 +63,7 @@ typedef struct pg_accel {
   double *Fprev, *Gprev;  /* last residual and plain image */
   double *dF, *dG;        /* N x m columns */
   double *M;              /* m x m Gram matrix of the dF columns */
-  double *Ms, *gam;       /* scratch for the solve */
+  double *Ms, *gam, *sc;  /* scratch for the solve */
   int have_prev;
   double fbest;           /* smallest |F|^2 since the last restart */
   double fref;            /* |F|^2 at the last progress (halving) */
@@ -56,6 +72,7 @@ typedef struct pg_accel {
   int64_t cool;           /* plain steps left after a stagnation */
   int64_t cooldown;       /* length of the next such plain phase */
   int64_t restarts;       /* resets by safeguards */
+  int isa;                /* as pgw.isa: 0 generic code, 1 the widest */
 } pg_accel;
 
 /* Work arrays of one run; allocated once (pg.c). */
@@ -68,11 +85,15 @@ typedef struct pgw {
   int32_t (*bnb)[2];      /* constrained vertex: its two neighbours along
                              the film's border, or -1 */
   int32_t *mov;           /* movable vertex ids */
-  pg_acc *acc;            /* per vertex slot: sums of the pass */
-  double (*grad)[3];      /* gradient of the energies other than the
+  pg_acc *acc;            /* per vertex slot: sums of the pass (2 nv
+                             slots: nv + i holds the second half's sums
+                             at shared vertex i until they are added) */
+  double (*grad)[3];      /* (2 nv slots, as acc) gradient of the energies other than the
                              tension-weighted area (gravity, constraint
                              integrals, quantities, pressures, edges) */
-  double *fcot;           /* per facet side 3f+k: cot of the angle at k */
+  double *fcot;           /* per facet side: cot of the angle at corner k
+                             of facet forder[i] at 3 i + k (the pass
+                             writes it in its order) */
   double (*d)[3];         /* direction of the normal move (unit) */
   double (*nrm)[3];       /* unit vertex normal */
   double (*model)[3];     /* A0, A1, A2 along d */
@@ -95,6 +116,26 @@ typedef struct pgw {
   uint8_t *queued;
   uint64_t cand_gen;
   pg_accel aa;
+  /* the pass's plan (pg_pass.c); slots and entries are rebuilt when the
+  ** topology changes */
+  uint64_t plan_gen;
+  int32_t norder, *forder;/* the facets the pass visits, in order */
+  int32_t *fpos;          /* per facet: its position in forder */
+  int32_t *vent;          /* per vertex: the fixq entry its one-body
+                             facets' volume gradients go to (acc.vg), or -1 */
+  uint8_t *fmode;         /* per facet: what the pass computes */
+  int32_t (*fslot)[3];    /* per facet corner: its slot in acc and grad */
+  int32_t (*fent)[6];     /* per facet: fixq sum of side j, corner k, as
+                             2 i (fq->g[i]) or 2 i + 1 (fgbuf[i]), or -1 */
+  int32_t nshared, *shared; /* vertices with facets in both halves */
+  int32_t *sbase;         /* per shared vertex: its first fgbuf entry */
+  double (*fgbuf)[3];     /* second half's fixq sums at shared vertices */
+  uint8_t *side;          /* per vertex: scratch */
+  pg_half half[2];
+  int threads;            /* threads of the pass (1: none) */
+  int64_t threaded;       /* passes run on two threads */
+  int isa;                /* vector unit of the pass: 0 generic, 1 AVX2
+                             (pg_pass_isa); the same results either way */
 } pgw;
 
 /* Results of one pg_step. */
@@ -102,6 +143,11 @@ typedef struct pg_stepinfo {
   double r, energy, lambda0;
   int64_t clamps;
 } pg_stepinfo;
+
+/* pg.c: allocate and fill the work arrays of a run on s (depth > 0: also
+** the Anderson history), and free them. TDS_OK or TDS_ENOMEM. */
+int pg_work_init(tds_ctx *ctx, tds_surf *s, pgw *w, int depth);
+void pg_work_free(pgw *w);
 
 /* pg_pass.c: evaluate at the current positions. Fills w->acc, w->grad,
 ** w->fcot, the constrained quantities w->fq (values and gradients), body
@@ -111,6 +157,12 @@ typedef struct pg_stepinfo {
 ** terms are mirrored here, the edge and quantity terms are eval.c's own).
 ** TDS_OK or TDS_ENUM (energy not finite). */
 int pg_pass(tds_ctx *ctx, tds_surf *s, pgw *w, double *energy);
+/* The pass's plan and chunk buffers: TDS_OK or TDS_ENOMEM. */
+int pg_plan_init(tds_surf *s, pgw *w);
+void pg_plan_free(pgw *w);
+/* The pass's vector unit: want 0 for the generic code, else the widest
+** available (AVX2 on x86-64 when the processor has it). */
+int pg_pass_isa(int want);
 
 /* pg_step.c: from a pass, the move of every movable vertex (w->vel), the
 ** multipliers (w->mult) and r = max |v_i|. TDS_OK, TDS_ENUM. */

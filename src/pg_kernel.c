@@ -15,13 +15,14 @@ double tds_pg_normal_root(double A0, double A1, double A2, double c,
     if (clamped) *clamped = 1;
     return 0;
   }
-  double s0 = A0 * A1 / b;
-  double a = A0 * A0 * A0 * A2 / b;
+  double ib = 1 / b;
+  double s0 = A0 * A1 * ib;
+  double a = A0 * A0 * A0 * A2 * ib;
   if (!(a > 0)) { /* flat star: A is |sqrt(b)(s0 + t)|, A' = +-sqrt(b) */
     if (clamped) *clamped = 1;
     return 0;
   }
-  return c * sqrt(a / (b * (b - c * c))) - s0;
+  return c * sqrt(a * ib / (b - c * c)) - s0;
 }
 
 double tds_pg_vertex_normal(const tds_mesh *m, tds_id v, double n[3]) {

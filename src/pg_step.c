@@ -148,24 +148,70 @@ void pg_gauge_init(const tds_surf *s, pgw *w) {
     if (use[k]) w->rig[w->nrig++] = k;
 }
 
+/* remove_drift's sums at a free vertex (normal n, r = x - xc), written
+** out: the tangential part of translation k is e_k - n_k n, that of
+** rotation k is e_k x r - (r x n)_k n, so their products are
+**   T_k . T_l = delta_kl - n_k n_l,
+**   T_k . R_l = (e_l x r)_k - n_k (r x n)_l,
+**   R_k . R_l = delta_kl |r|^2 - r_k r_l - (r x n)_k (r x n)_l,
+** and with the move t: T_k . t = t_k - n_k (n . t),
+** R_k . t = (r x t)_k - (r x n)_k (n . t). */
+static void drift_sums_free(const pgw *w, tds_id v, const double r[3],
+                            double G[36], double b[6]) {
+  const double *n = w->nrm[v], *t = w->tan[v];
+  double rn[3], rt[3];
+  v3_cross(rn, r, n);
+  v3_cross(rt, r, t);
+  double nt = v3_dot(n, t), r2 = v3_dot(r, r);
+  /* (e_l x r)_k: e_x x r = (0, -r_z, r_y), e_y x r = (r_z, 0, -r_x),
+  ** e_z x r = (-r_y, r_x, 0) */
+  double er[3][3] = {{0, -r[2], r[1]}, {r[2], 0, -r[0]}, {-r[1], r[0], 0}};
+  for (int k = 0; k < 3; k++) {
+    b[k] += t[k] - n[k] * nt;
+    b[3 + k] += rt[k] - rn[k] * nt;
+    for (int l = k; l < 3; l++) {
+      G[6 * k + l] += (k == l) - n[k] * n[l];
+      G[6 * (3 + k) + 3 + l] += (k == l ? r2 : 0) - r[k] * r[l] - rn[k] * rn[l];
+    }
+    for (int l = 0; l < 3; l++) G[6 * k + 3 + l] += er[l][k] - n[k] * rn[l];
+  }
+}
+
 static void remove_drift(const tds_surf *s, pgw *w) {
   const tds_mesh *m = &s->m;
   int nr = w->nrig;
   if (nr == 0) return;
   double xc[3];
   centroid(s, w, xc);
-  double G[36] = {0}, b[6] = {0};
+  /* The full 6 x 6 Gram (all rigid motions) and right-hand side; the
+  ** chosen ones are picked below. */
+  double G6[36] = {0}, b6[6] = {0};
   for (int32_t j = 0; j < w->nmov; j++) {
     tds_id v = w->mov[j];
     if (w->bnb[v][0] >= 0) continue; /* on the contact line: see gauge() */
+    if (w->kind[v] == VK_FREE) {
+      double r[3];
+      v3_sub(r, m->x[v], xc);
+      drift_sums_free(w, v, r, G6, b6);
+      continue;
+    }
     double md[6][3];
-    for (int i = 0; i < nr; i++) {
-      rigid_motion(w->rig[i], xc, m->x[v], md[i]);
+    for (int i = 0; i < 6; i++) {
+      rigid_motion(i, xc, m->x[v], md[i]);
       tangent_part(w, v, md[i]);
     }
-    for (int i = 0; i < nr; i++) {
-      b[i] += v3_dot(md[i], w->tan[v]);
-      for (int l = 0; l < nr; l++) G[6 * i + l] += v3_dot(md[i], md[l]);
+    for (int i = 0; i < 6; i++) {
+      b6[i] += v3_dot(md[i], w->tan[v]);
+      for (int l = i; l < 6; l++) G6[6 * i + l] += v3_dot(md[i], md[l]);
+    }
+  }
+  double G[36], b[6];
+  for (int i = 0; i < nr; i++) {
+    int ri = w->rig[i];
+    b[i] = b6[ri];
+    for (int l = 0; l < nr; l++) {
+      int rl = w->rig[l];
+      G[6 * i + l] = ri <= rl ? G6[6 * ri + rl] : G6[6 * rl + ri];
     }
   }
   int idx[6], n = 0;
@@ -180,15 +226,22 @@ static void remove_drift(const tds_surf *s, pgw *w) {
     A[n * i + i] *= 1 + 1e-12;
   }
   if (n == 0 || tds_dense_solve(n, A, c) != 0) return;
+  /* The move to remove: u = cT + cR x r, in tangential part. */
+  double cT[3] = {0, 0, 0}, cR[3] = {0, 0, 0};
+  for (int i = 0; i < n; i++) {
+    int ri = w->rig[idx[i]];
+    if (ri < 3) cT[ri] = c[i];
+    else cR[ri - 3] = c[i];
+  }
   for (int32_t j = 0; j < w->nmov; j++) {
     tds_id v = w->mov[j];
     if (w->bnb[v][0] >= 0) continue; /* on the contact line: see gauge() */
-    for (int i = 0; i < n; i++) {
-      double md[3];
-      rigid_motion(w->rig[idx[i]], xc, m->x[v], md);
-      tangent_part(w, v, md);
-      v3_axpy(w->tan[v], -c[i], md);
-    }
+    double r[3], u[3];
+    v3_sub(r, m->x[v], xc);
+    v3_cross(u, cR, r);
+    v3_add(u, u, cT);
+    tangent_part(w, v, u);
+    v3_sub(w->tan[v], w->tan[v], u);
   }
 }
 
@@ -204,87 +257,100 @@ static void gauge(const tds_surf *s, pgw *w) {
   remove_drift(s, w);
 }
 
-/* Directions d_i and the star model along them. */
-static void directions(const tds_surf *s, pgw *w) {
-  for (int32_t j = 0; j < w->nmov; j++) {
-    tds_id v = w->mov[j];
-    const pg_acc *a = &w->acc[v];
-    double *n = w->nrm[v], *d = w->d[v];
-    double len = v3_norm(a->N);
-    if (len > 0)
-      for (int i = 0; i < 3; i++) n[i] = a->N[i] / len;
-    else
-      v3_zero(n);
-    int k = w->kind[v];
-    if (k == VK_FREE) {
-      v3_copy(d, n);
-    } else {
-      double gt[3]; /* total energy gradient */
-      v3_add(gt, a->ga, w->grad[v]);
-      if (k == VK_LEVEL || k == VK_BDRY) motion_frame(s, w, v);
-      if (k == VK_JUNCTION) v3_copy(d, gt);
-      else mat3_apply(w->P[v], n, d);
-      double dl = v3_norm(d);
-      if (k != VK_JUNCTION && !(dl > 0.05)) { /* normal nearly off the motion space */
-        mat3_apply(w->P[v], gt, d);
-        dl = v3_norm(d);
-      }
-      if (dl > 0) v3_scale(d, 1 / dl);
-      else v3_zero(d);
-    }
-    const double *H = a->H;
-    double *M = w->model[v];
-    M[0] = a->A0;
-    M[1] = v3_dot(a->ga, d);
-    M[2] = H[0] * d[0] * d[0] + H[1] * d[1] * d[1] + H[2] * d[2] * d[2] +
-           2 * (H[3] * d[0] * d[1] + H[4] * d[0] * d[2] + H[5] * d[1] * d[2]);
+/* Direction d_i and the star model along it, at vertex v. */
+static inline void direction(const tds_surf *s, pgw *w, tds_id v) {
+  const pg_acc *a = &w->acc[v];
+  double *n = w->nrm[v], *d = w->d[v];
+  double len = v3_norm(a->N);
+  if (len > 0) {
+    double il = 1 / len;
+    for (int i = 0; i < 3; i++) n[i] = a->N[i] * il;
+  } else {
+    v3_zero(n);
   }
+  int k = w->kind[v];
+  if (k == VK_FREE) {
+    v3_copy(d, n);
+  } else {
+    double gt[3]; /* total energy gradient */
+    v3_add(gt, a->ga, w->grad[v]);
+    if (k == VK_LEVEL || k == VK_BDRY) motion_frame(s, w, v);
+    if (k == VK_JUNCTION) v3_copy(d, gt);
+    else mat3_apply(w->P[v], n, d);
+    double dl = v3_norm(d);
+    if (k != VK_JUNCTION && !(dl > 0.05)) { /* normal nearly off the motion space */
+      mat3_apply(w->P[v], gt, d);
+      dl = v3_norm(d);
+    }
+    if (dl > 0) v3_scale(d, 1 / dl);
+    else v3_zero(d);
+  }
+  const double *H = a->H;
+  double *M = w->model[v];
+  M[0] = a->A0;
+  M[1] = v3_dot(a->ga, d);
+  M[2] = H[0] * d[0] * d[0] + H[1] * d[1] * d[1] + H[2] * d[2] * d[2] +
+         2 * (H[3] * d[0] * d[1] + H[4] * d[0] * d[2] + H[5] * d[1] * d[2]);
 }
 
-/* Multipliers: least squares over the normal components, then the
-** restoring motion. */
-static int multipliers(tds_ctx *ctx, const tds_surf *s, pgw *w) {
+/* Directions of every movable vertex and, with constraints, the
+** multipliers (least squares over the normal components) and the
+** coefficients of the restoring motion (a Newton step onto the targets
+** along the constraint gradients projected into the motion spaces: fixed
+** vertices contribute nothing), as tds_fixq_restore computes them; the
+** restoring motion itself is formed per vertex by pg_step. */
+static int directions_multipliers(tds_ctx *ctx, const tds_surf *s, pgw *w) {
   tds_fixq *fq = &w->fq;
   int32_t nq = fq->nq;
-  memset(w->gram, 0, (size_t)nq * (size_t)nq * sizeof *w->gram);
-  memset(w->rhs, 0, (size_t)nq * sizeof *w->rhs);
+  double *gr = fq->gram; /* restoring motion's Gram matrix */
+  if (nq) {
+    memset(w->gram, 0, (size_t)nq * (size_t)nq * sizeof *w->gram);
+    memset(gr, 0, (size_t)nq * (size_t)nq * sizeof *gr);
+    memset(w->rhs, 0, (size_t)nq * sizeof *w->rhs);
+  }
   for (int32_t j = 0; j < w->nmov; j++) {
     tds_id v = w->mov[j];
+    direction(s, w, v);
+    if (!nq) continue;
     const double *d = w->d[v];
     double gd = v3_dot(w->acc[v].ga, d) + v3_dot(w->grad[v], d);
-    for (int32_t e = fq->start[v]; e < fq->start[v + 1]; e++) {
-      double a = v3_dot(fq->g[e], d);
-      w->an[e] = a;
-      w->rhs[fq->eq[e]] += a * gd;
+    int32_t e0 = fq->start[v], e1 = fq->start[v + 1];
+    for (int32_t e = e0; e < e1; e++) {
+      double an = v3_dot(fq->g[e], d);
+      w->an[e] = an;
+      w->rhs[fq->eq[e]] += an * gd;
+      to_motion(w, v, fq->g[e]);
     }
-    for (int32_t e = fq->start[v]; e < fq->start[v + 1]; e++)
-      for (int32_t e2 = fq->start[v]; e2 < fq->start[v + 1]; e2++)
-        w->gram[fq->eq[e] * nq + fq->eq[e2]] += w->an[e] * w->an[e2];
+    for (int32_t e = e0; e < e1; e++)
+      for (int32_t e2 = e0; e2 < e1; e2++) {
+        int32_t ij = fq->eq[e] * nq + fq->eq[e2];
+        w->gram[ij] += w->an[e] * w->an[e2];
+        gr[ij] += v3_dot(fq->g[e], fq->g[e2]);
+      }
   }
+  if (!nq) return TDS_OK;
   for (int32_t q = 0; q < nq; q++)
     if (!(w->gram[q * nq + q] > 0)) w->gram[q * nq + q] = 1; /* no movable vertex */
   if (tds_dense_solve(nq, w->gram, w->rhs) != 0)
     return tds_seterr(ctx, TDS_ENUM, "volume constraints are dependent");
-  memcpy(w->mult, w->rhs, (size_t)nq * sizeof *w->mult);
-  /* Restoring motion: constraint gradients projected into the motion
-  ** spaces (fixed vertices get zero), then a Newton step onto the targets. */
-  for (tds_id v = 0; v < s->m.nv; v++)
-    for (int32_t e = fq->start[v]; e < fq->start[v + 1]; e++)
-      to_motion(w, v, fq->g[e]);
-  return tds_fixq_restore(ctx, fq, s->m.nv, w->rest);
+  for (int32_t q = 0; q < nq; q++) w->mult[q] = w->rhs[q];
+  double *mu = fq->mult;
+  for (int32_t q = 0; q < nq; q++) mu[q] = fq->target[q] - fq->value[q];
+  if (tds_dense_solve(nq, gr, mu) != 0)
+    return tds_seterr(ctx, TDS_ENUM,
+                      "volume constraints are dependent (singular Gram "
+                      "matrix): a body without free vertices, or redundant targets");
+  return TDS_OK;
 }
 
 int pg_step(tds_ctx *ctx, tds_surf *s, pgw *w, double sfac, pg_stepinfo *si) {
   tds_mesh *m = &s->m;
   tds_fixq *fq = &w->fq;
   int32_t nq = fq->nq;
-  directions(s, w);
-  si->lambda0 = 0;
-  if (nq) {
-    int rc = multipliers(ctx, s, w);
-    if (rc != TDS_OK) return rc;
-    si->lambda0 = -w->mult[0];
-  }
+  int rc = directions_multipliers(ctx, s, w);
+  if (rc != TDS_OK) return rc;
+  si->lambda0 = nq ? -w->mult[0] : 0;
+  const double *mu = fq->mult;
   double r = 0;
   int64_t clamps = 0;
   for (int32_t j = 0; j < w->nmov; j++) {
@@ -293,25 +359,29 @@ int pg_step(tds_ctx *ctx, tds_surf *s, pgw *w, double sfac, pg_stepinfo *si) {
     /* c = A1 - (grad E - sum mu grad Q) . d; the tension-weighted area's
     ** part of grad E . d is A1 itself, so only the other terms remain. */
     double c = -v3_dot(w->grad[v], d);
+    double *rest = w->rest[v];
+    v3_zero(rest);
     if (nq)
-      for (int32_t e = fq->start[v]; e < fq->start[v + 1]; e++)
+      for (int32_t e = fq->start[v]; e < fq->start[v + 1]; e++) {
         c += w->mult[fq->eq[e]] * w->an[e];
+        v3_axpy(rest, mu[fq->eq[e]], fq->g[e]);
+      }
     int cl;
     double t = tds_pg_normal_root(M[0], M[1], M[2], c, &cl);
-    double lim = 0.5 * sqrt(M[0]);
-    if (fabs(t) > lim) {
+    if (t * t > 0.25 * M[0]) { /* |t| above half the root of the star's area */
+      double lim = 0.5 * sqrt(M[0]);
       t = t > 0 ? lim : -lim;
       cl = 1;
     }
     clamps += cl;
     double *vel = w->vel[v];
-    for (int i = 0; i < 3; i++) vel[i] = t * d[i];
-    if (nq) v3_add(vel, vel, w->rest[v]);
+    for (int i = 0; i < 3; i++) vel[i] = t * d[i] + rest[i];
     int k = w->kind[v];
     const pg_acc *a = &w->acc[v];
+    double *tan = w->tan[v];
     if (k != VK_JUNCTION && a->area > 0) {
-      double u[3];
-      for (int i = 0; i < 3; i++) u[i] = a->mom[i] / a->area;
+      double u[3], ia = 1 / a->area;
+      for (int i = 0; i < 3; i++) u[i] = a->mom[i] * ia;
       if (k != VK_FREE && w->bnb[v][0] >= 0) {
         /* On the film's border (a contact line): the centroid of the 1-D
         ** Voronoi cell along the border, (x_prev + 2 x + x_next) / 4. */
@@ -324,18 +394,25 @@ int pg_step(tds_ctx *ctx, tds_surf *s, pgw *w, double sfac, pg_stepinfo *si) {
         mat3_apply(w->P[v], u, u);
         v3_axpy(u, -v3_dot(u, d), d);
       }
-      for (int i = 0; i < 3; i++) w->tan[v][i] = sfac * u[i];
+      for (int i = 0; i < 3; i++) tan[i] = sfac * u[i];
     } else {
-      v3_zero(w->tan[v]);
+      v3_zero(tan);
+    }
+    if (!w->nrig) {
+      v3_add(vel, vel, tan);
+      double vl = v3_dot(vel, vel);
+      if (vl > r) r = vl;
     }
   }
-  if (w->nrig) gauge(s, w);
-  for (int32_t j = 0; j < w->nmov; j++) {
-    tds_id v = w->mov[j];
-    double *vel = w->vel[v];
-    v3_add(vel, vel, w->tan[v]);
-    double vl = v3_dot(vel, vel);
-    if (vl > r) r = vl;
+  if (w->nrig) {
+    gauge(s, w);
+    for (int32_t j = 0; j < w->nmov; j++) {
+      tds_id v = w->mov[j];
+      double *vel = w->vel[v];
+      v3_add(vel, vel, w->tan[v]);
+      double vl = v3_dot(vel, vel);
+      if (vl > r) r = vl;
+    }
   }
   si->r = sqrt(r);
   si->clamps = clamps;

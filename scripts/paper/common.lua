@@ -15,6 +15,9 @@
 --   PAPER_DUMP=file      instead of running pg, load the mesh Evolver
 --                        printed into `file` and measure it
 --   PAPER_PLAIN=1        run plain pg (no acceleration)
+--   PAPER_S, PAPER_DEPTH pg's s and depth (defaults: pg's)
+--   PAPER_ANALYSE=1      also print where the curvature error sits
+--                        (C.breakdown)
 -- and prints the metrics and one machine-readable line starting RESULT.
 require("pg")
 local C = {}
@@ -115,6 +118,55 @@ local function fmt(x)
   return ("%.6g"):format(x)
 end
 
+-- Where the curvature error c (curvature{}) sits: its RMS by the
+-- vertices' valence and by their distance in edges from the border
+-- (fixed vertices and vertices on constraints), with each group's share
+-- of the sum of squares.
+function C.breakdown(c)
+  local nb, dist, queue = {}, {}, {}
+  for e in edges() do
+    local a, b = e.tail.id, e.head.id
+    nb[a] = nb[a] or {}; nb[b] = nb[b] or {}
+    nb[a][#nb[a] + 1] = b; nb[b][#nb[b] + 1] = a
+  end
+  for vv in vertices() do
+    if vv.fixed or next(vv.constraints or {}) then
+      dist[vv.id] = 0; queue[#queue + 1] = vv.id
+    end
+  end
+  local head = 1
+  while head <= #queue do
+    local a = queue[head]; head = head + 1
+    for _, b in ipairs(nb[a] or {}) do
+      if not dist[b] then dist[b] = dist[a] + 1; queue[#queue + 1] = b end
+    end
+  end
+  local groups, total = {}, 0
+  local function add(key, e)
+    local g = groups[key] or { n = 0, s = 0 }
+    groups[key] = g
+    g.n = g.n + 1; g.s = g.s + e * e
+  end
+  for vv in vertices() do
+    local e = c.errors[vv.id]
+    if e then
+      local d = dist[vv.id] or 99
+      add(("valence %d"):format(vv.valence), e)
+      add(d <= 3 and ("ring %d"):format(d) or "ring 4+", e)
+      total = total + e * e
+    end
+  end
+  local keys = {}
+  for k in pairs(groups) do keys[#keys + 1] = k end
+  table.sort(keys)
+  print("curvature error by group (ring: edges from the border):")
+  for _, k in ipairs(keys) do
+    local g = groups[k]
+    print(("  %-10s %5d vertices  rms %.3e  share %5.1f%%"):format(k, g.n,
+      math.sqrt(g.s / g.n), total > 0 and 100 * g.s / total or 0))
+  end
+end
+
 function C.run(exp)
   if exp.model then exp.model() end
   local dump = env("PAPER_DUMP")
@@ -151,7 +203,7 @@ function C.run(exp)
   else
     print("input:")
     quality()
-    res = pg{ plain = env("PAPER_PLAIN") ~= nil, every = tonumber(env("PAPER_EVERY") or 500), depth = tonumber(env("PAPER_DEPTH") or "") }
+    res = pg{ plain = env("PAPER_PLAIN") ~= nil, every = tonumber(env("PAPER_EVERY") or 500), depth = tonumber(env("PAPER_DEPTH") or ""), s = tonumber(env("PAPER_S") or "") }
   end
   print("result:")
   local q = quality()
@@ -160,6 +212,8 @@ function C.run(exp)
   local h = mean_edge()
   local spvi = (res.iterations > 0 and res.vertices > 0)
                and res.seconds / (res.iterations * res.vertices) or 0
+  local cpvi = (res.cpu_seconds and res.iterations > 0 and res.vertices > 0)
+               and res.cpu_seconds / (res.iterations * res.vertices) or nil
   local out = {
     ("RESULT %s %s"):format(exp.name, label),
     "mean=" .. fmt(q.mean), "min=" .. fmt(q.min), "above50=" .. fmt(q.above50),
@@ -167,10 +221,12 @@ function C.run(exp)
     "r=" .. fmt(res.r), "rrel=" .. fmt(h > 0 and res.r / h or 0),
     "iters=" .. fmt(res.iterations), "secs=" .. fmt(res.seconds),
     "spvi=" .. fmt(spvi), "nv=" .. fmt(res.vertices),
+    "cpvi=" .. (cpvi and fmt(cpvi) or "-"),
     "energy=" .. fmt(total_energy),
   }
   if res.reached then out[#out + 1] = "reached=" .. fmt(res.reached) end
   print(table.concat(out, " "))
+  if env("PAPER_ANALYSE") then C.breakdown(c) end
   return res, q, c
 end
 

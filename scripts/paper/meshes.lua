@@ -195,6 +195,48 @@ function M.cap_map(R, thmax, zc)
   end
 end
 
+-- An irregular spherical cap: the cap of the unit sphere around (0, 0, 1)
+-- of polar angle thmax, with nrim vertices on its rim (first; at polar
+-- angle exactly thmax) and nint points sampled uniformly at random on the
+-- cap's area (seeded), at least o.gap (default 0.3) times the mean
+-- spacing from each other and from the rim. Triangulated by Delaunay in
+-- the stereographic image from (0, 0, -1), which is conformal: the
+-- triangles are the sphere's own Delaunay triangles (the same idea as
+-- M.random_cylinder). Returns { vertices, facets } on the unit sphere,
+-- facets counter-clockwise seen from outside; the caller scales, moves
+-- and fixes the rim.
+function M.random_cap(thmax, nrim, nint, o)
+  o = o or {}
+  local rng = M.rng(o.seed or 2016)
+  local k = 1 - cos(thmax)
+  local h = sqrt(2 * pi * k / (nint * sqrt(3) / 2))
+  local gap = (o.gap or 0.3) * h
+  local V = {}
+  for i = 1, nrim do
+    local phi = 2 * pi * (i - 1) / nrim
+    V[i] = { sin(thmax) * cos(phi), sin(thmax) * sin(phi), cos(thmax) }
+  end
+  local function near(x, y, z)
+    for _, q in ipairs(V) do
+      if (q[1] - x)^2 + (q[2] - y)^2 + (q[3] - z)^2 < gap * gap then return true end
+    end
+    return false
+  end
+  local n = 0
+  while n < nint do
+    local c = 1 - rng() * k -- uniform in area: cos(theta) uniform
+    local s, phi = sqrt(1 - c * c), 2 * pi * rng()
+    local x, y, z = s * cos(phi), s * sin(phi), c
+    if math.acos(c) < thmax - 0.3 * h and not near(x, y, z) then
+      n = n + 1
+      V[#V + 1] = { x, y, z }
+    end
+  end
+  local pts = {}
+  for i, p in ipairs(V) do pts[i] = { p[1] / (1 + p[3]), p[2] / (1 + p[3]) } end
+  return { vertices = V, facets = M.delaunay(pts) }
+end
+
 -- Staggered cylinder of radius 1 between z0 and z1 with n vertices per ring
 -- and rows intervals; the two end rings are fixed. Facets face outwards.
 function M.cylinder(n, rows, z0, z1, o)
@@ -286,8 +328,10 @@ function M.random_cylinder(n, nint, z0, z1, o)
 end
 
 -- The surface of the cube [-1,1]^3 with a hole of radius rho in each face
--- (the circles fixed), interior points pulled towards the centre.
-function M.schwarz_p(rho, h, shrink)
+-- (the circles fixed), interior points pulled towards the centre. The
+-- circles have o.nc vertices (default: spacing h).
+function M.schwarz_p(rho, h, shrink, o)
+  o = o or {}
   local rng = M.rng(777)
   local faces = { -- normal, a, b with a x b = normal
     { {1,0,0}, {0,1,0}, {0,0,1} }, { {-1,0,0}, {0,0,1}, {0,1,0} },
@@ -302,7 +346,7 @@ function M.schwarz_p(rho, h, shrink)
     end
     return index[key]
   end
-  local nc = math.floor(2 * pi * rho / h + 0.5)
+  local nc = o.nc or math.floor(2 * pi * rho / h + 0.5)
   local ns = math.floor(2 / h + 0.5)
   for _, fa in ipairs(faces) do
     local pts, kind = {}, {}
