@@ -68,6 +68,23 @@ static int vector_field(lua_State *L, tds_state *st, int t, const char *key,
   return 1;
 }
 
+/* The energy and content integrands of a constraint or boundary table at
+** index 2; on error both are freed and nil, msg pushed. */
+static int integrands(lua_State *L, tds_state *st, tds_expr *energy[3],
+                      tds_expr *content[3], const char *what) {
+  if (!vector_field(L, st, 2, "energy", energy, what)) return 0;
+  if (vector_field(L, st, 2, "content", content, what)) return 1;
+  free3(energy);
+  return 0;
+}
+
+/* Push nil and the core's message (the prelude raises it). */
+static int core_failed(lua_State *L, tds_state *st) {
+  lua_pushnil(L);
+  lua_pushstring(L, st->ctx.errmsg);
+  return 2;
+}
+
 static int flag(lua_State *L, int t, const char *k) {
   lua_getfield(L, t, k);
   int b = lua_toboolean(L, -1);
@@ -85,13 +102,8 @@ static int l_constraint(lua_State *L) {
   snprintf(what, sizeof what, "constraint %d", (int)n);
   tds_expr *formula, *energy[3], *content[3];
   if (!compile_field(L, st, 2, "formula", TDS_EXPR_FORMULA, &formula, what)) return 2;
-  if (!vector_field(L, st, 2, "energy", energy, what)) {
+  if (!integrands(L, st, energy, content, what)) {
     tds_expr_free(formula);
-    return 2;
-  }
-  if (!vector_field(L, st, 2, "content", content, what)) {
-    tds_expr_free(formula);
-    free3(energy);
     return 2;
   }
   int flags = (flag(L, 2, "nonnegative") ? TDS_CON_NONNEG : 0) |
@@ -99,11 +111,8 @@ static int l_constraint(lua_State *L) {
               (flag(L, 2, "convex") ? TDS_CON_CONVEX : 0) |
               (flag(L, 2, "global") ? TDS_CON_GLOBAL : 0);
   if (tds_model_constraint(&st->ctx, &st->s, (int)n, flags, formula, energy,
-                           content) != TDS_OK) {
-    lua_pushnil(L);
-    lua_pushstring(L, st->ctx.errmsg);
-    return 2;
-  }
+                           content) != TDS_OK)
+    return core_failed(L, st);
   lua_pushboolean(L, 1);
   return 1;
 }
@@ -126,29 +135,24 @@ static int l_boundary(lua_State *L) {
       free3(x);
       return 2;
     }
-  if (!vector_field(L, st, 2, "energy", energy, what)) {
+  if (!integrands(L, st, energy, content, what)) {
     free3(x);
-    return 2;
-  }
-  if (!vector_field(L, st, 2, "content", content, what)) {
-    free3(x);
-    free3(energy);
     return 2;
   }
   int flags = flag(L, 2, "convex") ? TDS_CON_CONVEX : 0;
   if (tds_model_boundary(&st->ctx, &st->s, (int)n, (int)np, flags, x, energy,
-                         content) != TDS_OK) {
-    lua_pushnil(L);
-    lua_pushstring(L, st->ctx.errmsg);
-    return 2;
-  }
+                         content) != TDS_OK)
+    return core_failed(L, st);
   lua_pushboolean(L, 1);
   return 1;
 }
 
 /* One method instance from the table at t: { method =, modulus =,
-** vector_integrand = {...} | scalar_integrand = "..." }. */
-static int add_method(lua_State *L, tds_state *st, int t, int qi, const char *what) {
+** vector_integrand = {...} | scalar_integrand = "..." }. With own_modulus
+** 0 (the method given inline in the quantity's table) the table's modulus
+** is the quantity's, and the instance's is 1. */
+static int add_method(lua_State *L, tds_state *st, int t, int qi,
+                      const char *what, int own_modulus) {
   lua_getfield(L, t, "method");
   const char *name = lua_tostring(L, -1);
   int method = name ? tds_method_by_name(name) : -1;
@@ -158,9 +162,12 @@ static int add_method(lua_State *L, tds_state *st, int t, int qi, const char *wh
     lua_pushfstring(L, "%s: unknown or missing method", what);
     return 0;
   }
-  lua_getfield(L, t, "modulus");
-  double mod = lua_isnil(L, -1) ? 1 : lua_tonumber(L, -1);
-  lua_pop(L, 1);
+  double mod = 1;
+  if (own_modulus) {
+    lua_getfield(L, t, "modulus");
+    if (!lua_isnil(L, -1)) mod = lua_tonumber(L, -1);
+    lua_pop(L, 1);
+  }
   tds_expr *ig[3];
   if (!vector_field(L, st, t, "vector_integrand", ig, what)) return 0;
   if (!ig[0] && !ig[1] && !ig[2] &&
@@ -206,17 +213,14 @@ static int l_quantity(lua_State *L) {
   double mod = lua_isnil(L, -1) ? 1 : lua_tonumber(L, -1);
   lua_pop(L, 1);
   int qi;
-  if (tds_model_quantity(&st->ctx, &st->s, name, kind, mod, target, &qi) != TDS_OK) {
-    lua_pushnil(L);
-    lua_pushstring(L, st->ctx.errmsg);
-    return 2;
-  }
+  if (tds_model_quantity(&st->ctx, &st->s, name, kind, mod, target, &qi) != TDS_OK)
+    return core_failed(L, st);
   lua_getfield(L, 1, "methods");
   if (lua_istable(L, -1)) {
     int ms = lua_gettop(L);
     for (lua_Integer i = 1; i <= luaL_len(L, ms); i++) {
       lua_rawgeti(L, ms, i);
-      if (!lua_istable(L, -1) || !add_method(L, st, lua_gettop(L), qi, what)) {
+      if (!lua_istable(L, -1) || !add_method(L, st, lua_gettop(L), qi, what, 1)) {
         if (lua_istable(L, -1)) return 2;
         lua_pushnil(L);
         lua_pushfstring(L, "%s: methods must be a list of tables", what);
@@ -224,7 +228,7 @@ static int l_quantity(lua_State *L) {
       }
       lua_pop(L, 1);
     }
-  } else if (!add_method(L, st, 1, qi, what)) {
+  } else if (!add_method(L, st, 1, qi, what, 0)) {
     return 2;
   }
   lua_pushboolean(L, 1);
