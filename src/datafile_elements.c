@@ -146,23 +146,6 @@ static int push_oe(df *d, const char *at, int32_t v) {
   return TDS_OK;
 }
 
-/* Make room for slot id of `kind`, growing geometrically. (Workaround:
-** tds_mesh_claim reserves exactly id + 1 slots, so claiming ids one by one
-** would reallocate every column each time.) */
-static int room_for(df *d, int kind, tds_id id) {
-  const tds_mesh *m = &d->s->m;
-  int32_t cap = kind == TDS_VERTEX ? m->capv : kind == TDS_EDGE ? m->cape
-              : kind == TDS_FACET ? m->capf : m->capb;
-  if (id < cap) return TDS_OK;
-  int64_t want = (int64_t)cap + cap / 2;
-  if (want < id + 1) want = (int64_t)id + 1;
-  if (want < 64) want = 64;
-  if (want > d->maxid) want = d->maxid;
-  if (tds_mesh_reserve(&d->s->m, kind, (int32_t)want) != TDS_OK)
-    return df_err(d, NULL, TDS_ENOMEM, "out of memory");
-  return TDS_OK;
-}
-
 /* ---- the four kinds of lines ---- */
 
 static int vertex_line(df *d) {
@@ -217,7 +200,6 @@ static int vertex_line(df *d) {
     for (int k = 0; k < 3; k++) x[k] = val[k];
   }
   int line = df_line_of(d, NULL);
-  if ((rc = room_for(d, TDS_VERTEX, id))) return rc;
   rc = tds_decl_vertex(d->ctx, d->s, id, x, bd, p, flags, con);
   return rc ? df_core(d, line, rc, NULL) : TDS_OK;
 }
@@ -270,10 +252,35 @@ static int edge_line(df *d) {
   if (rc) return rc;
   if (rev) flags |= TDS_CONREV;
   int line = df_line_of(d, NULL);
-  if ((rc = room_for(d, TDS_EDGE, id))) return rc;
   rc = tds_decl_edge(d->ctx, d->s, id, (tds_id)ends[0] - 1, (tds_id)ends[1] - 1, flags,
                      con, bd, ten, color);
   return rc ? df_core(d, line, rc, NULL) : TDS_OK;
+}
+
+/* The signed ids after an element's id (a face's edges, a body's faces),
+** pushed onto d->oe as oriented references (faces) or signed 1-based ids
+** (bodies); each must name a live element. *n gets their number. */
+static int id_list(df *d, int kind, const char *what, int *n) {
+  const tds_mesh *m = &d->s->m;
+  *n = 0;
+  while (df_looks_int(d)) {
+    int64_t v;
+    const char *a = d->p;
+    int rc = df_read_int(d, 1, what, &v);
+    if (rc) return rc;
+    int64_t av = v < 0 ? -v : v;
+    int ok = kind == TDS_EDGE
+                 ? av <= m->ne && tds_alive(m->eflags, (tds_id)(av - 1))
+                 : av <= m->nf && tds_alive(m->fflags, (tds_id)(av - 1)) &&
+                       m->forig[av - 1] == (tds_id)(av - 1);
+    if (v == 0 || !ok)
+      return df_err(d, a, TDS_ERANGE, "%s refers to %s %lld, which does not exist", what,
+                    kind == TDS_EDGE ? "edge" : "face", (long long)av);
+    rc = push_oe(d, a, kind == TDS_EDGE ? TDS_OREF((tds_id)(av - 1), v < 0) : (int32_t)v);
+    if (rc) return rc;
+    (*n)++;
+  }
+  return TDS_OK;
 }
 
 static int face_line(df *d) {
@@ -282,18 +289,8 @@ static int face_line(df *d) {
   int rc = element_id(d, "face", &id, what, sizeof what);
   if (rc) return rc;
   int32_t off = d->noe;
-  int n = 0;
-  while (df_looks_int(d)) {
-    int64_t e;
-    const char *a = d->p;
-    if ((rc = df_read_int(d, 1, what, &e))) return rc;
-    int64_t ae = e < 0 ? -e : e;
-    if (e == 0 || ae > d->s->m.ne || !tds_alive(d->s->m.eflags, (tds_id)(ae - 1)))
-      return df_err(d, a, TDS_ERANGE, "%s refers to edge %lld, which does not exist", what,
-                    (long long)ae);
-    if ((rc = push_oe(d, a, TDS_OREF((tds_id)(ae - 1), e < 0)))) return rc;
-    n++;
-  }
+  int n;
+  if ((rc = id_list(d, TDS_EDGE, what, &n))) return rc;
   tds_face_attr fa = {0};
   fa.tension = 1;
   const char *at;
@@ -374,19 +371,8 @@ static int body_line(df *d) {
   int rc = element_id(d, "body", &id, what, sizeof what);
   if (rc) return rc;
   int32_t off = d->noe;
-  int n = 0;
-  while (df_looks_int(d)) {
-    int64_t f;
-    const char *a = d->p;
-    if ((rc = df_read_int(d, 1, what, &f))) return rc;
-    int64_t af = f < 0 ? -f : f;
-    if (f == 0 || af > d->s->m.nf || !tds_alive(d->s->m.fflags, (tds_id)(af - 1)) ||
-        d->s->m.forig[af - 1] != (tds_id)(af - 1))
-      return df_err(d, a, TDS_ERANGE, "%s refers to face %lld, which does not exist", what,
-                    (long long)af);
-    if ((rc = push_oe(d, a, (int32_t)f))) return rc;
-    n++;
-  }
+  int n;
+  if ((rc = id_list(d, TDS_FACET, what, &n))) return rc;
   double val[B_N] = {0};
   int has[B_N] = {0};
   const char *at;
@@ -409,7 +395,6 @@ static int body_line(df *d) {
   if (has[B_VOLUME] && has[B_PRESSURE])
     return df_err(d, NULL, TDS_ESYNTAX, "%s: give either VOLUME or PRESSURE, not both", what);
   int line = df_line_of(d, NULL);
-  if ((rc = room_for(d, TDS_BODY, id))) return rc;
   rc = tds_decl_body(d->ctx, d->s, id, n, d->oe + off);
   d->noe = off;
   if (rc) return df_core(d, line, rc, NULL);

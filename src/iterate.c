@@ -298,7 +298,9 @@ int tds_iterate(tds_ctx *ctx, tds_surf *s, int n) {
     }
   }
   work_free(&w);
-  tds_surf_update(ctx, s);
+  /* After a step, energy, area and volumes are those of its last trial,
+  ** which is where the vertices are; otherwise compute them. */
+  if (rc != TDS_OK || n == 0) tds_surf_update(ctx, s);
   return rc;
 }
 

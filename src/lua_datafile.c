@@ -30,7 +30,7 @@ static int raise_msg(lua_State *L, const char *msg) {
 
 static int surface_in_use(const tds_state *st) {
   const tds_surf *s = &st->s;
-  if (st->loaded || s->m.nv || s->m.ne || s->m.nf || s->m.nb || s->npar ||
+  if (s->m.nv || s->m.ne || s->m.nf || s->m.nb || s->npar ||
       s->nbdry || s->nquant)
     return 1;
   for (int c = 0; c < TDS_MAX_CON; c++)
@@ -44,7 +44,6 @@ static void load(lua_State *L, tds_state *st, const char *path) {
                "to load a datafile", path);
   int rc = tds_datafile_load(&st->ctx, &st->s, path);
   if (rc != TDS_OK) raise_msg(L, st->ctx.errmsg);
-  st->loaded = 1;
   char *copy = strdup(path);
   if (copy) {
     free(st->datafile);

@@ -2,7 +2,6 @@
 ** bodies{}. Each takes (id, entry) where entry is the user's table, and
 ** returns the new handle, or nil and a message (the prelude raises it at
 ** the user's line). */
-#include <stdarg.h>
 #include <string.h>
 
 #include "lua_tds.h"
@@ -39,20 +38,10 @@ static int bad_keys(lua_State *L, int t, const char *what, int id,
   return 0;
 }
 
-static int fail(lua_State *L, const char *fmt, ...) {
-  va_list ap;
-  va_start(ap, fmt);
-  lua_pushnil(L);
-  lua_pushvfstring(L, fmt, ap);
-  va_end(ap);
-  return 2;
-}
+#define fail tds_lua_nilmsg
 
 static int flag(lua_State *L, int t, const char *k) {
-  lua_getfield(L, t, k);
-  int b = lua_toboolean(L, -1);
-  lua_pop(L, 1);
-  return b;
+  return tds_lua_field_bool(L, t, k, 0);
 }
 
 /* Constraint list from entry field `constraint` or `constraints`;
@@ -145,7 +134,6 @@ static int l_decl_vertex(lua_State *L) {
   uint32_t flags = (flag(L, 2, "fixed") ? TDS_FIXED : 0) | (flag(L, 2, "bare") ? TDS_BARE : 0);
   int rc = tds_decl_vertex(&st->ctx, &st->s, id - 1, x, bd, p, flags, con);
   if (rc != TDS_OK) return fail(L, "%s", st->ctx.errmsg);
-  st->loaded = 1;
   tds_push_elem(L, TDS_VERTEX, id - 1);
   return 1;
 }

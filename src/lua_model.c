@@ -80,16 +80,11 @@ static int integrands(lua_State *L, tds_state *st, tds_expr *energy[3],
 
 /* Push nil and the core's message (the prelude raises it). */
 static int core_failed(lua_State *L, tds_state *st) {
-  lua_pushnil(L);
-  lua_pushstring(L, st->ctx.errmsg);
-  return 2;
+  return tds_lua_nilmsg(L, "%s", st->ctx.errmsg);
 }
 
 static int flag(lua_State *L, int t, const char *k) {
-  lua_getfield(L, t, k);
-  int b = lua_toboolean(L, -1);
-  lua_pop(L, 1);
-  return b;
+  return tds_lua_field_bool(L, t, k, 0);
 }
 
 /* tds.constraint(n, { formula =, energy =, content =, nonnegative =,

@@ -42,12 +42,7 @@ static double opt_num(lua_State *L, int t, const char *k, double d) {
   return v;
 }
 
-static int opt_bool(lua_State *L, int t, const char *k, int d) {
-  lua_getfield(L, t, k);
-  int v = lua_isnil(L, -1) ? d : lua_toboolean(L, -1);
-  lua_pop(L, 1);
-  return v;
-}
+#define opt_bool tds_lua_field_bool
 
 static void setnum(lua_State *L, const char *k, double v) {
   lua_pushnumber(L, v);

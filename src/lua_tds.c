@@ -3,6 +3,7 @@
 
 #include <lualib.h>
 #include <signal.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -28,6 +29,22 @@ int tds_lua_fail(lua_State *L, tds_state *st, int rc) {
   lua_pushstring(L, st->ctx.errmsg);
   lua_concat(L, 2);
   return lua_error(L);
+}
+
+int tds_lua_field_bool(lua_State *L, int t, const char *k, int dflt) {
+  lua_getfield(L, t, k);
+  int v = lua_isnil(L, -1) ? dflt : lua_toboolean(L, -1);
+  lua_pop(L, 1);
+  return v;
+}
+
+int tds_lua_nilmsg(lua_State *L, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  lua_pushnil(L);
+  lua_pushvfstring(L, fmt, ap);
+  va_end(ap);
+  return 2;
 }
 
 void tds_lua_register(lua_State *L, tds_state *st, const luaL_Reg *fns) {

@@ -17,7 +17,6 @@
 typedef struct tds_state {
   tds_ctx ctx;
   tds_surf s;
-  int loaded;        /* a surface has been declared or loaded */
   char *datafile;    /* name of the loaded file, for messages and dumps */
 } tds_state;
 
@@ -30,6 +29,13 @@ int tds_lua_fail(lua_State *L, tds_state *st, int rc);
 ** Returns the state (owned by L) or NULL with an error message on the
 ** stack. */
 tds_state *tds_lua_open(lua_State *L);
+
+/* Field k of the table at index t as a boolean, dflt when absent. */
+int tds_lua_field_bool(lua_State *L, int t, const char *k, int dflt);
+
+/* Push nil and a formatted message; returns 2 (the `nil, msg` convention
+** of primitives whose errors the prelude raises at the user's line). */
+int tds_lua_nilmsg(lua_State *L, const char *fmt, ...);
 
 /* Register functions with the state as upvalue into the table on top. */
 void tds_lua_register(lua_State *L, tds_state *st, const luaL_Reg *fns);

@@ -28,7 +28,6 @@ enum {                      /* element flags (any kind) */
   TDS_TARGET = 1u << 5,     /* body volume is constrained to btarget */
   TDS_PRESSURE = 1u << 6,   /* body has a prescribed pressure */
   TDS_NONCONTENT = 1u << 7, /* facet or edge excluded from volumes */
-  TDS_HIT = 1u << 8,        /* vertex: a one-sided constraint is active */
   TDS_VOLCONST = 1u << 9,   /* body has an explicit volconst */
   TDS_CONREV = 1u << 10     /* edge: constraint integrals run reversed */
 };

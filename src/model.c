@@ -84,6 +84,18 @@ static int facet_points(tds_expr *const e[3]) {
   return d < 0 || d > 2 ? 12 : d == 2 ? 3 : 1;
 }
 
+/* Replace a constraint's or boundary's integrands (taking ownership) and
+** choose their quadrature. */
+static void set_integrands(tds_expr *e[3], tds_expr *c[3], int npts[2],
+                          tds_expr *energy[3], tds_expr *content[3]) {
+  free3(e);
+  free3(c);
+  take3(e, energy);
+  take3(c, content);
+  npts[0] = edge_points(e);
+  npts[1] = edge_points(c);
+}
+
 int tds_model_constraint(tds_ctx *ctx, tds_surf *s, int number, int flags,
                          tds_expr *formula, tds_expr *energy[3],
                          tds_expr *content[3]) {
@@ -103,15 +115,10 @@ int tds_model_constraint(tds_ctx *ctx, tds_surf *s, int number, int flags,
   }
   tds_constraint *c = &s->con[slot];
   tds_expr_free(c->formula);
-  free3(c->energy);
-  free3(c->content);
   c->number = number;
   c->flags = flags;
   c->formula = formula;
-  take3(c->energy, energy);
-  take3(c->content, content);
-  c->npts[0] = edge_points(c->energy);
-  c->npts[1] = edge_points(c->content);
+  set_integrands(c->energy, c->content, c->npts, energy, content);
   return TDS_OK;
 }
 
@@ -127,38 +134,29 @@ int tds_model_boundary(tds_ctx *ctx, tds_surf *s, int number, int nparams,
   int bad = number < 1 || nparams < 1 || nparams > 2;
   for (int i = 0; i < 3; i++) bad |= !x[i];
   int slot = tds_model_boundary_slot(s, number);
-  if (!bad && slot < 0) {
-    tds_boundary *nb = realloc(s->bdry, (size_t)(s->nbdry + 1) * sizeof *nb);
-    if (!nb) {
-      free3(x);
-      free3(energy);
-      free3(content);
-      return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
-    }
-    s->bdry = nb;
-    slot = s->nbdry++;
-    memset(&s->bdry[slot], 0, sizeof s->bdry[slot]);
-  }
-  if (bad) {
+  tds_boundary *nb = NULL;
+  if (!bad && slot < 0) nb = realloc(s->bdry, (size_t)(s->nbdry + 1) * sizeof *nb);
+  if (bad || (slot < 0 && !nb)) {
     free3(x);
     free3(energy);
     free3(content);
+    if (!bad) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
     return tds_seterr(ctx, TDS_ERANGE,
                       "boundary %d: needs a positive number, 1 or 2 parameters "
                       "and x, y and z formulas", number);
   }
+  if (slot < 0) {
+    s->bdry = nb;
+    slot = s->nbdry++;
+    memset(&s->bdry[slot], 0, sizeof s->bdry[slot]);
+  }
   tds_boundary *b = &s->bdry[slot];
   free3(b->x);
-  free3(b->energy);
-  free3(b->content);
   b->number = number;
   b->nparams = nparams;
   b->flags = flags;
   for (int i = 0; i < 3; i++) b->x[i] = x[i]; /* positions stay, even 0 */
-  take3(b->energy, energy);
-  take3(b->content, content);
-  b->npts[0] = edge_points(b->energy);
-  b->npts[1] = edge_points(b->content);
+  set_integrands(b->energy, b->content, b->npts, energy, content);
   return TDS_OK;
 }
 

@@ -14,7 +14,6 @@ void tds_surf_init(tds_surf *s) {
   s->gravity = 1;            /* Evolver's default G; off until a density */
   s->gap_constant = 1;
   s->constraint_tol = 1e-12;
-  s->target_tol = 1e-4;
   s->scale = 0.1;
   s->scale_limit = 1;
 }

@@ -86,7 +86,6 @@ typedef struct tds_surf {
   int symmetric_content;  /* volume via (x,y,z)/3 . dS */
   double gap_constant;    /* spring constant for convex constraints */
   double constraint_tol;  /* level-set projection tolerance */
-  double target_tol;      /* volume constraint tolerance (reporting) */
 
   /* iteration settings and state */
   double scale;           /* last scale factor */
