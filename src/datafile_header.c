@@ -31,7 +31,7 @@ static const char *const unsupported[] = {
     "temperature", "length_method_name", "area_method_name",
     "volume_method_name", "hessian_special_normal_vector", "fixed_area",
     "area_fixed", "load_library", "interp_bdry_param",
-    "view_transform_generators", "function", "procedure", "total_time",
+    "view_transform_generators", "function", "procedure",
     "gradient_mode", "parameter_file", "ideal_gas", "knot_energy",
     "conserved", "on_assign_call", "nonwall", "content_rank", "axial_point",
     "wrap", "phase", "actual_volume", "form_integrand", "k_form_order",
@@ -553,6 +553,8 @@ static const hdr_kw header_kw[] = {
     {"unsuppress_warning", h_value, NOWHERE, ANY},
     {"zoom_vertex", h_value, NOWHERE, ANY},
     {"zoom_radius", h_value, NOWHERE, ANY},
+    /* Evolver's elapsed evolution time, written into every dump after g. */
+    {"total_time", h_value, NOWHERE, ANY},
     {NULL, NULL, 0, 0}};
 
 static const hdr_kw *find_kw(const char *w) {
