@@ -143,6 +143,11 @@ equiangulate = u
 function V(set) tds.vertex_average(set) end
 vertex_average = V
 
+-- recalc(): after assigning parameters, put boundary vertices where their
+-- parameters say and constrained vertices back on their constraints (g, r
+-- and pg do this first by themselves).
+function recalc() tds.recalc() end
+
 -- m(scale): fixed scale factor; m() returns to the optimizing scale.
 function m(scale)
   if scale == nil then
@@ -204,6 +209,7 @@ Declarations  vertices{} edges{} faces{} bodies{}  parameter{}  constraint(n, {}
               boundary(n, {})  quantity{}  gravity_constant(g)
 Evolving      g(n) iterate    r() refine    u() equiangulate    V() vertex_average
               m(scale) / m()  optimize(limit)   U() conjugate gradient   G(g) gravity
+              recalc() after changing parameters
               pg(n) / pg() projected-gradient method (doc/method.md)
 Reporting     v()  total_energy  total_area  vertex_count ... body_count
               vertex[i] edge[i] facet[i] body[i]   vertices(filter) ...

@@ -2,11 +2,13 @@
 #include "iterate.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "eval.h"
 #include "motion.h"
+#include "recalc.h"
 #include "vec3.h"
 
 typedef struct work {
@@ -247,6 +249,15 @@ static int conjugate(tds_ctx *ctx, tds_surf *s, work *w) {
   return TDS_OK;
 }
 
+/* Put the vertices back where the step started. */
+static void undo(tds_ctx *ctx, tds_surf *s, work *w) {
+  tds_mesh *m = &s->m;
+  memcpy(m->x, w->x0, (size_t)m->nv * sizeof *w->x0);
+  memcpy(m->vp, w->p0, (size_t)m->nv * sizeof *w->p0);
+  m->coord_gen++;
+  tds_surf_update(ctx, s);
+}
+
 static int step(tds_ctx *ctx, tds_surf *s, work *w) {
   tds_mesh *m = &s->m;
   memcpy(w->x0, m->x, (size_t)m->nv * sizeof *w->x0);
@@ -264,12 +275,20 @@ static int step(tds_ctx *ctx, tds_surf *s, work *w) {
     s->scale = scale;
   }
   if (!isfinite(E)) {
-    memcpy(m->x, w->x0, (size_t)m->nv * sizeof *w->x0);
-    memcpy(m->vp, w->p0, (size_t)m->nv * sizeof *w->p0);
-    m->coord_gen++;
-    tds_surf_update(ctx, s);
+    undo(ctx, s, w);
     return tds_seterr(ctx, TDS_ENUM,
                       "iteration produced a non-finite energy; step undone");
+  }
+  /* Changed parameters: as Evolver, the step is taken from the positions
+  ** as they were, then the surface follows the parameters. */
+  if (s->placed_gen != s->param_gen) {
+    if ((rc = tds_recalc(ctx, s)) != TDS_OK) {
+      char msg[sizeof ctx->errmsg];
+      snprintf(msg, sizeof msg, "%s", ctx->errmsg);
+      undo(ctx, s, w);
+      return tds_seterr(ctx, rc, "%s", msg);
+    }
+    E = s->energy;
   }
   s->energy = E;
   s->iterations++;
@@ -278,7 +297,9 @@ static int step(tds_ctx *ctx, tds_surf *s, work *w) {
 
 int tds_iterate(tds_ctx *ctx, tds_surf *s, int n) {
   work w;
-  int rc = work_init(ctx, s, &w);
+  int rc = n == 0 ? tds_recalc_if_stale(ctx, s) : TDS_OK;
+  if (rc != TDS_OK) return rc;
+  rc = work_init(ctx, s, &w);
   if (rc != TDS_OK) return rc;
   for (int i = n; i > 0; i--) {
     rc = step(ctx, s, &w);

@@ -6,6 +6,7 @@
 
 #include "iterate.h"
 #include "lua_tds.h"
+#include "recalc.h"
 #include "topo.h"
 
 static int check_rc(lua_State *L, tds_state *st, int rc) {
@@ -199,6 +200,13 @@ static int l_setting(lua_State *L) {
   return 1;
 }
 
+/* tds.recalc(): re-place vertices from the parameters (recalc.h). */
+static int l_recalc(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  check_rc(L, st, tds_recalc(&st->ctx, &st->s));
+  return 0;
+}
+
 /* tds.memory() -> bytes held by the mesh store */
 static int l_memory(lua_State *L) {
   tds_state *st = TDS_STATE(L);
@@ -215,6 +223,7 @@ void tds_open_cmd(lua_State *L, tds_state *st) {
       {"gravity", l_gravity},   {"check", l_check},
       {"param", l_param},       {"quiet", l_quiet},
       {"setting", l_setting},   {"memory", l_memory},
+      {"recalc", l_recalc},
       {NULL, NULL}};
   tds_lua_register(L, st, fns);
 }

@@ -169,6 +169,30 @@ static int vertex_get(lua_State *L, tds_state *st, tds_id v, const char *k) {
   return 1;
 }
 
+/* vertex.p1 / .p2 = value: move a boundary vertex along its boundary.
+** All or nothing: where the boundary formula is not finite, nothing moves. */
+static int set_param(lua_State *L, tds_surf *s, tds_id v, int k) {
+  tds_mesh *m = &s->m;
+  double p = luaL_checknumber(L, 3);
+  if (m->vbdry[v] == TDS_NONE)
+    return luaL_error(L, "vertex %d is not on a boundary, so it has no p%d", v + 1, k + 1);
+  if (k >= s->bdry[m->vbdry[v]].nparams)
+    return luaL_error(L, "vertex %d: boundary %d has only p1", v + 1,
+                      s->bdry[m->vbdry[v]].number);
+  if (!isfinite(p)) return luaL_error(L, "vertex %d: p%d must be finite", v + 1, k + 1);
+  double x0[3], p0 = m->vp[v][k];
+  v3_copy(x0, m->x[v]);
+  m->vp[v][k] = p;
+  if (tds_motion_enforce(s, v) != TDS_OK) {
+    m->vp[v][k] = p0;
+    v3_copy(m->x[v], x0);
+    return luaL_error(L, "vertex %d: boundary %d is not defined at p%d = %g",
+                      v + 1, s->bdry[m->vbdry[v]].number, k + 1, p);
+  }
+  m->coord_gen++;
+  return 1;
+}
+
 static int vertex_set(lua_State *L, tds_state *st, tds_id v, const char *k) {
   tds_surf *s = &st->s;
   tds_mesh *m = &s->m;
@@ -177,6 +201,7 @@ static int vertex_set(lua_State *L, tds_state *st, tds_id v, const char *k) {
     m->coord_gen++;
   } else if (!strcmp(k, "fixed")) set_flag(L, m->vflags, v, TDS_FIXED, 3);
   else if (!strcmp(k, "bare")) set_flag(L, m->vflags, v, TDS_BARE, 3);
+  else if (!strcmp(k, "p1") || !strcmp(k, "p2")) return set_param(L, s, v, k[1] - '1');
   else if (!strcmp(k, "constraint") || !strcmp(k, "constraints")) {
     m->vcon[v] = check_cmask(L, s, 3);
     if (tds_motion_enforce(s, v) != TDS_OK)

@@ -12,6 +12,7 @@
 
 #include "motion.h"
 #include "pg_int.h"
+#include "recalc.h"
 #include "vec3.h"
 
 void pg_work_free(pgw *w) {
@@ -266,7 +267,9 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   memset(res, 0, sizeof *res);
   pgw w;
   int accel = o->accel && o->depth > 0;
-  int rc = pg_work_init(ctx, s, &w, accel ? o->depth : 0);
+  int rc = tds_recalc_if_stale(ctx, s);
+  if (rc != TDS_OK) return rc;
+  rc = pg_work_init(ctx, s, &w, accel ? o->depth : 0);
   if (rc != TDS_OK) return rc;
   tds_mesh *m = &s->m;
   w.flip_tol = 1e-3; /* hysteresis: no flipping back and forth */

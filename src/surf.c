@@ -63,6 +63,7 @@ int tds_surf_param_find(const tds_surf *s, const char *name, size_t len) {
 int tds_surf_param_set(tds_surf *s, const char *name, double value) {
   int i = tds_surf_param_find(s, name, strlen(name));
   if (i >= 0) {
+    if (s->parval[i] != value) s->param_gen++;
     s->parval[i] = value;
     return i;
   }

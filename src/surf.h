@@ -73,6 +73,8 @@ typedef struct tds_surf {
   int npar, cappar;
   char **parname;         /* lower-case names */
   double *parval;
+  uint64_t param_gen;     /* counts parameter assignments */
+  uint64_t placed_gen;    /* param_gen at the last recalc (recalc.h) */
 
   tds_constraint con[TDS_MAX_CON];
   int nbdry;
@@ -120,7 +122,9 @@ int tds_surf_update(tds_ctx *ctx, tds_surf *s);
 
 /* Parameter table. tds_surf_param_find returns the slot or -1;
 ** tds_surf_param_set creates the parameter if needed and returns its slot,
-** or -1 when out of memory. Names are matched case-insensitively. */
+** or -1 when out of memory. Names are matched case-insensitively.
+** Changing a value counts in param_gen: positions follow at the next
+** recalc (recalc.h). */
 int tds_surf_param_find(const tds_surf *s, const char *name, size_t len);
 int tds_surf_param_set(tds_surf *s, const char *name, double value);
 

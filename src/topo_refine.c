@@ -4,6 +4,7 @@
 #include <stdlib.h>
 
 #include "motion.h"
+#include "recalc.h"
 #include "vec3.h"
 
 /* Oriented reference to the first (tail side) or second half of the split
@@ -179,5 +180,9 @@ int tds_refine(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nsplit) {
   if (bad)
     tds_warnf(ctx, "refine: %d new vertices could not be projected onto "
               "their constraints\n", bad);
+  /* As Evolver: new vertices are made from the positions as they were, and
+  ** then the whole surface follows changed parameters. */
+  if (s->placed_gen != s->param_gen && tds_recalc(ctx, s) != TDS_OK)
+    tds_warnf(ctx, "refine: %s\n", ctx->errmsg);
   return tds_surf_update(ctx, s);
 }

@@ -1,7 +1,9 @@
 #!/bin/sh
 # docs.sh: every ```lua block in README.md and doc/*.md must run: each is
-# saved to a file and run with $TDS from the project root. Blocks that
-# are not meant to run are fenced as ```text.
+# saved to a file and run with $TDS from the project root, and the output
+# it shows (`print(...)  --> value`) must be what it prints (the rules are
+# in tests/doccheck.lua). Blocks that are not meant to run are fenced as
+# ```text.
 cd "$(dirname "$0")/.." || exit 1
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
@@ -15,7 +17,13 @@ for f in "$dir"/*.lua; do
   [ -f "$f" ] || continue
   name=$(basename "$f" .lua)
   if "$TDS" -q "$f" > "$dir/out" 2>&1; then
-    echo "PASS doc/$name"
+    why=$("$TDS" -q -e "local ok, why = dofile('tests/doccheck.lua')('$f', '$dir/out')
+if not ok then print(why) end" 2>&1)
+    if [ -z "$why" ]; then
+      echo "PASS doc/$name"
+    else
+      echo "FAIL doc/$name: $why"
+    fi
   else
     echo "FAIL doc/$name: $(tail -n 2 "$dir/out" | tr '\n' ' ')"
   fi
