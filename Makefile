@@ -1,11 +1,15 @@
 # tds: build, test and benchmark. `make demo`, `make test` work on a fresh
-# Debian machine: missing packages are installed by scripts/deps.sh.
+# Debian machine: missing packages are installed by scripts/deps.sh (the
+# build needs only a compiler, Lua 5.4 and readline; Surface Evolver is
+# installed by the targets that compare against it).
 
 CC ?= cc
 BUILD ?= build
 OPT ?= -O2
 SAN ?=
-CFLAGS_ALL = -std=c11 $(OPT) -g -fopenmp -Wall -Wextra -D_POSIX_C_SOURCE=200809L $(SAN) $(CFLAGS)
+CFLAGS_ALL = -std=c11 $(OPT) -g -Wall -Wextra -D_POSIX_C_SOURCE=200809L $(SAN) $(CFLAGS)
+# Only pg's passes use OpenMP; the program and unit tests link its runtime.
+OMP_SRC := src/pg.c src/pg_pass.c
 # Evaluated when a recipe runs, so after `deps` has installed pkg-config/Lua.
 LUA_CFLAGS = $(shell pkg-config --cflags lua5.4)
 LUA_LIBS = $(shell pkg-config --libs lua5.4)
@@ -20,18 +24,23 @@ UNIT_SRC := $(wildcard tests/unit/test_*.c)
 UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/%)
 TDS_BIN ?= tds
 
-.PHONY: all deps demo test test-asan unit bench bench-paper clean
+.PHONY: all deps deps-test demo test test-asan unit bench bench-paper clean
 
 all: $(TDS_BIN)
 
 deps:
-	@sh scripts/deps.sh
+	@sh scripts/deps.sh build
+deps-test:
+	@sh scripts/deps.sh test
 
 $(TDS_BIN): $(CORE_OBJ) $(BIND_OBJ) | deps
-	$(CC) $(CFLAGS_ALL) -o $@ $^ $(LIBS)
+	$(CC) $(CFLAGS_ALL) -fopenmp -o $@ $^ $(LIBS)
 
-$(BUILD)/%.o: src/%.c $(wildcard src/*.h) | deps $(BUILD)
-	$(CC) $(CFLAGS_ALL) $(if $(filter $(BIND_SRC),$<),$(LUA_CFLAGS)) -Isrc -I$(BUILD) -c -o $@ $<
+# Header dependencies come from the compiler (-MMD -MP).
+$(BUILD)/%.o: src/%.c | deps $(BUILD)
+	$(CC) $(CFLAGS_ALL) $(if $(filter $(OMP_SRC),$<),-fopenmp) \
+	  $(if $(filter $(BIND_SRC),$<),$(LUA_CFLAGS)) -MMD -MP -Isrc -I$(BUILD) -c -o $@ $<
+-include $(CORE_OBJ:.o=.d) $(BIND_OBJ:.o=.d)
 
 # The Lua prelude is embedded in the binary.
 $(BUILD)/lua_tds.o: $(BUILD)/prelude.inc
@@ -39,14 +48,14 @@ $(BUILD)/prelude.inc: $(LUA_SRC) scripts/embed.sh | $(BUILD)
 	sh scripts/embed.sh $(LUA_SRC) > $@
 
 $(BUILD)/test_%: tests/unit/test_%.c tests/unit/*.h $(CORE_OBJ) | deps
-	$(CC) $(CFLAGS_ALL) -Isrc -Itests/unit -o $@ $< $(CORE_OBJ) -lm
+	$(CC) $(CFLAGS_ALL) -fopenmp -Isrc -Itests/unit -o $@ $< $(CORE_OBJ) -lm
 
 $(BUILD):
 	mkdir -p $(BUILD)
 
 unit: $(UNIT_BIN)
 
-test: $(TDS_BIN) unit
+test: $(TDS_BIN) unit | deps-test
 	@sh tests/run.sh $(abspath $(TDS_BIN)) $(abspath $(BUILD))
 
 # The whole suite under AddressSanitizer and UndefinedBehaviorSanitizer.
@@ -57,10 +66,10 @@ test-asan:
 demo: $(TDS_BIN)
 	./$(TDS_BIN) scripts/demo.tds
 
-bench: $(TDS_BIN)
+bench: $(TDS_BIN) | deps-test
 	sh bench/cube.sh ./$(TDS_BIN)
 
-bench-paper: $(TDS_BIN)
+bench-paper: $(TDS_BIN) | deps-test
 	sh bench/paper.sh ./$(TDS_BIN)
 
 clean:

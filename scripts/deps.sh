@@ -1,9 +1,25 @@
 #!/bin/sh
-# deps.sh: install the Debian packages tds needs to build and test.
+# deps.sh: install the Debian packages tds needs.
 # Quiet and fast when everything is present; installs what is missing
-# (needs root, as on CI). Usage: scripts/deps.sh [--check]
+# (needs root, as on CI).
+# Usage: scripts/deps.sh [build|test] [--check]
+#   build: what `make` needs to build the program (the default)
+#   test:  also what the tests and benchmarks compare against
 set -e
-PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev evolver-nox evolver-doc"
+BUILD_PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev"
+TEST_PKGS="evolver-nox evolver-doc"
+
+what=build
+check=""
+for a in "$@"; do
+  case $a in
+    build|test) what=$a ;;
+    --check) check=1 ;;
+    *) echo "deps.sh: unknown argument '$a' (use build, test, --check)" >&2; exit 2 ;;
+  esac
+done
+PKGS=$BUILD_PKGS
+[ "$what" = test ] && PKGS="$BUILD_PKGS $TEST_PKGS"
 
 missing=""
 for p in $PKGS; do
@@ -12,7 +28,7 @@ for p in $PKGS; do
   fi
 done
 [ -z "$missing" ] && exit 0
-if [ "$1" = "--check" ]; then
+if [ -n "$check" ]; then
   echo "missing Debian packages:$missing" >&2
   exit 1
 fi
