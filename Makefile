@@ -7,7 +7,9 @@ CC ?= cc
 BUILD ?= build
 OPT ?= -O2
 SAN ?=
-CFLAGS_ALL = -std=c11 $(OPT) -g -Wall -Wextra -D_POSIX_C_SOURCE=200809L $(SAN) $(CFLAGS)
+WARN = -Wall -Wextra -Wshadow -Wmissing-prototypes -Wstrict-prototypes -Wwrite-strings \
+  -Wdouble-promotion -Wcast-qual
+CFLAGS_ALL = -std=c11 $(OPT) -g $(WARN) -D_POSIX_C_SOURCE=200809L $(SAN) $(CFLAGS)
 # Only pg's passes use OpenMP; the program and unit tests link its runtime.
 OMP_SRC := src/pg.c src/pg_pass.c
 # Evaluated when a recipe runs, so after `deps` has installed pkg-config/Lua.

@@ -47,6 +47,7 @@ local function generator(kind)
   return function(arg)
     if type(arg) == "table" then
       declare(kind, arg) -- not a tail call: error levels count this frame
+      if kind == tds.body then tds.body_warnings() end
       return
     end
     if arg ~= nil and type(arg) ~= "function" then

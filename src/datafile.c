@@ -161,6 +161,9 @@ static int finish(df *d) {
     msg[sizeof msg - 1] = 0;
     return tds_seterr(d->ctx, TDS_ETOPO, "%s: inconsistent surface: %.900s", d->name, msg);
   }
+  char where[300];
+  snprintf(where, sizeof where, "%.280s: ", d->name);
+  tds_mesh_body_warnings(d->ctx, m, where);
   if (d->has_read) {
     const char *r = d->lx.src + d->read_at;
     size_t n = d->lx.n - d->read_at;

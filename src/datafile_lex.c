@@ -109,11 +109,12 @@ int df_lex_line_at(const df_lex *lx, size_t off) {
   return line;
 }
 
-static const df_macro *find_macro(const df_lex *lx, const char *s, size_t n) {
+/* Index of the macro named s[0..n) (the latest definition), or -1. */
+static int find_macro(const df_lex *lx, const char *s, size_t n) {
   for (int i = lx->nmac - 1; i >= 0; i--)
     if (lx->mac[i].namelen == n && memcmp(lx->mac[i].name, s, n) == 0)
-      return &lx->mac[i];
-  return NULL;
+      return i;
+  return -1;
 }
 
 static int scan_body(df_lex *lx, const char *s, size_t n);
@@ -129,7 +130,8 @@ static int glues(int a, int b) {
 /* Emit identifier s[0..n), expanding it if it names a macro. `next` is
 ** the character that follows it in its source. */
 static int ident(df_lex *lx, const char *s, size_t n, int expand, int next) {
-  const df_macro *m = expand ? find_macro(lx, s, n) : NULL;
+  int mi = expand ? find_macro(lx, s, n) : -1;
+  const df_macro *m = mi >= 0 ? &lx->mac[mi] : NULL;
   if (!m) return put_n(lx, s, n);
   for (int i = 0; i < lx->depth; i++)
     if (lx->active[i] == m)
@@ -314,7 +316,8 @@ static int directive(df_lex *lx, size_t hash) {
       return lerr(lx, TDS_ESYNTAX, lx->line0,
                   "macro %.*s: body longer than %d characters", (int)nl, s + nm,
                   TDS_DF_MAXMACRO);
-    df_macro *m = (df_macro *)find_macro(lx, s + nm, nl);
+    int mi = find_macro(lx, s + nm, nl);
+    df_macro *m = mi >= 0 ? &lx->mac[mi] : NULL;
     if (!m) {
       if (tds_grow((void **)&lx->mac, sizeof *lx->mac, &lx->capmac, lx->nmac + 1))
         return lerr(lx, TDS_ENOMEM, lx->line0, "out of memory");

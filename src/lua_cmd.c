@@ -128,12 +128,24 @@ static int l_gravity(lua_State *L) {
   return 2;
 }
 
-/* tds.check(): run the mesh checker; raises with the broken relation. */
+/* tds.check(): run the mesh checker; raises with the broken relation.
+** Then warns about inconsistent bodies and zero-area facets. Returns true
+** and the number of warnings. */
 static int l_check(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   if (tds_mesh_adjacency(&st->s.m) != TDS_OK) return luaL_error(L, "out of memory");
   check_rc(L, st, tds_mesh_check(&st->ctx, &st->s.m));
   lua_pushboolean(L, 1);
+  lua_pushinteger(L, tds_mesh_body_warnings(&st->ctx, &st->s.m, ""));
+  return 2;
+}
+
+/* tds.body_warnings(): only the warnings of check(), prefixed with the
+** user's file and line (the prelude calls it after bodies{}). */
+static int l_body_warnings(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  tds_lua_where(L);
+  lua_pushinteger(L, tds_mesh_body_warnings(&st->ctx, &st->s.m, lua_tostring(L, -1)));
   return 1;
 }
 
@@ -223,7 +235,7 @@ void tds_open_cmd(lua_State *L, tds_state *st) {
       {"gravity", l_gravity},   {"check", l_check},
       {"param", l_param},       {"quiet", l_quiet},
       {"setting", l_setting},   {"memory", l_memory},
-      {"recalc", l_recalc},
+      {"recalc", l_recalc},     {"body_warnings", l_body_warnings},
       {NULL, NULL}};
   tds_lua_register(L, st, fns);
 }

@@ -9,9 +9,7 @@
 
 #include "prelude.inc"
 
-/* Push "file:line: " of the innermost user code on the stack (skipping C
-** functions and the embedded prelude), or "" if there is none. */
-static void where_user(lua_State *L) {
+void tds_lua_where(lua_State *L) {
   lua_Debug ar;
   for (int level = 1; lua_getstack(L, level, &ar); level++) {
     lua_getinfo(L, "Sl", &ar);
@@ -25,7 +23,7 @@ static void where_user(lua_State *L) {
 
 int tds_lua_fail(lua_State *L, tds_state *st, int rc) {
   (void)rc;
-  where_user(L);
+  tds_lua_where(L);
   lua_pushstring(L, st->ctx.errmsg);
   lua_concat(L, 2);
   return lua_error(L);

@@ -22,6 +22,10 @@ typedef struct tds_state {
 
 #define TDS_STATE(L) ((tds_state *)lua_touserdata(L, lua_upvalueindex(1)))
 
+/* Push "file:line: " of the innermost user code on the stack (skipping C
+** functions and the embedded prelude), or "" if there is none. */
+void tds_lua_where(lua_State *L);
+
 /* Raise the core's message for rc as a Lua error (never returns). */
 int tds_lua_fail(lua_State *L, tds_state *st, int rc);
 

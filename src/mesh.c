@@ -57,6 +57,7 @@ static const size_t flag_off[TDS_NKINDS] = {
     offsetof(tds_mesh, fflags), offsetof(tds_mesh, bflags)};
 
 #define FIELD(m, off, type) (*(type *)((char *)(m) + (off)))
+#define CFIELD(m, off, type) (*(type const *)((const char *)(m) + (off)))
 
 void tds_mesh_init(tds_mesh *m) {
   memset(m, 0, sizeof *m);
@@ -280,8 +281,8 @@ int tds_edge_valence(const tds_mesh *m, tds_id e) {
 }
 
 int32_t tds_mesh_count(const tds_mesh *m, int kind) {
-  int32_t n = FIELD(m, kinds[kind].n_off, int32_t), c = 0;
-  const uint32_t *fl = FIELD(m, flag_off[kind], uint32_t *);
+  int32_t n = CFIELD(m, kinds[kind].n_off, int32_t), c = 0;
+  const uint32_t *fl = CFIELD(m, flag_off[kind], uint32_t *);
   for (int32_t i = 0; i < n; i++) c += !(fl[i] & TDS_DEAD);
   return c;
 }
@@ -289,7 +290,7 @@ int32_t tds_mesh_count(const tds_mesh *m, int kind) {
 int tds_mesh_copy(tds_mesh *dst, const tds_mesh *src) {
   tds_mesh_init(dst);
   for (int k = 0; k < TDS_NKINDS; k++) {
-    int32_t cap = FIELD(src, kinds[k].cap_off, int32_t);
+    int32_t cap = CFIELD(src, kinds[k].cap_off, int32_t);
     if (tds_mesh_reserve(dst, k, cap) != TDS_OK) {
       tds_mesh_free(dst);
       return TDS_ENOMEM;
@@ -297,10 +298,10 @@ int tds_mesh_copy(tds_mesh *dst, const tds_mesh *src) {
     for (int c = 0; c < kinds[k].ncols; c++) {
       const column *col = &kinds[k].cols[c];
       if (cap)
-        memcpy(FIELD(dst, col->off, void *), FIELD(src, col->off, void *),
+        memcpy(FIELD(dst, col->off, void *), CFIELD(src, col->off, void *),
                (size_t)cap * col->size);
     }
-    FIELD(dst, kinds[k].n_off, int32_t) = FIELD(src, kinds[k].n_off, int32_t);
+    FIELD(dst, kinds[k].n_off, int32_t) = CFIELD(src, kinds[k].n_off, int32_t);
   }
   dst->topo_gen = src->topo_gen + 1;
   dst->coord_gen = src->coord_gen;
@@ -311,7 +312,7 @@ int tds_mesh_copy(tds_mesh *dst, const tds_mesh *src) {
 size_t tds_mesh_bytes(const tds_mesh *m) {
   size_t b = 0;
   for (int k = 0; k < TDS_NKINDS; k++) {
-    int32_t cap = FIELD(m, kinds[k].cap_off, int32_t);
+    int32_t cap = CFIELD(m, kinds[k].cap_off, int32_t);
     for (int c = 0; c < kinds[k].ncols; c++)
       b += (size_t)cap * kinds[k].cols[c].size;
   }

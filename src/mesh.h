@@ -151,6 +151,13 @@ int tds_mesh_adjacency(tds_mesh *m);
 ** with a message naming the broken relation in ctx. */
 int tds_mesh_check(tds_ctx *ctx, tds_mesh *m);
 
+/* Warn (tds_warnf, each line prefixed by `where`) about bodies that are
+** inconsistent on an edge — a body on the same side of two facets there,
+** so some facet is listed in the body with the wrong sign (Evolver's
+** WARNING 8745) — and about facets of zero area. Returns how many such
+** edges and facets there are; changes nothing. */
+int32_t tds_mesh_body_warnings(tds_ctx *ctx, const tds_mesh *m, const char *where);
+
 /* Bytes of storage held by the mesh per live facet (for the benchmark). */
 size_t tds_mesh_bytes(const tds_mesh *m);
 

@@ -47,11 +47,11 @@ void tds_quality(const tds_surf *s, tds_quality_out *q) {
     q->hist[bin]++;
   }
   q->n = n;
-  q->min = n ? mn : NAN;
-  q->mean = n ? sum / n : NAN;
-  double var = n ? sum2 / n - q->mean * q->mean : NAN;
-  q->std = n ? sqrt(var > 0 ? var : 0) : NAN;
-  for (int i = 0; i < 4; i++) q->above[i] = n ? 100.0 * above[i] / n : NAN;
+  q->min = n ? mn : (double)NAN;
+  q->mean = n ? sum / n : (double)NAN;
+  double var = n ? sum2 / n - q->mean * q->mean : (double)NAN;
+  q->std = n ? sqrt(var > 0 ? var : 0) : (double)NAN;
+  for (int i = 0; i < 4; i++) q->above[i] = n ? 100.0 * above[i] / n : (double)NAN;
 }
 
 /* A vertex is measured when it can move and every incident edge lies
@@ -153,9 +153,9 @@ int tds_curvature(tds_ctx *ctx, tds_surf *s, int mode, double value,
   }
   free(mult);
   out->n = n;
-  out->max = n ? mx : NAN;
-  out->mean = n ? sum / n : NAN;
-  out->rms = n ? sqrt(sum2 / n) : NAN;
-  out->hmean = n ? hs / n : NAN;
+  out->max = n ? mx : (double)NAN;
+  out->mean = n ? sum / n : (double)NAN;
+  out->rms = n ? sqrt(sum2 / n) : (double)NAN;
+  out->hmean = n ? hs / n : (double)NAN;
   return TDS_OK;
 }

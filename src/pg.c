@@ -379,7 +379,7 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   if (k > nmaxit) k = nmaxit;
   res->iterations = k;
   if (rc == TDS_ENUM || (until && rc == TDS_OK)) {
-    if (rbest < INFINITY || rc == TDS_ENUM) load_best(s, &w);
+    if (rbest < (double)INFINITY || rc == TDS_ENUM) load_best(s, &w);
   }
   if (until && rc == TDS_OK) {
     res->r = rbest;
