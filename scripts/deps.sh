@@ -4,6 +4,8 @@
 # (needs root, as on CI). Usage: scripts/deps.sh [--check]
 set -e
 PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev evolver-nox evolver-doc"
+# export round trips (tests/export): meshio, VTK and NumPy for /usr/bin/python3
+PKGS="$PKGS python3-meshio python3-vtk9 python3-numpy"
 
 missing=""
 for p in $PKGS; do
