@@ -8,10 +8,13 @@
 ** in the plane normal to its Newell normal, so cap triangles run the same
 ** way round as the loop and every shell edge ends up with one half-edge
 ** each way. An ear is a convex corner whose triangle holds no other loop
-** vertex; a loop that is not simple in that plane (none is an ear) is
-** finished by clipping its most convex corners: still closed, but the
-** cap may then overlap itself.
+** vertex; of the ears, the one whose triangle has the largest smallest
+** angle is clipped first, which avoids the slivers of clipping in order.
+** A loop that is not simple in that plane (none is an ear) is finished by
+** clipping its most convex corners: still closed, but the cap may then
+** overlap itself.
 */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -36,6 +39,19 @@ static double cross2(const double a[2], const double b[2], const double c[2]) {
 
 static int inside(const double p[2], const double a[2], const double b[2], const double c[2]) {
   return cross2(a, b, p) >= 0 && cross2(b, c, p) >= 0 && cross2(c, a, p) >= 0;
+}
+
+/* Smallest angle of the plane triangle abc (radians). */
+static double min_angle(const double a[2], const double b[2], const double c[2]) {
+  const double *v[3] = {a, b, c};
+  double mn = TDS_PI;
+  for (int k = 0; k < 3; k++) {
+    const double *o = v[k], *q = v[(k + 1) % 3], *r = v[(k + 2) % 3];
+    double ux = q[0] - o[0], uy = q[1] - o[1], wx = r[0] - o[0], wy = r[1] - o[1];
+    double t = atan2(fabs(ux * wy - uy * wx), ux * wx + uy * wy);
+    if (t < mn) mn = t;
+  }
+  return mn;
 }
 
 /* Ear-clip the loop lp[0..n-1] (vertex indices) into x's triangles. */
@@ -69,29 +85,43 @@ static int clip(tds_ctx *ctx, xmesh *x, int32_t *lp, int32_t n) {
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   }
   for (int32_t i = 0; i < n; i++) idx[i] = i;
-  int32_t m = n, start = 0;
+  /* refl: corners that are not strictly convex; only they can lie in an
+  ** ear's triangle, so only they are tested */
+  int32_t *refl = malloc((size_t)n * sizeof *refl);
+  if (!refl) {
+    free(idx);
+    free(p);
+    return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+  }
+  int32_t m = n;
   while (m > 3) {
-    int32_t ear = -1, best = 0;
-    double bestc = -1e300;
-    for (int32_t s = 0; s < m && ear < 0; s++) {
-      int32_t i = (start + s) % m;
-      int32_t a = idx[(i + m - 1) % m], b = idx[i], c = idx[(i + 1) % m];
-      double cr = cross2(p[a], p[b], p[c]);
+    int32_t nr = 0, ear = -1, most = 0;
+    double bestq = -1, bestc = -1e300;
+    for (int32_t i = 0; i < m; i++) {
+      double cr = cross2(p[idx[(i + m - 1) % m]], p[idx[i]], p[idx[(i + 1) % m]]);
+      if (!(cr > 0)) refl[nr++] = idx[i];
       if (cr > bestc) {
         bestc = cr;
-        best = i;
+        most = i;
       }
-      if (!(cr > 0)) continue;
+    }
+    for (int32_t i = 0; i < m; i++) {
+      int32_t a = idx[(i + m - 1) % m], b = idx[i], c = idx[(i + 1) % m];
+      if (!(cross2(p[a], p[b], p[c]) > 0)) continue;
       int ok = 1;
-      for (int32_t j = 0; j < m && ok; j++) {
-        int32_t q = idx[j];
-        if (q == a || q == b || q == c) continue;
+      for (int32_t j = 0; j < nr && ok; j++) {
+        int32_t q = refl[j];
         if (lp[q] == lp[a] || lp[q] == lp[b] || lp[q] == lp[c]) continue;
         if (inside(p[q], p[a], p[b], p[c])) ok = 0;
       }
-      if (ok) ear = i;
+      if (!ok) continue;
+      double q = min_angle(p[a], p[b], p[c]);
+      if (q > bestq) {
+        bestq = q;
+        ear = i;
+      }
     }
-    if (ear < 0) ear = best;
+    if (ear < 0) ear = most;
     int32_t a = idx[(ear + m - 1) % m], b = idx[ear], c = idx[(ear + 1) % m];
     x->tri[x->nt][0] = lp[a];
     x->tri[x->nt][1] = lp[b];
@@ -99,8 +129,8 @@ static int clip(tds_ctx *ctx, xmesh *x, int32_t *lp, int32_t n) {
     x->nt++;
     memmove(idx + ear, idx + ear + 1, (size_t)(m - ear - 1) * sizeof *idx);
     m--;
-    start = ear % m;
   }
+  free(refl);
   x->tri[x->nt][0] = lp[idx[0]];
   x->tri[x->nt][1] = lp[idx[1]];
   x->tri[x->nt][2] = lp[idx[2]];
