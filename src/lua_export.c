@@ -11,6 +11,8 @@
 **                           (the attribute v.gauss_curvature)
 */
 #include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -62,8 +64,14 @@ static int l_vertex_gauss_curvature(lua_State *L) {
   return 1;
 }
 
-static int fail(lua_State *L, tds_state *st, const char *fmt, const char *a, const char *b) {
-  tds_seterr(&st->ctx, TDS_ERANGE, fmt, a, b);
+/* Raise "file:line: message" at the caller's line (never returns). */
+static int fail(lua_State *L, tds_state *st, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+static int fail(lua_State *L, tds_state *st, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(st->ctx.errmsg, sizeof st->ctx.errmsg, fmt, ap);
+  va_end(ap);
   return tds_lua_fail(L, st, TDS_ERANGE);
 }
 
@@ -96,9 +104,7 @@ static unsigned field_mask(lua_State *L, tds_state *st, int idx, const char *key
         strncat(list, names[j], sizeof list - strlen(list) - 1);
       }
       if (!s) fail(L, st, "export: option '%s' must list field names (%s)", key, list);
-      tds_seterr(&st->ctx, TDS_ERANGE, "export: option '%s': unknown field '%s' (known: %s)",
-                 key, s, list);
-      tds_lua_fail(L, st, TDS_ERANGE);
+      fail(L, st, "export: option '%s': unknown field '%s' (known: %s)", key, s, list);
     }
     mask |= 1u << bit;
     lua_pop(L, 1);
@@ -126,7 +132,7 @@ static void select_one(lua_State *L, tds_state *st, uint8_t *sel, int32_t nf,
   lua_Integer id = facet_id(L);
   const tds_mesh *m = &st->s.m;
   if (id < 1 || id > nf || id > m->nf || !tds_alive(m->fflags, (tds_id)id - 1))
-    fail(L, st, "export: option 'facets': %s is not a live facet%s", where, "");
+    fail(L, st, "export: option 'facets': %s is not a live facet", where);
   sel[id - 1] = 1;
 }
 
@@ -174,11 +180,11 @@ static uint8_t *facet_selection(lua_State *L, tds_state *st, int idx) {
       lua_settop(L, top);
     }
   } else {
-    fail(L, st, "export: option '%s' must be a filter function, an iterator or a list%s",
-         "facets", "");
+    fail(L, st, "export: option '%s' must be a filter function, an iterator or a list",
+         "facets");
   }
   if (m->topo_gen != gen || m->nf != nf)
-    fail(L, st, "export: option '%s' changed the surface while choosing facets%s", "facets", "");
+    fail(L, st, "export: option '%s' changed the surface while choosing facets", "facets");
   lua_settop(L, top);
   return sel;
 }
@@ -197,10 +203,10 @@ static const char *const option_names[] = {"format", "encoding", "version", "fac
 static int l_export(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   if (lua_type(L, 1) != LUA_TSTRING)
-    fail(L, st, "export(path [, options]): path must be a string%s%s", "", "");
+    fail(L, st, "export(path [, options]): path must be a string");
   const char *path = lua_tostring(L, 1);
   if (!lua_isnoneornil(L, 2) && !lua_istable(L, 2))
-    fail(L, st, "export(path [, options]): options must be a table%s%s", "", "");
+    fail(L, st, "export(path [, options]): options must be a table");
   lua_settop(L, 2);
   if (lua_isnil(L, 2)) {
     lua_newtable(L);
@@ -214,7 +220,7 @@ static int l_export(lua_State *L) {
     if (!k || lookup(option_names, 8, k) < 0) {
       const char *shown = k ? k : luaL_tolstring(L, -1, NULL);
       fail(L, st, "export: unknown option '%s' (options: format, encoding, version, "
-           "facets, vertex_fields, facet_fields, per_body, caps)%s", shown, "");
+           "facets, vertex_fields, facet_fields, per_body, caps)", shown);
     }
   }
   tds_export_opts o;
@@ -228,11 +234,11 @@ static int l_export(lua_State *L) {
     o.format = lookup(tds_export_formats, TDS_FMT_COUNT, lua_tostring(L, 3));
     if (o.format < 0)
       fail(L, st, "export: option 'format': unknown format '%s' (obj, off, ply, stl, vtu, "
-           "vtk, msh)%s", lua_tostring(L, 3), "");
+           "vtk, msh)", lua_tostring(L, 3));
   } else if (o.format < 0) {
     fail(L, st, "export: cannot tell the format of '%s' from its extension; give "
-         "format = \"obj\" | \"off\" | \"ply\" | \"stl\" | \"vtu\" | \"vtk\" | \"msh\"%s",
-         path, "");
+         "format = \"obj\" | \"off\" | \"ply\" | \"stl\" | \"vtu\" | \"vtk\" | \"msh\"",
+         path);
   }
   int binary_ok = o.format != TDS_FMT_OBJ && o.format != TDS_FMT_OFF;
   o.encoding = binary_ok ? TDS_ENC_BINARY : TDS_ENC_ASCII;
@@ -243,17 +249,17 @@ static int l_export(lua_State *L) {
     o.encoding = lookup(encs, 3, lua_tostring(L, 4));
     if (o.encoding < 0)
       fail(L, st, "export: option 'encoding': unknown encoding '%s' (ascii, binary, "
-           "base64)%s", lua_tostring(L, 4), "");
+           "base64)", lua_tostring(L, 4));
   }
   lua_getfield(L, 2, "version"); /* 5 */
   if (!lua_isnil(L, 5)) {
     if (o.format != TDS_FMT_MSH)
-      fail(L, st, "export: option 'version' is only for msh, not %s%s",
-           tds_export_formats[o.format], "");
+      fail(L, st, "export: option 'version' is only for msh, not %s",
+           tds_export_formats[o.format]);
     const char *v = lua_type(L, 5) == LUA_TSTRING || lua_type(L, 5) == LUA_TNUMBER
                         ? lua_tostring(L, 5) : NULL;
     if (!v || (strcmp(v, "2.2") && strcmp(v, "4.1")))
-      fail(L, st, "export: option 'version' must be \"2.2\" or \"4.1\"%s%s", "", "");
+      fail(L, st, "export: option 'version' must be \"2.2\" or \"4.1\"");
     o.msh_version = v[0] == '2' ? 22 : 41;
   }
   lua_getfield(L, 2, "facets"); /* 6 */
@@ -275,7 +281,7 @@ static int l_export(lua_State *L) {
   if (!lua_isnil(L, 11)) {
     want(L, st, 11, LUA_TBOOLEAN, "caps");
     o.caps = lua_toboolean(L, 11);
-    if (!o.per_body) fail(L, st, "export: option 'caps' needs per_body = true%s%s", "", "");
+    if (!o.per_body) fail(L, st, "export: option 'caps' needs per_body = true");
   }
   lua_getfield(L, LUA_REGISTRYINDEX, MARK_KEY); /* 12 */
   if (!lua_isnil(L, 12)) {
