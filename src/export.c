@@ -74,6 +74,15 @@ static int check_opts(tds_ctx *ctx, const tds_surf *s, const tds_export_opts *o)
                       "export: encoding 'base64' is only for vtu, not %s", fmt);
   if (o->encoding == TDS_ENC_BINARY && !has_binary(o->format))
     return tds_seterr(ctx, TDS_ERANGE, "export: %s has no binary encoding", fmt);
+  if (o->appended && o->format != TDS_FMT_VTU)
+    return tds_seterr(ctx, TDS_ERANGE, "export: option 'appended' is only for vtu, not %s", fmt);
+  if (o->format == TDS_FMT_VTU && o->appended && o->encoding == TDS_ENC_ASCII)
+    return tds_seterr(ctx, TDS_ERANGE,
+                      "export: option 'appended': ascii data is written inline");
+  if (o->format == TDS_FMT_VTU && !o->appended && o->encoding == TDS_ENC_BINARY)
+    return tds_seterr(ctx, TDS_ERANGE,
+                      "export: option 'appended': raw binary data must be appended (use "
+                      "encoding = \"base64\" for inline data)");
   if (o->format == TDS_FMT_MSH && o->msh_version != 22 && o->msh_version != 41)
     return tds_seterr(ctx, TDS_ERANGE, "export: msh version must be 2.2 or 4.1");
   if ((o->vfields || o->ffields) && !has_fields(o->format)) {
@@ -320,7 +329,7 @@ static int write_one(tds_ctx *ctx, FILE *f, const tds_export_opts *o, const xmes
   case TDS_FMT_OFF: return tds_write_off(ctx, f, x);
   case TDS_FMT_STL: return tds_write_stl(ctx, f, x, o->encoding);
   case TDS_FMT_PLY: return tds_write_ply(ctx, f, x, o->encoding);
-  case TDS_FMT_VTU: return tds_write_vtu(ctx, f, x, o->encoding);
+  case TDS_FMT_VTU: return tds_write_vtu(ctx, f, x, o->encoding, o->appended);
   case TDS_FMT_VTK: return tds_write_vtk(ctx, f, x, o->encoding);
   default: return tds_write_msh(ctx, f, x, o->encoding, o->msh_version);
   }

@@ -3,7 +3,7 @@
 ** (doc/output.md, "Export").
 **
 ** Formats: OBJ, OFF (ASCII), PLY, STL, VTK legacy (ASCII or binary), VTU
-** (ASCII, base64 inline or raw appended binary), Gmsh MSH 2.2 and 4.1
+** (ASCII, base64 inline or appended, raw appended binary), Gmsh MSH 2.2 and 4.1
 ** (ASCII or binary). Vertices are the live vertices of the chosen facets,
 ** renumbered in id order; triangles follow facet id order. Coordinates
 ** are written as doubles (17 significant digits in ASCII) except in STL,
@@ -51,6 +51,9 @@ typedef struct tds_export_opts {
   int format;                /* TDS_FMT_* */
   int encoding;              /* TDS_ENC_*; BASE64 only for VTU */
   int msh_version;           /* 22 or 41 */
+  int appended;              /* VTU: arrays in the AppendedData section (raw
+                                for BINARY, which needs it; base64 for
+                                BASE64); otherwise 0 */
   const uint8_t *facets;     /* m.nf entries, nonzero = export; NULL = all
                                 facets not flagged nodisplay */
   unsigned vfields, ffields; /* bit masks of TDS_VF_*, TDS_FF_* */

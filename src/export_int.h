@@ -40,7 +40,7 @@ int tds_write_obj(tds_ctx *ctx, FILE *f, const xmesh *x);
 int tds_write_off(tds_ctx *ctx, FILE *f, const xmesh *x);
 int tds_write_stl(tds_ctx *ctx, FILE *f, const xmesh *x, int enc);
 int tds_write_ply(tds_ctx *ctx, FILE *f, const xmesh *x, int enc);
-int tds_write_vtu(tds_ctx *ctx, FILE *f, const xmesh *x, int enc);
+int tds_write_vtu(tds_ctx *ctx, FILE *f, const xmesh *x, int enc, int appended);
 int tds_write_vtk(tds_ctx *ctx, FILE *f, const xmesh *x, int enc);
 int tds_write_msh(tds_ctx *ctx, FILE *f, const xmesh *x, int enc, int version);
 

@@ -2,10 +2,11 @@
 ** export_vtk.c: VTK writers: XML UnstructuredGrid (.vtu) and the legacy
 ** format (.vtk, version 4.2).
 **
-** VTU: every array is ASCII, inline base64 or raw appended binary
-** (little-endian, each block preceded by its byte count as UInt64,
+** VTU: every array is ASCII, base64 (inline or appended) or raw appended
+** binary (little-endian, each block preceded by its byte count as UInt64,
 ** header_type="UInt64"); in base64 the count and the data are encoded
-** together as one stream. Triangles are cell type 5 with Int32
+** together, each array on its own, and appended offsets count base64
+** characters. Triangles are cell type 5 with Int32
 ** connectivity and offsets. Legacy VTK: POINTS, CELLS and CELL_TYPES, the
 ** fields as FIELD arrays under POINT_DATA and CELL_DATA; BINARY data is
 ** big-endian as that format requires. VTK reads no NaN in ASCII legacy
@@ -79,16 +80,18 @@ static void ascii_values(FILE *f, const arr *a) {
 }
 
 /* Write one DataArray; *offset advances for appended data. */
-static int vtu_array(tds_ctx *ctx, FILE *f, const arr *a, int enc, uint64_t *offset) {
+static int vtu_array(tds_ctx *ctx, FILE *f, const arr *a, int enc, int appended,
+                     uint64_t *offset) {
   fprintf(f, "<DataArray type=\"%s\"", vtu_type(a->type));
   if (a->name) fprintf(f, " Name=\"%s\"", a->name);
   fprintf(f, " NumberOfComponents=\"%d\"", a->ncomp);
   if (enc == TDS_ENC_ASCII) {
     fputs(" format=\"ascii\">", f);
     ascii_values(f, a);
-  } else if (enc == TDS_ENC_BINARY) {
+  } else if (appended) {
     fprintf(f, " format=\"appended\" offset=\"%llu\"/>\n", (unsigned long long)*offset);
-    *offset += 8 + (uint64_t)a->n * (uint64_t)a->ncomp * (uint64_t)type_size(a->type);
+    uint64_t len = 8 + (uint64_t)a->n * (uint64_t)a->ncomp * (uint64_t)type_size(a->type);
+    *offset += enc == TDS_ENC_BASE64 ? 4 * ((len + 2) / 3) : len;
     return TDS_OK;
   } else {
     fputs(" format=\"binary\">\n", f);
@@ -128,7 +131,7 @@ static int arrays(const xmesh *x, arr *out, double **buf) {
   return n;
 }
 
-int tds_write_vtu(tds_ctx *ctx, FILE *f, const xmesh *x, int enc) {
+int tds_write_vtu(tds_ctx *ctx, FILE *f, const xmesh *x, int enc, int appended) {
   arr a[2 * XF_MAX + 4];
   double *buf;
   int na = arrays(x, a, &buf);
@@ -140,20 +143,22 @@ int tds_write_vtu(tds_ctx *ctx, FILE *f, const xmesh *x, int enc) {
   uint64_t off = 0;
   int rc = TDS_OK, i = 0;
   fputs("<PointData>\n", f);
-  for (; i < x->nvf && rc == TDS_OK; i++) rc = vtu_array(ctx, f, &a[i], enc, &off);
+  for (; i < x->nvf && rc == TDS_OK; i++) rc = vtu_array(ctx, f, &a[i], enc, appended, &off);
   fputs("</PointData>\n<CellData>\n", f);
-  for (; i < x->nvf + x->nff && rc == TDS_OK; i++) rc = vtu_array(ctx, f, &a[i], enc, &off);
+  for (; i < x->nvf + x->nff && rc == TDS_OK; i++) rc = vtu_array(ctx, f, &a[i], enc, appended, &off);
   fputs("</CellData>\n<Points>\n", f);
-  if (rc == TDS_OK) rc = vtu_array(ctx, f, &a[i++], enc, &off);
+  if (rc == TDS_OK) rc = vtu_array(ctx, f, &a[i++], enc, appended, &off);
   fputs("</Points>\n<Cells>\n", f);
-  for (; i < na && rc == TDS_OK; i++) rc = vtu_array(ctx, f, &a[i], enc, &off);
+  for (; i < na && rc == TDS_OK; i++) rc = vtu_array(ctx, f, &a[i], enc, appended, &off);
   fputs("</Cells>\n</Piece>\n</UnstructuredGrid>\n", f);
-  if (enc == TDS_ENC_BINARY && rc == TDS_OK) {
-    fputs("<AppendedData encoding=\"raw\">\n_", f);
+  if (appended && rc == TDS_OK) {
+    int b64 = enc == TDS_ENC_BASE64;
+    fprintf(f, "<AppendedData encoding=\"%s\">\n_", b64 ? "base64" : "raw");
     for (int j = 0; j < na && rc == TDS_OK; j++) {
       size_t len;
       unsigned char *b = block(&a[j], &len);
       if (!b) rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+      else if (b64) base64(f, b, len);
       else fwrite(b, 1, len, f);
       free(b);
     }

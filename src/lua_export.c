@@ -2,8 +2,8 @@
 **
 **   export(path [, opts])   write the surface for other tools; returns the
 **                           list of files written. opts: format, encoding,
-**                           version, facets, vertex_fields, facet_fields,
-**                           per_body, caps. Errors are raised at the
+**                           appended, version, facets, vertex_fields,
+**                           facet_fields, per_body, caps. Errors are raised at the
 **                           caller's line and name the option.
 **   mark()                  record every vertex position now, for the
 **                           vertex field "displacement"
@@ -197,7 +197,7 @@ static void written(void *ud, const char *path) {
 
 static const char *const option_names[] = {"format", "encoding", "version", "facets",
                                            "vertex_fields", "facet_fields", "per_body",
-                                           "caps", NULL};
+                                           "caps", "appended", NULL};
 
 /* export(path [, opts]) -> { files written } */
 static int l_export(lua_State *L) {
@@ -217,10 +217,10 @@ static int l_export(lua_State *L) {
   while (lua_next(L, 2)) {
     lua_pop(L, 1);
     const char *k = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : NULL;
-    if (!k || lookup(option_names, 8, k) < 0) {
+    if (!k || lookup(option_names, 9, k) < 0) {
       const char *shown = k ? k : luaL_tolstring(L, -1, NULL);
       fail(L, st, "export: unknown option '%s' (options: format, encoding, version, "
-           "facets, vertex_fields, facet_fields, per_body, caps)", shown);
+           "appended, facets, vertex_fields, facet_fields, per_body, caps)", shown);
     }
   }
   tds_export_opts o;
@@ -251,6 +251,13 @@ static int l_export(lua_State *L) {
       fail(L, st, "export: option 'encoding': unknown encoding '%s' (ascii, binary, "
            "base64)", lua_tostring(L, 4));
   }
+  lua_getfield(L, 2, "appended"); /* 5 */
+  o.appended = o.format == TDS_FMT_VTU && o.encoding == TDS_ENC_BINARY;
+  if (!lua_isnil(L, 5)) {
+    want(L, st, 5, LUA_TBOOLEAN, "appended");
+    o.appended = lua_toboolean(L, 5);
+  }
+  lua_pop(L, 1);
   lua_getfield(L, 2, "version"); /* 5 */
   if (!lua_isnil(L, 5)) {
     if (o.format != TDS_FMT_MSH)

@@ -310,7 +310,7 @@ def check_case(d, case):
     report(f"{case}/gauss_curvature_independent", ok, why)
     for suffix in (".obj", ".off", "_22ascii.msh", "_22binary.msh", "_41ascii.msh",
                    "_41binary.msh", "_ascii.ply", "_vonly.ply", "_ascii.vtu",
-                   "_base64.vtu", "_binary.vtu", "_ascii.vtk", "_binary.vtk", "_asply.dat"):
+                   "_base64.vtu", "_b64app.vtu", "_binary.vtu", "_ascii.vtk", "_binary.vtk", "_asply.dat"):
         name = case + suffix
         m = mread(p + suffix, file_format="ply" if suffix.endswith(".dat") else None)
         tris = [c.data for c in m.cells if c.type == "triangle"]

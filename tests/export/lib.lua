@@ -68,6 +68,7 @@ function export_all(name, select)
   export(p .. "_vonly.ply", { vertex_fields = VF })
   export(p .. "_ascii.vtu", with { encoding = "ascii" })
   export(p .. "_base64.vtu", with { encoding = "base64" })
+  export(p .. "_b64app.vtu", with { encoding = "base64", appended = true })
   export(p .. "_binary.vtu", all)
   -- ASCII legacy VTK cannot hold NaN: only fields defined everywhere
   export(p .. "_ascii.vtk", { encoding = "ascii", facet_fields = FF,
