@@ -6,7 +6,7 @@
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 cases=""
-for c in cube mound bubble random; do
+for c in cube mound bubble random column; do
   if EXPORT_DIR=$dir "$TDS" -q "tests/export/$c.tds" > "$dir/$c.log" 2>&1; then
     cases="$cases $c"
   else
