@@ -213,7 +213,7 @@ Files         tds file.fe (load a datafile)  dump("out.fe")
 Leaving       q()  (at the prompt: q, or Ctrl-D)
 At the prompt Evolver habits work: g 5; r; u   angle := 45   print total_area
 The manual: doc/language.md, doc/commands.md, doc/expressions.md, doc/repl.md,
-doc/evolver.md (coming from Surface Evolver), doc/method.md.]]
+doc/evolver.md (coming from Surface Evolver), doc/method.md, doc/output.md.]]
 function help() print(HELP) end
 
 -- near(a, b, tol): |a - b| <= tol * max(1, |b|), for self-checking scripts.
