@@ -216,10 +216,11 @@ Reporting     v()  total_energy  total_area  vertex_count ... body_count
               vertex[i] edge[i] facet[i] body[i]   vertices(filter) ...
               quality()  curvature{}  check()
 Files         tds file.fe (load a datafile)  dump("out.fe")
+              export("out.ply" | .obj .stl .off .vtu .vtk .msh, {...})  mark()
 Leaving       q()  (at the prompt: q, or Ctrl-D)
 At the prompt Evolver habits work: g 5; r; u   angle := 45   print total_area
 The manual: doc/language.md, doc/commands.md, doc/expressions.md, doc/repl.md,
-doc/evolver.md (coming from Surface Evolver), doc/method.md.]]
+doc/evolver.md (coming from Surface Evolver), doc/method.md, doc/output.md.]]
 function help() print(HELP) end
 
 -- near(a, b, tol): |a - b| <= tol * max(1, |b|), for self-checking scripts.
@@ -259,6 +260,10 @@ setmetatable(_G, {
     end
   end,
 })
+
+-- export(path, options) and mark(): doc/output.md (src/lua_export.c).
+export, mark = tds.export, tds.mark
+tds.props.vertex.gauss_curvature = function(h) return tds.vertex_gauss_curvature(h) end
 
 -- The REPL's reader of Evolver-style lines (g 5; r; u).
 tds.translate = require("evolver")

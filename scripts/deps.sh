@@ -7,7 +7,9 @@
 #   test:  also what the tests and benchmarks compare against
 set -e
 BUILD_PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev"
-TEST_PKGS="evolver-nox evolver-doc"
+# Surface Evolver, and for the export round trips (tests/export) meshio, VTK
+# and NumPy for /usr/bin/python3.
+TEST_PKGS="evolver-nox evolver-doc python3-meshio python3-vtk9 python3-numpy"
 
 what=build
 check=""

@@ -11,12 +11,11 @@
 ** would otherwise read as the start of a new number ("z -1" -> "z - 1";
 ** inside one expression that sign was an operator anyway).
 */
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
+#include "atomic.h"
 #include "datafile.h"
 #include "model.h"
 
@@ -309,18 +308,11 @@ static void elements(out *o, const tds_surf *s) {
 }
 
 int tds_datafile_dump(tds_ctx *ctx, tds_surf *s, const char *path) {
-  size_t n = strlen(path);
-  char *tmp = malloc(n + 5);
-  if (!tmp) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
-  memcpy(tmp, path, n);
-  memcpy(tmp + n, ".tmp", 5);
+  tds_afile af;
+  int rc = tds_afile_open(ctx, &af, path);
+  if (rc != TDS_OK) return rc;
   out o = {0};
-  o.f = fopen(tmp, "w");
-  if (!o.f) {
-    int rc = tds_seterr(ctx, TDS_EIO, "cannot write '%s': %s", tmp, strerror(errno));
-    free(tmp);
-    return rc;
-  }
+  o.f = af.f;
   tds_ctx quiet = *ctx;
   double energy = NAN;
   if (tds_surf_update(&quiet, s) == TDS_OK) energy = s->energy;
@@ -339,22 +331,10 @@ int tds_datafile_dump(tds_ctx *ctx, tds_surf *s, const char *path) {
     size_t k = strlen(s->read_text);
     if (k && s->read_text[k - 1] != '\n') fputc('\n', o.f);
   }
-  int err = ferror(o.f);
-  int saved = errno;
-  if (fclose(o.f) != 0 && !err) {
-    err = 1;
-    saved = errno;
-  }
-  int rc = TDS_OK;
-  if (o.bad) {
+  rc = tds_afile_close(ctx, &af);
+  if (rc == TDS_OK && o.bad)
     rc = tds_seterr(ctx, TDS_ENUM, "cannot dump to '%s': %s is not finite", path, o.what);
-  } else if (err) {
-    rc = tds_seterr(ctx, TDS_EIO, "cannot write '%s': %s", tmp, strerror(saved));
-  } else if (rename(tmp, path) != 0) {
-    rc = tds_seterr(ctx, TDS_EIO, "cannot rename '%s' to '%s': %s", tmp, path,
-                    strerror(errno));
-  }
-  if (rc != TDS_OK) remove(tmp);
-  free(tmp);
+  if (rc == TDS_OK) rc = tds_afile_commit(ctx, &af);
+  tds_afile_abort(&af);
   return rc;
 }

@@ -65,11 +65,15 @@ static int measured_vertex(const tds_surf *s, tds_id v) {
   return 1;
 }
 
-double tds_vertex_mean_curvature(const tds_surf *s, tds_id v) {
+/* Sums over the star of measured vertex v: the cotangent vector K, the
+** facet area-vector sum S, Meyer's mixed area and the facet angles at v.
+** Returns 0 when a star facet is degenerate. */
+static int star_sums(const tds_surf *s, tds_id v, double K[3], double S[3],
+                     double *amixp, double *anglep) {
   const tds_mesh *m = &s->m;
-  if (!measured_vertex(s, v)) return NAN;
-  double K[3] = {0, 0, 0}, S[3] = {0, 0, 0}, amix = 0;
+  double amix = 0, angle = 0;
   const double *xi = m->x[v];
+  for (int c = 0; c < 3; c++) K[c] = S[c] = 0;
   for (int32_t i = m->vf_start[v]; i < m->vf_start[v + 1]; i++) {
     tds_id f = m->vf[i];
     int k = m->fv[f][0] == v ? 0 : m->fv[f][1] == v ? 1 : 2;
@@ -80,7 +84,7 @@ double tds_vertex_mean_curvature(const tds_surf *s, tds_id v) {
     v3_sub(ejk, xk, xj);
     v3_cross(N, eij, eik);
     double nl = v3_norm(N);
-    if (!(nl > 0)) return NAN;
+    if (!(nl > 0)) return 0;
     v3_add(S, S, N);
     double di = v3_dot(eij, eik);          /* at i */
     double dj = -v3_dot(eij, ejk);         /* at j: (xi - xj) . (xk - xj) */
@@ -88,14 +92,31 @@ double tds_vertex_mean_curvature(const tds_surf *s, tds_id v) {
     double cotj = dj / nl, cotk = dk / nl;
     /* edge ij is opposite k, edge ik opposite j */
     for (int c = 0; c < 3; c++) K[c] += -cotk * eij[c] - cotj * eik[c];
+    angle += atan2(nl, di);
     double A = 0.5 * nl;
     if (di < 0) amix += A / 2;
     else if (dj < 0 || dk < 0) amix += A / 4;
     else amix += (v3_dot(eij, eij) * cotk + v3_dot(eik, eik) * cotj) / 8;
   }
+  *amixp = amix;
+  *anglep = angle;
+  return amix > 0;
+}
+
+double tds_vertex_mean_curvature(const tds_surf *s, tds_id v) {
+  if (!measured_vertex(s, v)) return NAN;
+  double K[3], S[3], amix, angle;
+  if (!star_sums(s, v, K, S, &amix, &angle)) return NAN;
   double sl = v3_norm(S);
-  if (!(sl > 0) || !(amix > 0)) return NAN;
+  if (!(sl > 0)) return NAN;
   return v3_dot(K, S) / (sl * 2 * amix);
+}
+
+double tds_vertex_gauss_curvature(const tds_surf *s, tds_id v) {
+  if (!measured_vertex(s, v)) return NAN;
+  double K[3], S[3], amix, angle;
+  if (!star_sums(s, v, K, S, &amix, &angle)) return NAN;
+  return (2 * TDS_PI - angle) / amix;
 }
 
 /* Target at vertex v from its first star facet's bodies. */

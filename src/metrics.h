@@ -50,6 +50,11 @@ typedef struct tds_curv_out {
 ** current adjacency. */
 double tds_vertex_mean_curvature(const tds_surf *s, tds_id v);
 
+/* Gaussian curvature k1 k2 at vertex v: the angle defect 2 pi - (sum of
+** the facet angles at v) over Meyer's mixed area; NAN where the mean
+** curvature is NAN. Needs current adjacency. */
+double tds_vertex_gauss_curvature(const tds_surf *s, tds_id v);
+
 /* Curvature and its error at every measured vertex. mode TDS_CURV_*; value
 ** is the target for TDS_CURV_VALUE. h and target (m.nv entries each, may
 ** be NULL) receive k1 + k2 and the target (NAN where not measured).

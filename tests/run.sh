@@ -36,6 +36,7 @@ trap 'rm -rf "$out"' EXIT
     fi
   done
   sh tests/docs.sh
+  sh tests/export/run.sh
   for e in tests/evolver/*.sh; do
     [ -f "$e" ] || continue
     sh "$e" || echo "FAIL evolver/$(basename "$e" .sh): exit status $?"
