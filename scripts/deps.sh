@@ -3,7 +3,8 @@
 # Quiet and fast when everything is present; installs what is missing
 # (needs root, as on CI). Usage: scripts/deps.sh [--check]
 set -e
-PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev evolver-nox evolver-doc"
+PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev evolver-nox evolver-doc
+  libmicrohttpd-dev chromium chromium-driver"
 
 missing=""
 for p in $PKGS; do
@@ -11,6 +12,9 @@ for p in $PKGS; do
     missing="$missing $p"
   fi
 done
+# The live view's page is built with npm (three.js); the machine's own
+# Node.js may come with npm, else Debian's packages provide both.
+command -v npm >/dev/null 2>&1 || missing="$missing nodejs npm"
 [ -z "$missing" ] && exit 0
 if [ "$1" = "--check" ]; then
   echo "missing Debian packages:$missing" >&2

@@ -36,6 +36,10 @@ trap 'rm -rf "$out"' EXIT
     fi
   done
   sh tests/docs.sh
+  for w in tests/web/*.sh; do
+    [ -f "$w" ] || continue
+    sh "$w" || echo "FAIL web/$(basename "$w" .sh): exit status $?"
+  done
   for e in tests/evolver/*.sh; do
     [ -f "$e" ] || continue
     sh "$e" || echo "FAIL evolver/$(basename "$e" .sh): exit status $?"
