@@ -17,6 +17,9 @@ const MISSING = [0.55, 0.55, 0.55]; // a value tds could not measure (NaN)
 // Diverging map, low - middle - high (Moreland's cool to warm end points).
 const STOPS = [[0.23, 0.299, 0.754], [0.865, 0.865, 0.865], [0.706, 0.016, 0.15]];
 
+// The colours above are sRGB; three lights and blends in linear space.
+const lin = (c) => c.map((x) => (x <= 0.04045 ? x / 12.92 : ((x + 0.055) / 1.055) ** 2.4));
+
 function scalarColor(t) {
   t = Math.min(1, Math.max(0, t)) * 2;
   const i = t >= 1 ? 1 : 0, f = t - i, a = STOPS[i], b = STOPS[i + 1];
@@ -25,7 +28,7 @@ function scalarColor(t) {
 
 function bodyColor(id) {
   if (!(id > 0)) return MISSING;
-  const c = new THREE.Color().setHSL((id * 0.618034) % 1, 0.65, 0.55);
+  const c = new THREE.Color().setHSL((id * 0.618034) % 1, 0.65, 0.55, THREE.LinearSRGBColorSpace);
   return [c.r, c.g, c.b];
 }
 
@@ -56,8 +59,8 @@ const scene = new THREE.Scene();
 scene.background = new THREE.Color(0xffffff);
 const camera = new THREE.PerspectiveCamera(35, 1, 0.01, 1000);
 camera.up.set(0, 0, 1); // Evolver's z is up
-scene.add(new THREE.HemisphereLight(0xffffff, 0x555555, 1.6));
-const sun = new THREE.DirectionalLight(0xffffff, 1.4);
+scene.add(new THREE.HemisphereLight(0xffffff, 0x606060, 2.2));
+const sun = new THREE.DirectionalLight(0xffffff, 1.6);
 sun.position.set(0.5, 0.3, 1);
 camera.add(sun);
 scene.add(camera);
@@ -115,7 +118,7 @@ function colours(s, name) {
         else if (name === 'body') c = bodyColor(v);
         else c = scalarColor((v - lo) / (hi - lo));
       }
-      out.set(c, 9 * t + 3 * k);
+      out.set(lin(c), 9 * t + 3 * k);
     }
   }
   live.field = name;

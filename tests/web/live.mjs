@@ -280,8 +280,12 @@ try {
   report('run', false, e.message.split('\n')[0]);
 }
 if (tds && tds.exitCode === null) {
+  // q ends tds (and its server); under the sanitizers a leak or a data
+  // error at exit would show here.
   tds.stdin.end('q\n');
-  await Promise.race([new Promise((r) => tds.once('exit', r)), sleep(5000)]);
+  const code = await Promise.race([new Promise((r) => tds.once('exit', (c) => r(c))), sleep(20000).then(() => 'hung')]);
+  const san = out.match(/(AddressSanitizer|LeakSanitizer|runtime error)[^\n]*/);
+  report('clean_exit', code === 0 && !san, `exit ${code}${san ? ', ' + san[0] : ''}`);
 }
 await cleanup();
 clearTimeout(guard);
