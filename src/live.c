@@ -91,6 +91,17 @@ static enum MHD_Result handle(void *cls, struct MHD_Connection *c,
   (void)upload;
   (void)con_cls;
   tds_live *lv = cls;
+  /* Only pages of this server itself: a Host other than the loopback
+  ** address (a DNS-rebinding page) gets nothing. */
+  const char *host = MHD_lookup_connection_value(c, MHD_HEADER_KIND, "Host");
+  char want[2][32];
+  pthread_mutex_lock(&lv->mu);
+  int port = lv->port;
+  pthread_mutex_unlock(&lv->mu);
+  snprintf(want[0], sizeof want[0], "127.0.0.1:%d", port);
+  snprintf(want[1], sizeof want[1], "localhost:%d", port);
+  if (host && strcmp(host, want[0]) != 0 && strcmp(host, want[1]) != 0)
+    return text(c, MHD_HTTP_FORBIDDEN, "forbidden host\n");
   if (strcmp(method, "GET") != 0 && strcmp(method, "HEAD") != 0)
     return text(c, MHD_HTTP_METHOD_NOT_ALLOWED, "method not allowed\n");
   if (*upload_size) return text(c, MHD_HTTP_BAD_REQUEST, "unexpected body\n");
@@ -142,6 +153,7 @@ int tds_live_start(tds_ctx *ctx, const char *webdir, int port, tds_live **out) {
     return tds_seterr(ctx, TDS_ENOMEM, "live view: out of memory");
   }
   pthread_mutex_init(&lv->mu, NULL);
+  lv->port = port;
   struct sockaddr_in sa;
   memset(&sa, 0, sizeof sa);
   sa.sin_family = AF_INET;
@@ -170,7 +182,9 @@ int tds_live_start(tds_ctx *ctx, const char *webdir, int port, tds_live **out) {
   }
   const union MHD_DaemonInfo *info =
       MHD_get_daemon_info(lv->d, MHD_DAEMON_INFO_BIND_PORT);
+  pthread_mutex_lock(&lv->mu);
   lv->port = info ? info->port : port;
+  pthread_mutex_unlock(&lv->mu);
   *out = lv;
   return TDS_OK;
 }

@@ -63,9 +63,9 @@ async function run(code, ms = 60000) {
 const num = async (expr) => Number((await run(`print(string.format("%.17g", ${expr}))`)).trim());
 
 // Raw request (no URL normalisation, any method): [status, body].
-function request(port, path, method = 'GET') {
+function request(port, path, method = 'GET', headers = {}) {
   return new Promise((resolve) => {
-    const req = http.request({ host: '127.0.0.1', port, path, method }, (res) => {
+    const req = http.request({ host: '127.0.0.1', port, path, method, headers }, (res) => {
       let b = '';
       res.on('data', (d) => { b += d; });
       res.on('end', () => resolve([res.statusCode, b]));
@@ -119,6 +119,10 @@ async function main() {
   }
   const [post] = await request(port, '/api/version', 'POST');
   if (post !== 405) bad.push(`POST: ${post} (want 405)`);
+  const [rebound] = await request(port, '/api/snapshot', 'GET', { Host: `evil.example:${port}` });
+  if (rebound !== 403) bad.push(`foreign Host: ${rebound} (want 403)`);
+  const [named] = await request(port, '/api/version', 'GET', { Host: `localhost:${port}` });
+  if (named !== 200) bad.push(`Host localhost: ${named} (want 200)`);
   report('http_routes', bad.length === 0, bad.join('; '));
 
   browser = await chromium.launch({
