@@ -5,7 +5,7 @@
 // Bounded: every wait has a timeout and the whole run stops after
 // LIMIT_MS; tds and the browser are ended on every exit path.
 import { spawn } from 'node:child_process';
-import { readFileSync } from 'node:fs';
+import { readFileSync, writeFileSync } from 'node:fs';
 import http from 'node:http';
 import net from 'node:net';
 import { createRequire } from 'node:module';
@@ -37,8 +37,9 @@ const guard = setTimeout(async () => {
 
 // tds at its prompt (stdin is a pipe: no tty, one line at a time).
 let out = '', mark = 0;
-function startTds() {
-  tds = spawn(TDS, ['-q', '-i', DATAFILE], { stdio: ['pipe', 'pipe', 'pipe'] });
+function startTds(file = DATAFILE) {
+  out = '';
+  tds = spawn(TDS, ['-q', '-i', file], { stdio: ['pipe', 'pipe', 'pipe'] });
   tds.stdout.on('data', (d) => { out += d; });
   tds.stderr.on('data', (d) => { out += d; });
 }
@@ -276,6 +277,47 @@ async function main() {
   const [down] = await request(port, '/api/version');
   report('port_option', again.includes(`127.0.0.1:${port}/`) && up === 200 && down === 0,
     `restart printed ${JSON.stringify(again)}, then ${up}, after stop ${down}`);
+  await quitTds('clean_exit');
+
+  // Colour by body: two cubes sharing a face, seen from the front left,
+  // body 1 on the left and body 2 on the right; their hues must differ.
+  startTds(new URL('two_cubes.tds', import.meta.url).pathname);
+  const addr2 = (await run('g(3); show{ open = false, color = "body" }')).match(/127\.0\.0\.1:(\d+)/);
+  await page.goto(`http://127.0.0.1:${addr2[1]}/`);
+  await page.waitForFunction(() => window.tdsLive && window.tdsLive.version >= 1, null, { timeout: 30000 });
+  await sleep(300);
+  png = await shot(page);
+  const hue = (x0, x1) => { // hue (degrees) of the mean lit surface colour in a band
+    let r = 0, g = 0, b = 0, n = 0;
+    for (let y = Math.floor(0.3 * H); y < 0.7 * H; y++)
+      for (let x = Math.floor(x0 * W); x < x1 * W; x++) {
+        const i = 4 * (y * W + x), p = png.data;
+        if (Math.max(p[i], p[i + 1], p[i + 2]) > 245 || Math.max(p[i], p[i + 1], p[i + 2]) < 60) continue;
+        r += p[i]; g += p[i + 1]; b += p[i + 2]; n++;
+      }
+    const c = new Array(3);
+    [c[0], c[1], c[2]] = [r / n, g / n, b / n];
+    const mx = Math.max(...c), mn = Math.min(...c);
+    if (!n || mx - mn < 10) return NaN;
+    let h = mx === c[0] ? (c[1] - c[2]) / (mx - mn) : mx === c[1] ? 2 + (c[2] - c[0]) / (mx - mn) : 4 + (c[0] - c[1]) / (mx - mn);
+    return ((h * 60) + 360) % 360;
+  };
+  const hl = hue(0.15, 0.35), hr = hue(0.65, 0.85);
+  const dh = Math.min(Math.abs(hl - hr), 360 - Math.abs(hl - hr));
+  const bodies = await page.evaluate(() => window.tdsLive.head.bodies);
+  if (process.env.LIVE_SHOT) writeFileSync(process.env.LIVE_SHOT, PNG.sync.write(png));
+  report('color_by_body', bodies === 2 && dh > 60, `page has ${bodies} bodies; hues left ${hl}, right ${hr}`);
+}
+
+// q ends tds (and its server); under the sanitizers a leak or a data
+// error at exit would show here.
+async function quitTds(name) {
+  if (!tds || tds.exitCode !== null) return;
+  tds.stdin.end('q\n');
+  const code = await Promise.race([new Promise((r) => tds.once('exit', (c) => r(c))), sleep(20000).then(() => 'hung')]);
+  const san = out.match(/(AddressSanitizer|LeakSanitizer|runtime error)[^\n]*/);
+  report(name, code === 0 && !san, `exit ${code}${san ? ', ' + san[0] : ''}`);
+  if (code === 'hung') tds.kill('SIGKILL');
 }
 
 try {
@@ -283,14 +325,7 @@ try {
 } catch (e) {
   report('run', false, e.message.split('\n')[0]);
 }
-if (tds && tds.exitCode === null) {
-  // q ends tds (and its server); under the sanitizers a leak or a data
-  // error at exit would show here.
-  tds.stdin.end('q\n');
-  const code = await Promise.race([new Promise((r) => tds.once('exit', (c) => r(c))), sleep(20000).then(() => 'hung')]);
-  const san = out.match(/(AddressSanitizer|LeakSanitizer|runtime error)[^\n]*/);
-  report('clean_exit', code === 0 && !san, `exit ${code}${san ? ', ' + san[0] : ''}`);
-}
+await quitTds('clean_exit_two_cubes');
 await cleanup();
 clearTimeout(guard);
 // Failures are reported as FAIL lines; a non-zero status means the run itself broke.
