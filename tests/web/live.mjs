@@ -209,6 +209,22 @@ async function main() {
     `${during.length} snapshots seen during g(${await num('N')}) (energy ${eStart} -> ${eEnd}); ` +
     `versions seen ${JSON.stringify(hist.map((h) => h.version))}`);
 
+  // Ctrl-C during a long g with the server running: the signal reaches
+  // the command (the server's thread blocks signals), g stops with its
+  // message, the prompt goes on and the page gets the stopped surface.
+  const before = out.length;
+  tds.stdin.write('g 100000000\n');
+  await sleep(1500);
+  tds.kill('SIGINT');
+  let intr = '';
+  try {
+    await waitFor(() => /interrupted: \d+ of 100000000/.test(out.slice(before)), 20000, 'the interruption');
+    const eInt = await num('total_energy');
+    await page.waitForFunction((e) => Math.abs(window.tdsLive.head.energy - e) <= 1e-13 * Math.abs(e), eInt, { timeout: 15000 });
+    intr = (await run('print(check())')).trim();
+  } catch (e) { intr = e.message; }
+  report('interrupt_with_view', intr === 'true', `after Ctrl-C: ${intr}; tds said ${JSON.stringify(out.slice(before, before + 300))}`);
+
   // pg also publishes; the final energy is tds's.
   await run('pg(30)', 120000);
   const ePg = await num('total_energy');
