@@ -154,8 +154,18 @@ function draw() {
   lines.geometry.dispose();
   lines.geometry = lg;
   lines.visible = $('showedges').checked;
-  if (!live.fitted && s.head.vertices > 0) fit(lg);
+  if (s.head.vertices > 0 && (!live.fitted || moved(lg))) fit(lg);
   render();
+}
+
+// A surface that grew, shrank or moved a lot (another one loaded) gets
+// a new view; small changes keep the user's.
+let fitted = null;
+function moved(g) {
+  g.computeBoundingSphere();
+  const b = g.boundingSphere;
+  return b.radius > 2 * fitted.radius || b.radius < fitted.radius / 2 ||
+    b.center.distanceTo(fitted.center) > fitted.radius;
 }
 
 // Look at the whole surface from an oblique direction.
@@ -169,6 +179,7 @@ function fit(g) {
   camera.updateProjectionMatrix();
   if (controls) { controls.target.copy(c); controls.update(); }
   live.fitted = true;
+  fitted = g.boundingSphere.clone();
 }
 
 function show(s) {
@@ -207,6 +218,7 @@ async function poll() {
 }
 
 $('color').addEventListener('change', () => { if (snap) draw(); });
+$('fit').addEventListener('click', () => { if (snap && snap.head.vertices > 0) { fit(lines.geometry); render(); } });
 $('showedges').addEventListener('change', () => { lines.visible = $('showedges').checked; render(); });
 resize();
 poll();

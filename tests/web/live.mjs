@@ -268,6 +268,17 @@ async function main() {
   report('page_selects_field', changed > 0.3 * surf && !(await page.isHidden('#legend')),
     `${changed} of ${surf} drawn pixels changed, legend ${await page.isHidden('#legend') ? 'hidden' : 'shown'}`);
 
+  // A surface four times larger, moved away, is looked at anew: it is
+  // framed as before (centre covered, margins empty).
+  await run('for v in vertices() do v.x, v.y, v.z = 4 * v.x + 10, 4 * v.y, 4 * v.z end');
+  await page.waitForFunction(() => window.tdsLive.head.area > 10, null, { timeout: 15000 }).catch(() => {});
+  await sleep(300);
+  png = await shot(page);
+  const c2 = countInk(png, 0.4 * W, 0.4 * H, 0.6 * W, 0.6 * H);
+  const m2 = Math.max(countInk(png, 0.95 * W, 0, W, H), countInk(png, 0, 0.95 * H, W, H));
+  report('refits_moved_surface', c2 > 0.98 && m2 < 0.002,
+    `centre covered ${c2.toFixed(3)}, margins ${m2.toFixed(4)}, area ${await page.evaluate(() => window.tdsLive.head.area)}`);
+
   // Errors: unknown option names the key; a busy port is refused and the
   // running view is kept.
   const bogus = await run('show{ bogus = 1 }');
@@ -331,7 +342,7 @@ async function quitTds(name) {
   if (!tds || tds.exitCode !== null) return;
   tds.stdin.end('q\n');
   const code = await Promise.race([new Promise((r) => tds.once('exit', (c) => r(c))), sleep(20000).then(() => 'hung')]);
-  const san = out.match(/(AddressSanitizer|LeakSanitizer|runtime error)[^\n]*/);
+  const san = out.match(/(AddressSanitizer|LeakSanitizer|ThreadSanitizer|runtime error)[^\n]*/);
   report(name, code === 0 && !san, `exit ${code}${san ? ', ' + san[0] : ''}`);
   if (code === 'hung') tds.kill('SIGKILL');
 }
