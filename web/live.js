@@ -182,8 +182,11 @@ function fit(g) {
   fitted = g.boundingSphere.clone();
 }
 
+const DENSE = 20000; // facets above which edges start hidden (they would hide the surface)
+
 function show(s) {
   const h = s.head;
+  if (!snap && h.facets > DENSE) $('showedges').checked = false;
   snap = s;
   if (h.color !== headColor) { headColor = h.color; $('color').value = h.color; }
   const num = (x, p) => (x === null ? '-' : Number(x).toPrecision(p));

@@ -309,7 +309,8 @@ async function main() {
   // Colour by body: two cubes sharing a face, seen from the front left,
   // body 1 on the left and body 2 on the right; their hues must differ.
   startTds(new URL('two_cubes.tds', import.meta.url).pathname);
-  const addr2 = (await run('g(3); show{ open = false, color = "body" }')).match(/127\.0\.0\.1:(\d+)/);
+  // Refined past 20000 facets, the page starts with the edges hidden.
+  const addr2 = (await run('g(3); for i = 1, 5 do r() end; show{ open = false, color = "body" }')).match(/127\.0\.0\.1:(\d+)/);
   await page.goto(`http://127.0.0.1:${addr2[1]}/`);
   await page.waitForFunction(() => window.tdsLive && window.tdsLive.version >= 1, null, { timeout: 30000 });
   await sleep(300);
@@ -334,6 +335,10 @@ async function main() {
   const bodies = await page.evaluate(() => window.tdsLive.head.bodies);
   if (process.env.LIVE_SHOT) writeFileSync(process.env.LIVE_SHOT, PNG.sync.write(png));
   report('color_by_body', bodies === 2 && dh > 60, `page has ${bodies} bodies; hues left ${hl}, right ${hr}`);
+  const nf3 = await num('facet_count');
+  const dense = await page.evaluate(() => window.tdsLive.head.facets);
+  report('dense_edges_hidden', nf3 > 20000 && dense === nf3 && !(await page.isChecked('#showedges')),
+    `${nf3} facets in tds, ${dense} on the page, edges ${await page.isChecked('#showedges') ? 'shown' : 'hidden'}`);
 }
 
 // q ends tds (and its server); under the sanitizers a leak or a data
