@@ -18,31 +18,42 @@ LUA_LIBS = $(shell pkg-config --libs lua5.4)
 LIBS = $(LUA_LIBS) -lreadline -lm
 
 BIND_SRC := $(wildcard src/lua_*.c) src/repl.c src/main.c
-CORE_SRC := $(filter-out $(BIND_SRC),$(wildcard src/*.c))
+# The live view's server: linked into the program only (libmicrohttpd).
+LIVE_SRC := src/live.c
+LIVE_CFLAGS = $(shell pkg-config --cflags libmicrohttpd)
+LIVE_LIBS = $(shell pkg-config --libs libmicrohttpd) -pthread
+CORE_SRC := $(filter-out $(BIND_SRC) $(LIVE_SRC),$(wildcard src/*.c))
 LUA_SRC := $(sort $(wildcard lua/*.lua))
 CORE_OBJ := $(CORE_SRC:src/%.c=$(BUILD)/%.o)
 BIND_OBJ := $(BIND_SRC:src/%.c=$(BUILD)/%.o)
+LIVE_OBJ := $(LIVE_SRC:src/%.c=$(BUILD)/%.o)
 UNIT_SRC := $(wildcard tests/unit/test_*.c)
 UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/%)
 TDS_BIN ?= tds
 
-.PHONY: all deps deps-test demo test test-asan unit bench bench-paper clean
+.PHONY: all deps deps-test web demo test test-asan unit bench bench-paper clean
 
-all: $(TDS_BIN)
+all: $(TDS_BIN) web
 
 deps:
 	@sh scripts/deps.sh build
 deps-test:
 	@sh scripts/deps.sh test
 
-$(TDS_BIN): $(CORE_OBJ) $(BIND_OBJ) | deps
-	$(CC) $(CFLAGS_ALL) -fopenmp -o $@ $^ $(LIBS)
+$(TDS_BIN): $(CORE_OBJ) $(BIND_OBJ) $(LIVE_OBJ) | deps
+	$(CC) $(CFLAGS_ALL) -fopenmp -o $@ $^ $(LIBS) $(LIVE_LIBS)
+
+# The live view's page needs three.js from the npm registry (web/).
+web: web/node_modules/.package-lock.json
+web/node_modules/.package-lock.json: web/package.json web/package-lock.json | deps
+	cd web && npm ci --no-audit --no-fund --loglevel=error
 
 # Header dependencies come from the compiler (-MMD -MP).
 $(BUILD)/%.o: src/%.c | deps $(BUILD)
 	$(CC) $(CFLAGS_ALL) $(if $(filter $(OMP_SRC),$<),-fopenmp) \
-	  $(if $(filter $(BIND_SRC),$<),$(LUA_CFLAGS)) -MMD -MP -Isrc -I$(BUILD) -c -o $@ $<
--include $(CORE_OBJ:.o=.d) $(BIND_OBJ:.o=.d)
+	  $(if $(filter $(BIND_SRC),$<),$(LUA_CFLAGS)) $(if $(filter $(LIVE_SRC),$<),$(LIVE_CFLAGS)) \
+	  -MMD -MP -Isrc -I$(BUILD) -c -o $@ $<
+-include $(CORE_OBJ:.o=.d) $(BIND_OBJ:.o=.d) $(LIVE_OBJ:.o=.d)
 
 # The Lua prelude is embedded in the binary.
 $(BUILD)/lua_tds.o: $(BUILD)/prelude.inc
@@ -57,7 +68,7 @@ $(BUILD):
 
 unit: $(UNIT_BIN)
 
-test: $(TDS_BIN) unit | deps-test
+test: $(TDS_BIN) unit web | deps-test
 	@sh tests/run.sh $(abspath $(TDS_BIN)) $(abspath $(BUILD))
 
 # The whole suite under AddressSanitizer and UndefinedBehaviorSanitizer.

@@ -270,5 +270,6 @@ tds.translate = require("evolver")
 
 -- The projected-gradient method and mesh metrics (lua/pg.lua).
 require("pg")
+require("live")
 
 return true

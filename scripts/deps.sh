@@ -6,10 +6,13 @@
 #   build: what `make` needs to build the program (the default)
 #   test:  also what the tests and benchmarks compare against
 set -e
-BUILD_PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev"
-# Surface Evolver, and for the export round trips (tests/export) meshio, VTK
-# and NumPy for /usr/bin/python3.
-TEST_PKGS="evolver-nox evolver-doc python3-meshio python3-vtk9 python3-numpy"
+# The program: Lua, readline, libmicrohttpd (the live view's server).
+BUILD_PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev libmicrohttpd-dev"
+# The tests: Surface Evolver; meshio, VTK and NumPy for /usr/bin/python3
+# (export round trips, tests/export); Chromium (the live view's browser
+# test, tests/web).
+TEST_PKGS="evolver-nox evolver-doc python3-meshio python3-vtk9 python3-numpy
+  chromium chromium-driver"
 
 what=build
 check=""
@@ -29,6 +32,9 @@ for p in $PKGS; do
     missing="$missing $p"
   fi
 done
+# The live view's page is built with npm (three.js); the machine's own
+# Node.js may come with npm, else Debian's packages provide both.
+command -v npm >/dev/null 2>&1 || missing="$missing nodejs npm"
 [ -z "$missing" ] && exit 0
 if [ -n "$check" ]; then
   echo "missing Debian packages:$missing" >&2

@@ -306,6 +306,7 @@ int tds_iterate(tds_ctx *ctx, tds_surf *s, int n) {
     if (rc != TDS_OK) break;
     tds_printf(ctx, "%3d. area: %#17.15g energy: %#17.15g  scale: %g\n", i,
                s->area, s->energy, s->scale);
+    if (ctx->step) ctx->step(ctx->step_ud, s->energy);
     if (w.unconverged) {
       tds_warnf(ctx, "warning: volume or quantity constraints did not converge "
                 "in 10 projections\n");

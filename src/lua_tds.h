@@ -18,6 +18,8 @@ typedef struct tds_state {
   tds_ctx ctx;
   tds_surf s;
   char *datafile;    /* name of the loaded file, for messages and dumps */
+  void (*after_chunk)(void *ud);  /* run after every chunk, or NULL */
+  void *after_ud;                 /* (the live view publishes through it) */
 } tds_state;
 
 #define TDS_STATE(L) ((tds_state *)lua_touserdata(L, lua_upvalueindex(1)))
@@ -53,6 +55,7 @@ void tds_open_model(lua_State *L, tds_state *st);     /* lua_model.c */
 void tds_open_datafile(lua_State *L, tds_state *st);  /* lua_datafile.c */
 void tds_open_pg(lua_State *L, tds_state *st);        /* lua_pg.c */
 void tds_open_export(lua_State *L, tds_state *st);    /* lua_export.c */
+void tds_open_live(lua_State *L, tds_state *st);      /* lua_live.c */
 
 /* Push a handle for element (kind, 0-based id). */
 void tds_push_elem(lua_State *L, int kind, tds_id id);

@@ -369,6 +369,7 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
     }
     since_flip++;
     s->iterations++;
+    if (ctx->step) ctx->step(ctx->step_ud, si.energy);
     if (ctx->interrupt) {
       ctx->interrupt = 0;
       rc = tds_seterr(ctx, TDS_EINTR, "interrupted after %lld iterations",

@@ -31,6 +31,7 @@ int tds_run_chunk(lua_State *L, tds_state *st, int *quit_code) {
   tds_lua_sigint(L, st, 1);
   int status = lua_pcall(L, 0, LUA_MULTRET, 0);
   tds_lua_sigint(L, st, 0);
+  if (st->after_chunk) st->after_chunk(st->after_ud);
   fflush(stdout);
   if (status == LUA_OK) return 0;
   if (tds_lua_is_quit(L, -1, quit_code)) {

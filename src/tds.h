@@ -45,6 +45,11 @@ typedef struct tds_ctx {
   tds_out_fn warn;                   /* warnings; NULL = stderr */
   void *warn_ud;
   int quiet;                         /* suppress progress lines */
+  /* Called after every iteration of a long command (g, pg) on the thread
+  ** running it, between iterations (the surface is consistent); energy is
+  ** that iteration's. NULL = none. The live view publishes through it. */
+  void (*step)(void *ud, double energy);
+  void *step_ud;
 } tds_ctx;
 
 /* Initialise a context with default sinks. */

@@ -37,6 +37,10 @@ trap 'rm -rf "$out"' EXIT
   done
   sh tests/docs.sh
   sh tests/export/run.sh
+  for w in tests/web/*.sh; do
+    [ -f "$w" ] || continue
+    sh "$w" || echo "FAIL web/$(basename "$w" .sh): exit status $?"
+  done
   for e in tests/evolver/*.sh; do
     [ -f "$e" ] || continue
     sh "$e" || echo "FAIL evolver/$(basename "$e" .sh): exit status $?"
