@@ -9,7 +9,9 @@ CFLAGS_ALL = -std=c11 $(OPT) -g -fopenmp -Wall -Wextra -D_POSIX_C_SOURCE=200809L
 # Evaluated when a recipe runs, so after `deps` has installed pkg-config/Lua.
 LUA_CFLAGS = $(shell pkg-config --cflags lua5.4)
 LUA_LIBS = $(shell pkg-config --libs lua5.4)
-LIBS = $(LUA_LIBS) -lreadline -lm
+CAIRO_CFLAGS = $(shell pkg-config --cflags cairo)
+CAIRO_LIBS = $(shell pkg-config --libs cairo)
+LIBS = $(LUA_LIBS) $(CAIRO_LIBS) -lreadline -lm
 
 BIND_SRC := $(wildcard src/lua_*.c) src/repl.c src/main.c
 CORE_SRC := $(filter-out $(BIND_SRC),$(wildcard src/*.c))
@@ -31,7 +33,7 @@ $(TDS_BIN): $(CORE_OBJ) $(BIND_OBJ) | deps
 	$(CC) $(CFLAGS_ALL) -o $@ $^ $(LIBS)
 
 $(BUILD)/%.o: src/%.c $(wildcard src/*.h) | deps $(BUILD)
-	$(CC) $(CFLAGS_ALL) $(if $(filter $(BIND_SRC),$<),$(LUA_CFLAGS)) -Isrc -I$(BUILD) -c -o $@ $<
+	$(CC) $(CFLAGS_ALL) $(if $(filter $(BIND_SRC),$<),$(LUA_CFLAGS)) $(if $(filter src/render%,$<),$(CAIRO_CFLAGS)) -Isrc -I$(BUILD) -c -o $@ $<
 
 # The Lua prelude is embedded in the binary.
 $(BUILD)/lua_tds.o: $(BUILD)/prelude.inc
@@ -39,19 +41,23 @@ $(BUILD)/prelude.inc: $(LUA_SRC) scripts/embed.sh | $(BUILD)
 	sh scripts/embed.sh $(LUA_SRC) > $@
 
 $(BUILD)/test_%: tests/unit/test_%.c tests/unit/*.h $(CORE_OBJ) | deps
-	$(CC) $(CFLAGS_ALL) -Isrc -Itests/unit -o $@ $< $(CORE_OBJ) -lm
+	$(CC) $(CFLAGS_ALL) -Isrc -Itests/unit -o $@ $< $(CORE_OBJ) $(CAIRO_LIBS) -lm
 
 $(BUILD):
 	mkdir -p $(BUILD)
 
-unit: $(UNIT_BIN)
+# The picture tests' PNG reader (tests/pictures/).
+$(BUILD)/png2ppm: tests/pictures/png2ppm.c | deps $(BUILD)
+	$(CC) $(CFLAGS_ALL) $(CAIRO_CFLAGS) -o $@ $< $(CAIRO_LIBS)
+
+unit: $(UNIT_BIN) $(BUILD)/png2ppm
 
 test: $(TDS_BIN) unit
 	@sh tests/run.sh $(abspath $(TDS_BIN)) $(abspath $(BUILD))
 
 # The whole suite under AddressSanitizer and UndefinedBehaviorSanitizer.
 test-asan:
-	$(MAKE) BUILD=build-asan TDS_BIN=build-asan/tds OPT=-O1 \
+	LSAN_OPTIONS=suppressions=$(abspath tests/lsan.supp) $(MAKE) BUILD=build-asan TDS_BIN=build-asan/tds OPT=-O1 \
 	  SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" test
 
 demo: $(TDS_BIN)
@@ -59,6 +65,7 @@ demo: $(TDS_BIN)
 
 bench: $(TDS_BIN)
 	sh bench/cube.sh ./$(TDS_BIN)
+	sh bench/pictures.sh ./$(TDS_BIN)
 
 bench-paper: $(TDS_BIN)
 	sh bench/paper.sh ./$(TDS_BIN)

@@ -3,7 +3,8 @@
 # Quiet and fast when everything is present; installs what is missing
 # (needs root, as on CI). Usage: scripts/deps.sh [--check]
 set -e
-PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev evolver-nox evolver-doc"
+PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev evolver-nox evolver-doc\
+  libcairo2-dev fonts-dejavu-core python3-numpy util-linux"
 
 missing=""
 for p in $PKGS; do

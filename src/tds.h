@@ -37,6 +37,8 @@ enum {
 /* Where progress lines and warnings go; the REPL and tests may capture them. */
 typedef void (*tds_out_fn)(void *ud, const char *text);
 
+struct tds_progress;                 /* progress.h */
+
 typedef struct tds_ctx {
   char errmsg[1024];                 /* message of the last failure */
   volatile sig_atomic_t interrupt;   /* set asynchronously (SIGINT); polled */
@@ -45,6 +47,7 @@ typedef struct tds_ctx {
   tds_out_fn warn;                   /* warnings; NULL = stderr */
   void *warn_ud;
   int quiet;                         /* suppress progress lines */
+  struct tds_progress *progress;     /* live line and history, or NULL */
 } tds_ctx;
 
 /* Initialise a context with default sinks. */

@@ -36,6 +36,9 @@ trap 'rm -rf "$out"' EXIT
     fi
   done
   sh tests/docs.sh
+  for p in tests/pictures/*.py; do
+    /usr/bin/python3 "$p" "$TDS" "$BUILD" || echo "FAIL pictures/$(basename "$p" .py): exit status $?"
+  done
   for e in tests/evolver/*.sh; do
     [ -f "$e" ] || continue
     sh "$e" || echo "FAIL evolver/$(basename "$e" .sh): exit status $?"
