@@ -62,8 +62,7 @@ void tds_render_evolver_color(int c, double rgb[3]) {
 static const double neutral[3] = {0.80, 0.82, 0.88};
 static const double novalue[3] = {0.55, 0.55, 0.55};
 
-/* Per-facet scalar of the colouring (NaN: none), over live facets. */
-static int facet_values(tds_ctx *ctx, tds_surf *s, int mode, double *val) {
+int tds_render_field(tds_ctx *ctx, tds_surf *s, int mode, double *val) {
   tds_mesh *m = &s->m;
   if (mode == TDS_RCOL_MEAN_CURVATURE) {
     if (tds_mesh_adjacency(m) != TDS_OK)
@@ -219,7 +218,7 @@ int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
     free(rf);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   }
-  rc = field ? facet_values(ctx, s, o->color, val) : TDS_OK;
+  rc = field ? tds_render_field(ctx, s, o->color, val) : TDS_OK;
   double lo = INFINITY, hi = -INFINITY;
   if (rc == TDS_OK && field) {
     for (tds_id f = 0; f < m->nf; f++)

@@ -61,6 +61,12 @@ void tds_render_ramp(double t, double rgb[3]);
 void tds_render_body_color(tds_id b, double rgb[3]);
 void tds_render_evolver_color(int c, double rgb[3]);
 
+/* Per-facet value of a field colouring (TDS_RCOL_MEAN_CURVATURE: the mean
+** of the facet's measured vertices; MIN_ANGLE; TENSION) into val[0..nf),
+** NaN where there is none (dead facets, no measured vertex). For other
+** viewers (export, live view) to colour alike. TDS_OK or TDS_ENOMEM. */
+int tds_render_field(tds_ctx *ctx, tds_surf *s, int mode, double *val);
+
 /* Render the surface to a PNG file. info (may be NULL) receives the
 ** projection and colour range. TDS_OK, TDS_ENOMEM, TDS_ERANGE (bad
 ** options, nothing to draw), TDS_EIO (the file cannot be written). */

@@ -56,28 +56,32 @@ def sphere(out, seed):
     the chord depth of the longest edge (sag); anti-aliasing moves each
     boundary pixel's coverage by under half a pixel."""
     info = run("sphere.tds", out, seed)
-    img = read_png(os.path.join(out, "sphere.png"))
+    for pic, pre, tag in (("sphere.png", "", ""), ("sphere_persp.png", "p", "_perspective")):
+        disc(out, pic, info[pre + "cx"], info[pre + "cy"], info[pre + "R"],
+             info[pre + "sag"], f"{tag}_seed{seed}")
+
+
+def disc(out, pic, cx, cy, R, sag, tag):
+    img = read_png(os.path.join(out, pic))
     surface = np.array([0.80, 0.82, 0.88]) * 255  # the neutral colour, unlit
     cov = np.clip((255 - img).sum(axis=2) / (765 - surface.sum()), 0, 1)
     ys, xs = np.mgrid[0:img.shape[0], 0:img.shape[1]] + 0.5
     area = cov.sum()
     mx, my = (cov * xs).sum() / area, (cov * ys).sum() / area
-    R, sag = info["R"], info["sag"]
     lo = math.pi * (R - sag) ** 2 - math.pi * R
     hi = math.pi * R ** 2 + math.pi * R
-    ok = lo <= area <= hi
-    report(f"sphere_area_seed{seed}", ok,
+    report(f"sphere_area{tag}", lo <= area <= hi,
            f"silhouette area {area:.1f} px not in [{lo:.1f}, {hi:.1f}]")
-    dc = math.hypot(mx - info["cx"], my - info["cy"])
-    report(f"sphere_centroid_seed{seed}", dc <= sag + 0.5,
+    dc = math.hypot(mx - cx, my - cy)
+    report(f"sphere_centroid{tag}", dc <= sag + 0.5,
            f"centroid ({mx:.2f}, {my:.2f}) is {dc:.2f} px from the projected "
-           f"centre ({info['cx']:.2f}, {info['cy']:.2f}), tolerance {sag + 0.5:.2f}")
+           f"centre ({cx:.2f}, {cy:.2f}), tolerance {sag + 0.5:.2f}")
     # round, not an ellipse: equal second moments about the centroid
     ixx = (cov * (xs - mx) ** 2).sum()
     iyy = (cov * (ys - my) ** 2).sum()
     ixy = (cov * (xs - mx) * (ys - my)).sum()
     tol = 4 * sag / R + 4 / R
-    report(f"sphere_round_seed{seed}",
+    report(f"sphere_round{tag}",
            abs(ixx / iyy - 1) <= tol and abs(ixy) / iyy <= tol,
            f"moments xx {ixx:.4g} yy {iyy:.4g} xy {ixy:.4g}, tolerance {tol:.3g}")
 
