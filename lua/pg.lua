@@ -34,6 +34,12 @@ local function pct(x) return ("%5.1f%%"):format(x) end
 -- quality{ png = "angles.png", size = {w, h} } also draws the histogram.
 function quality(o)
   o = o or {}
+  if type(o) ~= "table" then error("quality{ quiet =, png =, size = } expected", 2) end
+  for k in pairs(o) do
+    if k ~= "quiet" and k ~= "png" and k ~= "size" then
+      error(("quality: option '%s' is unknown"):format(tostring(k)), 2)
+    end
+  end
   local q = tds.quality()
   if o.png ~= nil then
     if type(o.png) ~= "string" then error("quality: option 'png' must be a file name", 2) end

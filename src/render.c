@@ -119,6 +119,9 @@ static int frame(tds_ctx *ctx, const tds_mesh *m, const tds_render_opts *o,
     if (m->fflags[f] & TDS_DEAD) continue;
     for (int k = 0; k < 3; k++) {
       const double *p = m->x[m->fv[f][k]];
+      if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
+        return tds_seterr(ctx, TDS_ENUM, "snapshot: vertex %d has a non-finite "
+                          "coordinate", m->fv[f][k] + 1);
       for (int c = 0; c < 3; c++) {
         if (p[c] < lo[c]) lo[c] = p[c];
         if (p[c] > hi[c]) hi[c] = p[c];
@@ -138,7 +141,8 @@ static int frame(tds_ctx *ctx, const tds_mesh *m, const tds_render_opts *o,
       if (r > R) R = r;
     }
   }
-  if (!isfinite(R)) return tds_seterr(ctx, TDS_ENUM, "snapshot: non-finite coordinates");
+  if (!(R < 1e150)) /* also inf: the picture's arithmetic would overflow */
+    return tds_seterr(ctx, TDS_ERANGE, "snapshot: the surface is too large to draw");
   if (!(R > 0)) R = 1;
   in->radius = R;
   double a = o->azimuth * TDS_PI / 180, e = o->elevation * TDS_PI / 180;

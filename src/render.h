@@ -69,7 +69,8 @@ int tds_render_field(tds_ctx *ctx, tds_surf *s, int mode, double *val);
 
 /* Render the surface to a PNG file. info (may be NULL) receives the
 ** projection and colour range. TDS_OK, TDS_ENOMEM, TDS_ERANGE (bad
-** options, nothing to draw), TDS_EIO (the file cannot be written). */
+** options, nothing to draw), TDS_ENUM (a non-finite coordinate), TDS_EIO
+** (the file cannot be written). Nothing is written on failure. */
 int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
                    const char *path, tds_render_info *info);
 

@@ -139,9 +139,11 @@ static void axes(cairo_t *cr, double X0, double Y0, double X1, double Y1,
   if (xtitle) text_at(cr, (X0 + X1) / 2, Y1 + 24, 0.5, 0, xtitle);
 }
 
-static int canvas(tds_ctx *ctx, int w, int h, cairo_surface_t **img, cairo_t **cr) {
+static int canvas(tds_ctx *ctx, const char *what, int w, int h,
+                  cairo_surface_t **img, cairo_t **cr) {
   if (w < 100 || h < 80 || w > 8192 || h > 8192)
-    return tds_seterr(ctx, TDS_ERANGE, "size must be 100..8192 by 80..8192 pixels");
+    return tds_seterr(ctx, TDS_ERANGE, "%s: size must be 100..8192 by 80..8192 pixels",
+                      what);
   *img = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h);
   if (cairo_surface_status(*img)) {
     cairo_surface_destroy(*img);
@@ -159,7 +161,7 @@ int tds_plot_png(tds_ctx *ctx, const char *path, int width, int height,
   if (n < 1) return tds_seterr(ctx, TDS_ERANGE, "plot: no iterations recorded yet");
   cairo_t *cr;
   cairo_surface_t *img;
-  int rc0 = canvas(ctx, width, height, &img, &cr);
+  int rc0 = canvas(ctx, "plot", width, height, &img, &cr);
   if (rc0 != TDS_OK) return rc0;
   double xlo = x[0], xhi = x[n - 1];
   if (!(xhi > xlo)) {
@@ -227,7 +229,7 @@ int tds_histogram_png(tds_ctx *ctx, const char *path, int width, int height,
                       tds_plot_info *info) {
   cairo_t *cr;
   cairo_surface_t *img;
-  int rc0 = canvas(ctx, width, height, &img, &cr);
+  int rc0 = canvas(ctx, "quality", width, height, &img, &cr);
   if (rc0 != TDS_OK) return rc0;
   int32_t most = 1;
   for (int i = 0; i < nbins; i++)

@@ -59,6 +59,11 @@ static void test_render_contract(void) {
   CHECK(tds_render_png(&ctx, &s, &o, "/nonexistent-dir/x.png", NULL) == TDS_EIO);
   CHECK(strstr(ctx.errmsg, "/nonexistent-dir/x.png") != NULL);
   CHECK(access(path, F_OK) != 0);
+  s.m.x[2][1] = NAN;
+  CHECK(tds_render_png(&ctx, &s, &o, path, NULL) == TDS_ENUM);
+  CHECK(strstr(ctx.errmsg, "vertex 3") != NULL);
+  CHECK(access(path, F_OK) != 0);
+  s.m.x[2][1] = x0[2][1];
   CHECK(memcmp(x0, s.m.x, sizeof x0) == 0 && s.m.coord_gen == gen);
   tds_surf_free(&s);
 
