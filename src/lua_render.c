@@ -249,28 +249,39 @@ static void push_layout(lua_State *L, const tds_plot_info *pi, int npanels) {
 static int l_plot(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   const char *path = luaL_checkstring(L, 1);
-  int w = 800, h = 600;
+  int w = 800, h = 600, mode = 0; /* energy: 0 linear, 1 log, 2 excess */
   if (!lua_isnoneornil(L, 2)) {
     luaL_checktype(L, 2, LUA_TTABLE);
-    static const char *const keys[] = {"size", NULL};
+    static const char *const keys[] = {"size", "energy", NULL};
     check_keys(L, st, 2, "plot", keys);
     opt_size(L, st, 2, "plot", &w, &h);
+    int ty = lua_getfield(L, 2, "energy");
+    const char *e = ty == LUA_TSTRING ? lua_tostring(L, -1) : "";
+    if (ty == LUA_TNIL) mode = 0;
+    else if (!strcmp(e, "linear")) mode = 0;
+    else if (!strcmp(e, "log")) mode = 1;
+    else if (!strcmp(e, "excess")) mode = 2;
+    else opt_error(L, st, "plot", "energy", "must be \"linear\", \"log\" or \"excess\"");
+    lua_pop(L, 1);
   }
   tds_progress *p = progress_of(L);
   if (!p || p->n == 0) {
     tds_seterr(&st->ctx, TDS_ERANGE, "plot: no iterations in this session yet");
     return tds_lua_fail(L, st, TDS_ERANGE);
   }
-  /* r only at pg iterations; the energy on a log axis when all positive */
-  double *r = lua_newuserdatauv(L, (size_t)p->n * sizeof *r, 0);
-  int haspg = 0, allpos = 1;
+  /* r only at pg iterations; the energy as asked */
+  double *r = lua_newuserdatauv(L, 2 * (size_t)p->n * sizeof *r, 0);
+  double *e = r + p->n, emin = INFINITY;
+  int haspg = 0;
   for (int32_t i = 0; i < p->n; i++) {
     r[i] = p->kinds[i] == 'p' ? p->value[i] : NAN;
     haspg |= p->kinds[i] == 'p';
-    allpos &= p->energy[i] > 0;
+    if (p->energy[i] < emin) emin = p->energy[i];
   }
-  (void)allpos;
-  tds_plot_series ser[2] = {{p->energy, "energy", 0}, {r, "r (pg), log scale", 1}};
+  for (int32_t i = 0; i < p->n; i++) e[i] = mode == 2 ? p->energy[i] - emin : p->energy[i];
+  static const char *const etitle[3] = {"energy", "energy, log scale",
+                                        "energy above the lowest, log scale"};
+  tds_plot_series ser[2] = {{e, etitle[mode], mode > 0}, {r, "r (pg), log scale", 1}};
   tds_plot_info pi;
   int rc = tds_plot_png(&st->ctx, path, w, h, p->iter, p->n, ser, haspg ? 2 : 1,
                         "iteration", &pi);

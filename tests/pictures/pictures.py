@@ -169,36 +169,44 @@ def series_rows(img, colour, x0, x1, y0, y1):
     return cols
 
 
-def plots(out, seed):
-    """The convergence plot's curve passes through the recorded energies
-    (where the curve is flat to within a pixel per column, so a column's
-    mean row is the value), and each histogram bar is as tall as its count
-    says, to a pixel."""
-    info = run("plots.tds", out, seed)
-    img = read_png(os.path.join(out, "plot.png"))
-    x0, y0, x1, y1, lo, hi = info["plot layout"]
-    hist = np.array(info["HIST"])
-    it, energy = hist[:, 0], hist[:, 1]
+def curve(out, pic, layout, it, vals, name):
+    """The plotted curve passes through the recorded values, to 1.5 px, in
+    every column away from steep segments (where a column's pixels span
+    many rows, so its mean row is not the value)."""
+    img = read_png(os.path.join(out, pic))
+    x0, y0, x1, y1, lo, hi = layout
     cols = series_rows(img, (0.1, 0.3, 0.75), x0, x1, y0, y1)
+    rows = y1 - (vals - lo) / (hi - lo) * (y1 - y0)
     bad, checked = [], 0
     for x, row in cols.items():
         i = it[0] + (x - x0) / (x1 - x0) * (it[-1] - it[0])
         k = int(np.searchsorted(it, i))
         if k < 1 or k >= len(it):
             continue
-        rows = y1 - (energy - lo) / (hi - lo) * (y1 - y0)
-        ya, yb = rows[k - 1], rows[k]
-        # skip columns near a steep segment (its pixels span many rows)
         d = 2 * (it[-1] - it[0]) / (x1 - x0)
         near = (it >= it[k - 1] - d - 1) & (it <= it[k] + d + 1)
-        if np.ptp(rows[near]) > 1:
+        if not np.isfinite(rows[near]).all() or np.ptp(rows[near]) > 1:
             continue
+        ya, yb = rows[k - 1], rows[k]
         want = ya + (yb - ya) * (i - it[k - 1]) / (it[k] - it[k - 1])
         checked += 1
         if abs(row - want) > 1.5:
-            bad.append(f"iteration {i:.1f}: curve at row {row:.1f}, energy at {want:.1f}")
-    report(f"plot_energy_curve_seed{seed}", checked > 100 and not bad,
-           f"{checked} columns checked; " + "; ".join(bad[:3]))
+            bad.append(f"iteration {i:.1f}: curve at row {row:.1f}, value at {want:.1f}")
+    report(name, checked > 50 and not bad, f"{checked} columns checked; " + "; ".join(bad[:3]))
+
+
+def plots(out, seed):
+    """The convergence plots' curves (energy, and energy above the lowest on
+    a log scale) pass through the recorded history, and each histogram bar
+    is as tall as its count says, to a pixel."""
+    info = run("plots.tds", out, seed)
+    hist = np.array(info["HIST"])
+    it, energy = hist[:, 0], hist[:, 1]
+    with np.errstate(divide="ignore"):
+        excess = np.log10(energy - energy.min())  # -inf at the lowest: no point
+    for pic, key, vals, tag in (("plot.png", "plot layout", energy, "energy"),
+                                ("plot_excess.png", "excess layout", excess, "excess")):
+        curve(out, pic, info[key], it, vals, f"plot_{tag}_seed{seed}")
     img = read_png(os.path.join(out, "angles.png"))
     x0, y0, x1, y1, top = info["hist layout"]  # y0: row of count 0, y1: of `top`
     counts = info["COUNTS"][0]
