@@ -4,7 +4,7 @@
 # (needs root, as on CI). Usage: scripts/deps.sh [--check]
 set -e
 PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev evolver-nox evolver-doc\
-  libcairo2-dev fonts-dejavu-core python3-numpy util-linux"
+  libcairo2-dev fonts-dejavu-core python3-numpy"
 
 missing=""
 for p in $PKGS; do
