@@ -209,7 +209,8 @@ int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
     return tds_seterr(ctx, TDS_ERANGE,
                       "snapshot: view distance must exceed 1 (bounding radii)");
   int field = is_field(o->color);
-  int legend = field && o->legend && o->width >= 200;
+  int32_t nbody = o->color == TDS_RCOL_BODY ? tds_mesh_count(m, TDS_BODY) : 0;
+  int legend = (field || nbody > 0) && o->legend && o->width >= 200;
   int legw = legend ? 110 : 0;
   int plotw = o->width - legw;
   int rc = frame(ctx, m, o, plotw, &in);
@@ -320,7 +321,12 @@ int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
   cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_GOOD);
   cairo_paint(cr);
   cairo_restore(cr);
-  if (legend)
+  if (legend && nbody > 0) {
+    int32_t ids[16], k = 0;
+    for (tds_id b = 0; b < m->nb && k < 16; b++)
+      if (!(m->bflags[b] & TDS_DEAD)) ids[k++] = b;
+    tds_draw_swatches(cr, plotw + 10, 0.15 * o->height, ids, nbody > 16 ? 17 : k);
+  } else if (legend)
     tds_draw_colorbar(cr, plotw + 20, 0.15 * o->height, 22, 0.7 * o->height, lo, hi,
                       o->color == TDS_RCOL_MEAN_CURVATURE ? "k1+k2"
                       : o->color == TDS_RCOL_MIN_ANGLE  ? "min angle"

@@ -72,6 +72,30 @@ void tds_draw_colorbar(cairo_t *cr, double x, double y, double w, double h,
   }
 }
 
+void tds_draw_swatches(cairo_t *cr, double x, double y, const int32_t *ids,
+                       int n) {
+  font(cr, 12);
+  cairo_set_line_width(cr, 1);
+  for (int i = 0; i < n && i < 16; i++) {
+    double rgb[3], yy = y + 20 * i;
+    char buf[32];
+    if (i == 15 && n > 16) {
+      cairo_set_source_rgb(cr, 0, 0, 0);
+      text_at(cr, x + 20, yy + 7, 0, 0.5, "...");
+      break;
+    }
+    tds_render_body_color(ids[i], rgb);
+    cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
+    cairo_rectangle(cr, x, yy, 14, 14);
+    cairo_fill(cr);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    cairo_rectangle(cr, x + 0.5, yy + 0.5, 13, 13);
+    cairo_stroke(cr);
+    snprintf(buf, sizeof buf, "body %d", (int)ids[i] + 1);
+    text_at(cr, x + 20, yy + 7, 0, 0.5, buf);
+  }
+}
+
 /* Axis range of a series (log10 of the positive values when log). */
 static int series_range(const double *y, int32_t n, int lg, double *lo, double *hi) {
   *lo = INFINITY;
