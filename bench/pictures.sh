@@ -22,4 +22,5 @@ print(('snapshot of %d facets, 800 x 600:'):format(facet_count))
 for _, c in ipairs { 'none', 'mean_curvature', 'min_angle', 'body' } do
   print(('  color = %-16s %.3f s'):format(c, best { color = c }))
 end
-print(('  edges = true           %.3f s'):format(best { color = 'none', edges = true }))"
+print(('  edges = true           %.3f s'):format(best { color = 'none', edges = true }))
+print(('  smooth = true          %.3f s'):format(best { color = 'mean_curvature', smooth = true }))"

@@ -161,7 +161,7 @@ static int l_snapshot(lua_State *L) {
   if (!lua_isnoneornil(L, 2)) {
     luaL_checktype(L, 2, LUA_TTABLE);
     static const char *const keys[] = {"color", "view", "size", "edges", "range",
-                                       "legend", "lighting", NULL};
+                                       "legend", "lighting", "smooth", NULL};
     check_keys(L, st, 2, "snapshot", keys);
     static const char *const cols[] = {"none", "mean_curvature", "min_angle", "body",
                                        "tension", "color", NULL};
@@ -185,6 +185,7 @@ static int l_snapshot(lua_State *L) {
     o.edges = opt_boolean(L, st, 2, "snapshot", "edges", 0);
     o.legend = opt_boolean(L, st, 2, "snapshot", "legend", 1);
     o.lighting = opt_boolean(L, st, 2, "snapshot", "lighting", 1);
+    o.smooth = opt_boolean(L, st, 2, "snapshot", "smooth", 0);
     if (opt_pair(L, st, 2, "snapshot", "range", o.range, "must be {low, high}")) {
       if (!(o.range[0] < o.range[1]))
         opt_error(L, st, "snapshot", "range", "must have low < high");

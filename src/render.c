@@ -62,7 +62,10 @@ void tds_render_evolver_color(int c, double rgb[3]) {
 static const double neutral[3] = {0.80, 0.82, 0.88};
 static const double novalue[3] = {0.55, 0.55, 0.55};
 
-int tds_render_field(tds_ctx *ctx, tds_surf *s, int mode, double *val) {
+/* tds_render_field; with mode MEAN_CURVATURE and hout non-NULL, *hout
+** receives the malloc'd per-vertex values (NaN where not measured). */
+static int field_values(tds_ctx *ctx, tds_surf *s, int mode, double *val,
+                        double **hout) {
   tds_mesh *m = &s->m;
   if (mode == TDS_RCOL_MEAN_CURVATURE) {
     if (tds_mesh_adjacency(m) != TDS_OK)
@@ -83,7 +86,8 @@ int tds_render_field(tds_ctx *ctx, tds_surf *s, int mode, double *val) {
       }
       val[f] = n ? sum / n : NAN;
     }
-    free(h);
+    if (hout) *hout = h;
+    else free(h);
     return TDS_OK;
   }
   for (tds_id f = 0; f < m->nf; f++) {
@@ -94,6 +98,10 @@ int tds_render_field(tds_ctx *ctx, tds_surf *s, int mode, double *val) {
   return TDS_OK;
 }
 
+int tds_render_field(tds_ctx *ctx, tds_surf *s, int mode, double *val) {
+  return field_values(ctx, s, mode, val, NULL);
+}
+
 static int is_field(int mode) {
   return mode == TDS_RCOL_MEAN_CURVATURE || mode == TDS_RCOL_MIN_ANGLE ||
          mode == TDS_RCOL_TENSION;
@@ -102,7 +110,8 @@ static int is_field(int mode) {
 typedef struct {
   float x[3], y[3];
   float depth;
-  float rgb[3];
+  float rgb[3];     /* flat colour, shaded */
+  float vrgb[3][3]; /* smooth: the corners' colours, shaded */
 } rfacet;
 
 static int by_depth(const void *a, const void *b) {
@@ -198,6 +207,68 @@ static void facet_color(const tds_mesh *m, tds_id f, int mode, double v,
   }
 }
 
+/* Lambert shade of a facet or vertex with normal N (either side). */
+static double lambert(const tds_render_info *in, const double L[3], const double N[3]) {
+  double nl = v3_norm(N);
+  if (!(nl > 0)) return 0.4;
+  double c = (v3_dot(N, in->right) * L[0] + v3_dot(N, in->up) * L[1] +
+              v3_dot(N, in->toward) * L[2]) / nl;
+  return 0.4 + 0.6 * fabs(c);
+}
+
+static void corner_patch(cairo_pattern_t *pat, const rfacet *r) {
+  cairo_mesh_pattern_begin_patch(pat);
+  cairo_mesh_pattern_move_to(pat, r->x[0], r->y[0]);
+  cairo_mesh_pattern_line_to(pat, r->x[1], r->y[1]);
+  cairo_mesh_pattern_line_to(pat, r->x[2], r->y[2]);
+  for (int j = 0; j < 3; j++)
+    cairo_mesh_pattern_set_corner_color_rgb(pat, (unsigned)j, r->vrgb[j][0],
+                                            r->vrgb[j][1], r->vrgb[j][2]);
+  cairo_mesh_pattern_end_patch(pat);
+}
+
+/* Paint the sorted facets back to front: flat fills, or (smooth) one
+** mesh pattern whose patches cairo paints in order; with edges every
+** facet is filled and outlined in turn, so hidden edges stay hidden. */
+static void paint_facets(cairo_t *cr, const rfacet *rf, int32_t n, int smooth,
+                         int edges, int ss) {
+  cairo_set_antialias(cr, CAIRO_ANTIALIAS_NONE);
+  cairo_set_line_width(cr, 0.9);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  if (smooth && !edges) {
+    cairo_pattern_t *pat = cairo_pattern_create_mesh();
+    for (int32_t i = 0; i < n; i++) corner_patch(pat, &rf[i]);
+    cairo_set_source(cr, pat);
+    cairo_paint(cr);
+    cairo_pattern_destroy(pat);
+    return;
+  }
+  (void)ss;
+  for (int32_t i = 0; i < n; i++) {
+    const rfacet *r = &rf[i];
+    cairo_move_to(cr, r->x[0], r->y[0]);
+    cairo_line_to(cr, r->x[1], r->y[1]);
+    cairo_line_to(cr, r->x[2], r->y[2]);
+    cairo_close_path(cr);
+    cairo_pattern_t *pat = NULL;
+    if (smooth) {
+      pat = cairo_pattern_create_mesh();
+      corner_patch(pat, r);
+      cairo_set_source(cr, pat);
+    } else {
+      cairo_set_source_rgb(cr, r->rgb[0], r->rgb[1], r->rgb[2]);
+    }
+    if (edges) {
+      cairo_fill_preserve(cr);
+      cairo_set_source_rgb(cr, 0.35 * r->rgb[0], 0.35 * r->rgb[1], 0.35 * r->rgb[2]);
+      cairo_stroke(cr);
+    } else {
+      cairo_fill(cr);
+    }
+    if (pat) cairo_pattern_destroy(pat);
+  }
+}
+
 int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
                    const char *path, tds_render_info *info) {
   tds_mesh *m = &s->m;
@@ -223,13 +294,31 @@ int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
     free(rf);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   }
-  rc = field ? tds_render_field(ctx, s, o->color, val) : TDS_OK;
+  double *h = NULL, (*vn)[3] = NULL; /* smooth: vertex k1+k2 and normals */
+  rc = field ? field_values(ctx, s, o->color, val, o->smooth ? &h : NULL) : TDS_OK;
+  if (rc == TDS_OK && o->smooth) {
+    vn = tds_calloc((size_t)(m->nv > 0 ? m->nv : 1), sizeof *vn);
+    if (!vn) rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+    for (tds_id f = 0; vn && f < m->nf; f++) {
+      if (m->fflags[f] & (TDS_DEAD | TDS_NODISPLAY)) continue;
+      double a[3], b[3], N[3];
+      v3_sub(a, m->x[m->fv[f][1]], m->x[m->fv[f][0]]);
+      v3_sub(b, m->x[m->fv[f][2]], m->x[m->fv[f][0]]);
+      v3_cross(N, a, b);
+      for (int k = 0; k < 3; k++) v3_add(vn[m->fv[f][k]], vn[m->fv[f][k]], N);
+    }
+  }
   double lo = INFINITY, hi = -INFINITY;
   if (rc == TDS_OK && field) {
     for (tds_id f = 0; f < m->nf; f++)
       if (!isnan(val[f])) {
         if (val[f] < lo) lo = val[f];
         if (val[f] > hi) hi = val[f];
+      }
+    for (tds_id v = 0; h && v < m->nv; v++) /* smooth: the vertices' values */
+      if (!isnan(h[v])) {
+        if (h[v] < lo) lo = h[v];
+        if (h[v] > hi) hi = h[v];
       }
     if (o->has_range) {
       lo = o->range[0];
@@ -256,23 +345,27 @@ int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
     float z[3];
     for (int k = 0; k < 3; k++) project(&in, o, m->x[m->fv[f][k]], &r->x[k], &r->y[k], &z[k]);
     r->depth = (z[0] + z[1] + z[2]) / 3;
-    double rgb[3], shade = 1;
+    double rgb[3], N[3];
     facet_color(m, f, o->color, val[f], lo, hi, rgb);
-    if (o->lighting) {
-      double a[3], b[3], N[3];
-      v3_sub(a, m->x[m->fv[f][1]], m->x[m->fv[f][0]]);
-      v3_sub(b, m->x[m->fv[f][2]], m->x[m->fv[f][0]]);
-      v3_cross(N, a, b);
-      double nl = v3_norm(N);
-      double c = nl > 0 ? (v3_dot(N, in.right) * L[0] + v3_dot(N, in.up) * L[1] +
-                           v3_dot(N, in.toward) * L[2]) / nl
-                        : 0;
-      shade = 0.4 + 0.6 * fabs(c);
-    }
+    double a[3], b[3];
+    v3_sub(a, m->x[m->fv[f][1]], m->x[m->fv[f][0]]);
+    v3_sub(b, m->x[m->fv[f][2]], m->x[m->fv[f][0]]);
+    v3_cross(N, a, b);
+    double shade = o->lighting ? lambert(&in, L, N) : 1;
     for (int k = 0; k < 3; k++) r->rgb[k] = (float)(rgb[k] * shade);
+    for (int j = 0; o->smooth && j < 3; j++) { /* Gouraud: corner colours */
+      tds_id v = m->fv[f][j];
+      double c[3], sv = 1;
+      v3_copy(c, rgb);
+      if (h && !isnan(h[v])) tds_render_ramp(hi > lo ? (h[v] - lo) / (hi - lo) : 0.5, c);
+      if (o->lighting) sv = lambert(&in, L, v3_norm(vn[v]) > 0 ? vn[v] : N);
+      for (int k = 0; k < 3; k++) r->vrgb[j][k] = (float)(c[k] * sv);
+    }
     n++;
   }
   free(val);
+  free(h);
+  free(vn);
   if (rc != TDS_OK) {
     free(rf);
     return rc;
@@ -291,24 +384,8 @@ int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
   cairo_t *cr = cairo_create(big);
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
-  cairo_set_antialias(cr, CAIRO_ANTIALIAS_NONE);
-  cairo_set_line_width(cr, 0.9 * SS);
-  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-  for (int32_t i = 0; i < n; i++) {
-    const rfacet *r = &rf[i];
-    cairo_move_to(cr, SS * r->x[0], SS * r->y[0]);
-    cairo_line_to(cr, SS * r->x[1], SS * r->y[1]);
-    cairo_line_to(cr, SS * r->x[2], SS * r->y[2]);
-    cairo_close_path(cr);
-    cairo_set_source_rgb(cr, r->rgb[0], r->rgb[1], r->rgb[2]);
-    if (o->edges) {
-      cairo_fill_preserve(cr);
-      cairo_set_source_rgb(cr, 0.35 * r->rgb[0], 0.35 * r->rgb[1], 0.35 * r->rgb[2]);
-      cairo_stroke(cr);
-    } else {
-      cairo_fill(cr);
-    }
-  }
+  cairo_scale(cr, SS, SS);
+  paint_facets(cr, rf, n, o->smooth, o->edges, SS);
   cairo_destroy(cr);
   free(rf);
 

@@ -6,7 +6,8 @@
 ** Surface pictures use the painter's algorithm: facets are projected,
 ** sorted by the depth of their centroids and filled back to front, flat
 ** shaded (Lambert, two-sided, a fixed light over the viewer's left
-** shoulder). Facets are filled without anti-aliasing into a buffer of twice
+** shoulder), or with `smooth` Gouraud-like from colours and light at the
+** corners (cairo mesh patterns, painted in depth order). Facets are filled without anti-aliasing into a buffer of twice
 ** the size (pictures up to 4 megapixels), which is then reduced by cairo's
 ** filter: anti-aliased edges without the hairline seams that anti-aliased
 ** neighbouring triangles leave. Text and the colour bar are drawn on the
@@ -36,6 +37,8 @@ typedef struct tds_render_opts {
   int edges;                  /* outline every facet */
   int legend;                 /* colour bar (scalar fields only) */
   int lighting;               /* 0: flat colours without shading */
+  int smooth;                 /* Gouraud-like: colours and light at the
+                                 vertices, blended across facets (slower) */
   int has_range;              /* use range[] instead of the data's extent */
   double range[2];
 } tds_render_opts;

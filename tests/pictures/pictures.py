@@ -56,7 +56,8 @@ def sphere(out, seed):
     the chord depth of the longest edge (sag); anti-aliasing moves each
     boundary pixel's coverage by under half a pixel."""
     info = run("sphere.tds", out, seed)
-    for pic, pre, tag in (("sphere.png", "", ""), ("sphere_persp.png", "p", "_perspective")):
+    for pic, pre, tag in (("sphere.png", "", ""), ("sphere_smooth.png", "", "_smooth"),
+                          ("sphere_persp.png", "p", "_perspective")):
         disc(out, pic, info[pre + "cx"], info[pre + "cy"], info[pre + "R"],
              info[pre + "sag"], f"{tag}_seed{seed}")
 
@@ -151,6 +152,19 @@ def catenoid(out):
     report("catenoid_zero_curvature", ok,
            f"|k1+k2| shown up to {np.abs(h).max():.3f} (colour off the map by "
            f"{dist.max():.0f}); vertex maximum {info['maxH']:.3f}")
+    # Smooth: colours blend linearly between the vertices', so a pixel may
+    # sit off the (kinked) map; it must be as close to the colour of zero
+    # as the colours of k1 + k2 = -0.15 and 0.15 are.
+    img = read_png(os.path.join(out, "catenoid_smooth.png"))
+    bg = (img >= 254).all(axis=2)
+    inner = ~bg
+    for dy, dx in ((1, 0), (-1, 0), (0, 1), (0, -1)):
+        inner &= ~np.roll(bg, (dy, dx), axis=(0, 1))
+    zero = ramp(np.array(0.5))
+    bound = max(np.abs(ramp(np.array(0.5 + d)) - zero).max() for d in (-0.075, 0.075))
+    d0 = np.abs(img[inner] - zero).max(axis=1)
+    report("catenoid_zero_curvature_smooth", d0.max() <= bound + 2,
+           f"a pixel is {d0.max():.0f} from the colour of zero (bound {bound:.0f})")
     h0, _ = curvature_of(os.path.join(out, "catenoid_start.png"))
     far = (np.abs(h0) > 0.3).mean()
     report("catenoid_start_not_zero", far > 0.2,
