@@ -231,7 +231,7 @@ static void corner_patch(cairo_pattern_t *pat, const rfacet *r) {
 ** mesh pattern whose patches cairo paints in order; with edges every
 ** facet is filled and outlined in turn, so hidden edges stay hidden. */
 static void paint_facets(cairo_t *cr, const rfacet *rf, int32_t n, int smooth,
-                         int edges, int ss) {
+                         int edges) {
   cairo_set_antialias(cr, CAIRO_ANTIALIAS_NONE);
   cairo_set_line_width(cr, 0.9);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
@@ -243,7 +243,6 @@ static void paint_facets(cairo_t *cr, const rfacet *rf, int32_t n, int smooth,
     cairo_pattern_destroy(pat);
     return;
   }
-  (void)ss;
   for (int32_t i = 0; i < n; i++) {
     const rfacet *r = &rf[i];
     cairo_move_to(cr, r->x[0], r->y[0]);
@@ -385,7 +384,7 @@ int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
   cairo_scale(cr, SS, SS);
-  paint_facets(cr, rf, n, o->smooth, o->edges, SS);
+  paint_facets(cr, rf, n, o->smooth, o->edges);
   cairo_destroy(cr);
   free(rf);
 
