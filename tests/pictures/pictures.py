@@ -235,11 +235,41 @@ def plots(out, seed):
     report(f"histogram_bars_seed{seed}", not bad and sum(counts) > 0, "; ".join(bad))
 
 
+def colors(out):
+    """Evolver's colours are the PC palette (RED 170,0,0; LIGHTBLUE
+    85,85,255; YELLOW 255,255,85): the upper half of a sphere is red and
+    the lower light blue, about half each; CLEAR facets are not drawn, so
+    with the front half clear the back half's yellow fills the disc."""
+    info = run("colors.tds", out)
+    cx, cy, R = info["cx"], info["cy"], info["R"]
+    red, lblue, yellow = np.array([170, 0, 0]), np.array([85, 85, 255]), np.array([255, 255, 85])
+    img = read_png(os.path.join(out, "colors.png"))
+    why = []
+    for dy, want in ((-0.5, red), (0.5, lblue)):
+        p = img[int(cy + dy * R), int(cx)]
+        if np.abs(p - want).max() > 1:
+            why.append(f"pixel {dy:+} R from the centre is {p}, not {want}")
+    surf = (img < 250).any(axis=2)
+    fr = (np.abs(img - red).max(axis=2) <= 1).sum() / surf.sum()
+    fb = (np.abs(img - lblue).max(axis=2) <= 1).sum() / surf.sum()
+    if not (0.4 < fr < 0.6 and 0.4 < fb < 0.6):
+        why.append(f"red covers {fr:.3f}, light blue {fb:.3f} of the sphere")
+    img = read_png(os.path.join(out, "colors_clear.png"))
+    p = img[int(cy), int(cx)]
+    if np.abs(p - yellow).max() > 1:
+        why.append(f"centre of the clear-fronted sphere is {p}, not yellow")
+    fy = (np.abs(img - yellow).max(axis=2) <= 1).sum() / (img < 250).any(axis=2).sum()
+    if fy < 0.95:
+        why.append(f"yellow covers only {fy:.3f} of the clear-fronted sphere")
+    report("evolver_colors_and_clear", not why, "; ".join(why))
+
+
 with tempfile.TemporaryDirectory() as out:
     for name, fn in (("sphere", lambda: [sphere(out, s) for s in (42, 1234)]),
                      ("bubbles", lambda: bubbles(out, 7)),
                      ("catenoid", lambda: catenoid(out)),
-                     ("plots", lambda: plots(out, 3))):
+                     ("plots", lambda: plots(out, 3)),
+                     ("colors", lambda: colors(out))):
         try:
             fn()
         except Exception as e:  # a crash of one group is a failure, not the end
