@@ -15,7 +15,9 @@ OMP_SRC := src/pg.c src/pg_pass.c
 # Evaluated when a recipe runs, so after `deps` has installed pkg-config/Lua.
 LUA_CFLAGS = $(shell pkg-config --cflags lua5.4)
 LUA_LIBS = $(shell pkg-config --libs lua5.4)
-LIBS = $(LUA_LIBS) -lreadline -lm
+CAIRO_CFLAGS = $(shell pkg-config --cflags cairo)
+CAIRO_LIBS = $(shell pkg-config --libs cairo)
+LIBS = $(LUA_LIBS) $(CAIRO_LIBS) -lreadline -lm
 
 BIND_SRC := $(wildcard src/lua_*.c) src/repl.c src/main.c
 # The live view's server: linked into the program only (libmicrohttpd).
@@ -52,6 +54,7 @@ web/node_modules/.package-lock.json: web/package.json web/package-lock.json | de
 $(BUILD)/%.o: src/%.c | deps $(BUILD)
 	$(CC) $(CFLAGS_ALL) $(if $(filter $(OMP_SRC),$<),-fopenmp) \
 	  $(if $(filter $(BIND_SRC),$<),$(LUA_CFLAGS)) $(if $(filter $(LIVE_SRC),$<),$(LIVE_CFLAGS)) \
+	  $(if $(filter src/render%,$<),$(CAIRO_CFLAGS)) \
 	  -MMD -MP -Isrc -I$(BUILD) -c -o $@ $<
 -include $(CORE_OBJ:.o=.d) $(BIND_OBJ:.o=.d) $(LIVE_OBJ:.o=.d)
 
@@ -61,19 +64,23 @@ $(BUILD)/prelude.inc: $(LUA_SRC) scripts/embed.sh | $(BUILD)
 	sh scripts/embed.sh $(LUA_SRC) > $@
 
 $(BUILD)/test_%: tests/unit/test_%.c tests/unit/*.h $(CORE_OBJ) | deps
-	$(CC) $(CFLAGS_ALL) -fopenmp -Isrc -Itests/unit -o $@ $< $(CORE_OBJ) -lm
+	$(CC) $(CFLAGS_ALL) -fopenmp -Isrc -Itests/unit -o $@ $< $(CORE_OBJ) $(CAIRO_LIBS) -lm
 
 $(BUILD):
 	mkdir -p $(BUILD)
 
-unit: $(UNIT_BIN)
+# The picture tests' PNG reader (tests/pictures/).
+$(BUILD)/png2ppm: tests/pictures/png2ppm.c | deps $(BUILD)
+	$(CC) $(CFLAGS_ALL) $(CAIRO_CFLAGS) -o $@ $< $(CAIRO_LIBS)
+
+unit: $(UNIT_BIN) $(BUILD)/png2ppm
 
 test: $(TDS_BIN) unit web | deps-test
 	@sh tests/run.sh $(abspath $(TDS_BIN)) $(abspath $(BUILD))
 
 # The whole suite under AddressSanitizer and UndefinedBehaviorSanitizer.
 test-asan:
-	$(MAKE) BUILD=build-asan TDS_BIN=build-asan/tds OPT=-O1 \
+	LSAN_OPTIONS=suppressions=$(abspath tests/lsan.supp) $(MAKE) BUILD=build-asan TDS_BIN=build-asan/tds OPT=-O1 \
 	  SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" test
 
 demo: $(TDS_BIN)
@@ -81,6 +88,7 @@ demo: $(TDS_BIN)
 
 bench: $(TDS_BIN) | deps-test
 	sh bench/cube.sh ./$(TDS_BIN)
+	sh bench/pictures.sh ./$(TDS_BIN)
 
 bench-paper: $(TDS_BIN) | deps-test
 	sh bench/paper.sh ./$(TDS_BIN)

@@ -31,9 +31,21 @@ projected_gradient = pg
 local function pct(x) return ("%5.1f%%"):format(x) end
 
 -- quality(): smallest facet angles; prints a table unless quality{quiet=true}.
+-- quality{ png = "angles.png", size = {w, h} } also draws the histogram.
 function quality(o)
   o = o or {}
+  if type(o) ~= "table" then error("quality{ quiet =, png =, size = } expected", 2) end
+  for k in pairs(o) do
+    if k ~= "quiet" and k ~= "png" and k ~= "size" then
+      error(("quality: option '%s' is unknown"):format(tostring(k)), 2)
+    end
+  end
   local q = tds.quality()
+  if o.png ~= nil then
+    if type(o.png) ~= "string" then error("quality: option 'png' must be a file name", 2) end
+    q.picture = tds.histogram_png(o.png, q.histogram, 0, 60,
+      ("Smallest angle of %d facets"):format(q.n), "degrees", { size = o.size })
+  end
   if not o.quiet then
     print(("Mesh quality: smallest angle of %d facets"):format(q.n))
     if q.n > 0 then

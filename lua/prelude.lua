@@ -217,6 +217,8 @@ Reporting     v()  total_energy  total_area  vertex_count ... body_count
               quality()  curvature{}  check()
 Files         tds file.fe (load a datafile)  dump("out.fe")
               export("out.ply" | .obj .stl .off .vtu .vtk .msh, {...})  mark()
+Pictures      snapshot("s.png", {color=, view=})  plot("c.png")  quality{png=}
+              verbose(on)  (doc/output.md)
 Leaving       q()  (at the prompt: q, or Ctrl-D)
 At the prompt Evolver habits work: g 5; r; u   angle := 45   print total_area
 The manual: doc/language.md, doc/commands.md, doc/expressions.md, doc/repl.md,
@@ -271,5 +273,6 @@ tds.translate = require("evolver")
 -- The projected-gradient method and mesh metrics (lua/pg.lua).
 require("pg")
 require("live")
+require("pictures")
 
 return true

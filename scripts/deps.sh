@@ -6,8 +6,10 @@
 #   build: what `make` needs to build the program (the default)
 #   test:  also what the tests and benchmarks compare against
 set -e
-# The program: Lua, readline, libmicrohttpd (the live view's server).
-BUILD_PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev libmicrohttpd-dev"
+# The program: Lua, readline, libmicrohttpd (the live view's server),
+# cairo and a font (pictures).
+BUILD_PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev libmicrohttpd-dev
+  libcairo2-dev fonts-dejavu-core"
 # The tests: Surface Evolver; meshio, VTK and NumPy for /usr/bin/python3
 # (export round trips, tests/export); Chromium (the live view's browser
 # test, tests/web).

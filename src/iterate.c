@@ -9,6 +9,7 @@
 #include "eval.h"
 #include "motion.h"
 #include "recalc.h"
+#include "progress.h"
 #include "vec3.h"
 
 typedef struct work {
@@ -301,13 +302,18 @@ int tds_iterate(tds_ctx *ctx, tds_surf *s, int n) {
   if (rc != TDS_OK) return rc;
   rc = work_init(ctx, s, &w);
   if (rc != TDS_OK) return rc;
+  tds_progress_begin(ctx, 'g', n);
+  int last = 0; /* countdown number of the last step done */
   for (int i = n; i > 0; i--) {
     rc = step(ctx, s, &w);
     if (rc != TDS_OK) break;
-    tds_printf(ctx, "%3d. area: %#17.15g energy: %#17.15g  scale: %g\n", i,
-               s->area, s->energy, s->scale);
+    last = i;
+    if (!tds_progress_step(ctx, n - i + 1, s->energy, s->scale))
+      tds_printf(ctx, "%3d. area: %#17.15g energy: %#17.15g  scale: %g\n", i,
+                 s->area, s->energy, s->scale);
     if (ctx->step) ctx->step(ctx->step_ud, s->energy);
     if (w.unconverged) {
+      tds_progress_erase(ctx);
       tds_warnf(ctx, "warning: volume or quantity constraints did not converge "
                 "in 10 projections\n");
       w.unconverged = 0;
@@ -319,6 +325,9 @@ int tds_iterate(tds_ctx *ctx, tds_surf *s, int n) {
       break;
     }
   }
+  if (tds_progress_end(ctx) > 0) /* the live line replaced them: the last */
+    tds_printf(ctx, "%3d. area: %#17.15g energy: %#17.15g  scale: %g\n", last,
+               s->area, s->energy, s->scale);
   work_free(&w);
   /* After a step, energy, area and volumes are those of its last trial,
   ** which is where the vertices are; otherwise compute them. */

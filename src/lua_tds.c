@@ -135,6 +135,7 @@ tds_state *tds_lua_open(lua_State *L) {
   tds_open_pg(L, st);
   tds_open_export(L, st);
   tds_open_live(L, st);
+  tds_open_render(L, st);
   lua_setglobal(L, "tds");
 
   lua_getglobal(L, "package");

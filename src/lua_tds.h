@@ -56,6 +56,7 @@ void tds_open_datafile(lua_State *L, tds_state *st);  /* lua_datafile.c */
 void tds_open_pg(lua_State *L, tds_state *st);        /* lua_pg.c */
 void tds_open_export(lua_State *L, tds_state *st);    /* lua_export.c */
 void tds_open_live(lua_State *L, tds_state *st);      /* lua_live.c */
+void tds_open_render(lua_State *L, tds_state *st);    /* lua_render.c */
 
 /* Push a handle for element (kind, 0-based id). */
 void tds_push_elem(lua_State *L, int kind, tds_id id);

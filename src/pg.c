@@ -11,6 +11,7 @@
 #endif
 
 #include "motion.h"
+#include "progress.h"
 #include "pg_int.h"
 #include "recalc.h"
 #include "vec3.h"
@@ -297,6 +298,7 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   tds_printf(ctx, "pg: %d movable vertices, %s%s\n", w.nmov,
              accel ? "accelerated (Anderson)" : "plain",
              until ? ", until converged" : "");
+  tds_progress_begin(ctx, 'p', until ? 0 : nmaxit);
   for (k = 1; k <= nmaxit; k++) {
     int32_t nf;
     rc = evaluate(ctx, s, &w, o->flips, sfac, &si, &nf);
@@ -325,7 +327,8 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
       if (until) save_best(s, &w);
       pg_store_pressures(s, &w);
     }
-    if (every > 0 && (k % every == 0 || k == 1))
+    int live = tds_progress_step(ctx, k, si.energy, si.r);
+    if (!live && every > 0 && (k % every == 0 || k == 1))
       tds_printf(ctx, "pg %7lld  r %.3e  lambda % .12g  energy %.15g  flips %lld\n",
                  (long long)k, si.r, si.lambda0, si.energy, (long long)res->flips);
     if (until) {
@@ -341,6 +344,7 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
         ** plain steps must beat the kept mesh. */
         accel = 0;
         res->restarts++;
+        tds_progress_erase(ctx);
         tds_printf(ctx, "pg %7lld  acceleration stalled at r %.3e: continuing plainly\n",
                    (long long)k, rbest);
         progress = k;
@@ -377,6 +381,7 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
       break;
     }
   }
+  tds_progress_end(ctx);
   if (k > nmaxit) k = nmaxit;
   res->iterations = k;
   if (rc == TDS_ENUM || (until && rc == TDS_OK)) {

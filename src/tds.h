@@ -37,6 +37,8 @@ enum {
 /* Where progress lines and warnings go; the REPL and tests may capture them. */
 typedef void (*tds_out_fn)(void *ud, const char *text);
 
+struct tds_progress;                 /* progress.h */
+
 typedef struct tds_ctx {
   char errmsg[1024];                 /* message of the last failure */
   volatile sig_atomic_t interrupt;   /* set asynchronously (SIGINT); polled */
@@ -50,6 +52,7 @@ typedef struct tds_ctx {
   ** that iteration's. NULL = none. The live view publishes through it. */
   void (*step)(void *ud, double energy);
   void *step_ud;
+  struct tds_progress *progress;     /* live line and history, or NULL */
 } tds_ctx;
 
 /* Initialise a context with default sinks. */

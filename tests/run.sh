@@ -41,6 +41,9 @@ trap 'rm -rf "$out"' EXIT
     [ -f "$w" ] || continue
     sh "$w" || echo "FAIL web/$(basename "$w" .sh): exit status $?"
   done
+  for p in tests/pictures/*.py; do
+    /usr/bin/python3 "$p" "$TDS" "$BUILD" || echo "FAIL pictures/$(basename "$p" .py): exit status $?"
+  done
   for e in tests/evolver/*.sh; do
     [ -f "$e" ] || continue
     sh "$e" || echo "FAIL evolver/$(basename "$e" .sh): exit status $?"

@@ -1,0 +1,21 @@
+/* render_int.h: drawing helpers shared by render.c and render_plot.c. */
+#ifndef TDS_RENDER_INT_H
+#define TDS_RENDER_INT_H
+
+#include <cairo.h>
+
+#include "tds.h"
+
+/* Vertical colour bar of the ramp at (x, y) of size w x h, lo at the
+** bottom, with tick labels to its right and a title above. */
+void tds_draw_colorbar(cairo_t *cr, double x, double y, double w, double h,
+                       double lo, double hi, const char *title);
+
+/* A key of body colours: a swatch and "body id" per line for the n
+** bodies (0-based ids) from (x, y) down; past 15 lines, "..." when n > 16. */
+void tds_draw_swatches(cairo_t *cr, double x, double y, const int32_t *ids, int n);
+
+/* Write the image as PNG: TDS_OK or TDS_EIO naming the file. */
+int tds_write_png(tds_ctx *ctx, cairo_surface_t *img, const char *path);
+
+#endif
