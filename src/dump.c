@@ -15,9 +15,9 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "atomic.h"
 #include "datafile.h"
 #include "model.h"
+#include "wfile.h"
 
 typedef struct out {
   FILE *f;
@@ -308,11 +308,11 @@ static void elements(out *o, const tds_surf *s) {
 }
 
 int tds_datafile_dump(tds_ctx *ctx, tds_surf *s, const char *path) {
-  tds_afile af;
-  int rc = tds_afile_open(ctx, &af, path);
+  tds_wfile w;
+  int rc = tds_wfile_open(ctx, &w, path);
   if (rc != TDS_OK) return rc;
   out o = {0};
-  o.f = af.f;
+  o.f = w.f;
   tds_ctx quiet = *ctx;
   double energy = NAN;
   if (tds_surf_update(&quiet, s) == TDS_OK) energy = s->energy;
@@ -331,10 +331,10 @@ int tds_datafile_dump(tds_ctx *ctx, tds_surf *s, const char *path) {
     size_t k = strlen(s->read_text);
     if (k && s->read_text[k - 1] != '\n') fputc('\n', o.f);
   }
-  rc = tds_afile_close(ctx, &af);
-  if (rc == TDS_OK && o.bad)
+  if (o.bad)
     rc = tds_seterr(ctx, TDS_ENUM, "cannot dump to '%s': %s is not finite", path, o.what);
-  if (rc == TDS_OK) rc = tds_afile_commit(ctx, &af);
-  tds_afile_abort(&af);
+  else
+    rc = tds_wfile_commit(ctx, &w);
+  tds_wfile_abort(&w);
   return rc;
 }

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "atomic.h"
+#include "wfile.h"
 #include "export_int.h"
 #include "geom.h"
 #include "metrics.h"
@@ -352,7 +352,7 @@ int tds_export(tds_ctx *ctx, tds_surf *s, const char *path, const tds_export_opt
   tds_mesh *m = &s->m;
   if (tds_mesh_adjacency(m) != TDS_OK) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   int32_t nfiles = o->per_body ? m->nb : 1;
-  tds_afile *af = tds_calloc((size_t)(nfiles > 0 ? nfiles : 1), sizeof *af);
+  tds_wfile *af = tds_calloc((size_t)(nfiles > 0 ? nfiles : 1), sizeof *af);
   if (!af) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   int32_t opened = 0;
   for (int32_t i = 0; i < nfiles && rc == TDS_OK; i++) {
@@ -378,20 +378,20 @@ int tds_export(tds_ctx *ctx, tds_surf *s, const char *path, const tds_export_opt
       snprintf(title, sizeof title, "tds %s: %d vertices, %d facets", TDS_VERSION, b.x.nv,
                b.x.nt);
     b.x.title = title;
-    if (rc == TDS_OK) rc = tds_afile_open(ctx, &af[opened], p ? p : path);
+    if (rc == TDS_OK) rc = tds_wfile_open(ctx, &af[opened], p ? p : path);
     if (rc == TDS_OK) {
       opened++;
       rc = write_one(ctx, af[opened - 1].f, o, &b.x);
-      int crc = tds_afile_close(ctx, &af[opened - 1]);
+      int crc = tds_wfile_close(ctx, &af[opened - 1]);
       if (rc == TDS_OK) rc = crc;
     }
     build_free(&b);
     free(p);
   }
-  for (int32_t i = 0; i < opened && rc == TDS_OK; i++) rc = tds_afile_commit(ctx, &af[i]);
+  for (int32_t i = 0; i < opened && rc == TDS_OK; i++) rc = tds_wfile_commit(ctx, &af[i]);
   if (rc == TDS_OK && o->written)
     for (int32_t i = 0; i < opened; i++) o->written(o->ud, af[i].path);
-  for (int32_t i = 0; i < opened; i++) tds_afile_abort(&af[i]);
+  for (int32_t i = 0; i < opened; i++) tds_wfile_abort(&af[i]);
   free(af);
   return rc;
 }

@@ -8,8 +8,9 @@
 
 #include "eval.h"
 #include "motion.h"
-#include "recalc.h"
 #include "progress.h"
+#include "recalc.h"
+#include "snap.h"
 #include "vec3.h"
 
 typedef struct work {
@@ -250,19 +251,12 @@ static int conjugate(tds_ctx *ctx, tds_surf *s, work *w) {
   return TDS_OK;
 }
 
-/* Put the vertices back where the step started. */
-static void undo(tds_ctx *ctx, tds_surf *s, work *w) {
-  tds_mesh *m = &s->m;
-  memcpy(m->x, w->x0, (size_t)m->nv * sizeof *w->x0);
-  memcpy(m->vp, w->p0, (size_t)m->nv * sizeof *w->p0);
-  m->coord_gen++;
-  tds_surf_update(ctx, s);
-}
-
 static int step(tds_ctx *ctx, tds_surf *s, work *w) {
   tds_mesh *m = &s->m;
-  memcpy(w->x0, m->x, (size_t)m->nv * sizeof *w->x0);
-  memcpy(w->p0, m->vp, (size_t)m->nv * sizeof *w->p0);
+  if (m->nv) { /* an empty surface has no arrays (memcpy from NULL is UB) */
+    memcpy(w->x0, m->x, (size_t)m->nv * sizeof *w->x0);
+    memcpy(w->p0, m->vp, (size_t)m->nv * sizeof *w->p0);
+  }
   int rc = direction(ctx, s, w);
   if (rc == TDS_OK && s->conj_grad) rc = conjugate(ctx, s, w);
   if (rc != TDS_OK) return rc;
@@ -275,20 +269,12 @@ static int step(tds_ctx *ctx, tds_surf *s, work *w) {
     scale = line_search(ctx, s, w, E0, w->slope, &E);
     s->scale = scale;
   }
-  if (!isfinite(E)) {
-    undo(ctx, s, w);
-    return tds_seterr(ctx, TDS_ENUM,
-                      "iteration produced a non-finite energy; step undone");
-  }
+  if (!isfinite(E)) /* tds_iterate puts the surface back */
+    return tds_seterr(ctx, TDS_ENUM, "iteration produced a non-finite energy");
   /* Changed parameters: as Evolver, the step is taken from the positions
   ** as they were, then the surface follows the parameters. */
   if (s->placed_gen != s->param_gen) {
-    if ((rc = tds_recalc(ctx, s)) != TDS_OK) {
-      char msg[sizeof ctx->errmsg];
-      snprintf(msg, sizeof msg, "%s", ctx->errmsg);
-      undo(ctx, s, w);
-      return tds_seterr(ctx, rc, "%s", msg);
-    }
+    if ((rc = tds_recalc(ctx, s)) != TDS_OK) return rc;
     E = s->energy;
   }
   s->energy = E;
@@ -297,15 +283,32 @@ static int step(tds_ctx *ctx, tds_surf *s, work *w) {
 }
 
 int tds_iterate(tds_ctx *ctx, tds_surf *s, int n) {
+  /* The line search shrinks from the limit to 1e-12 of it: a limit that is
+  ** not a positive normal number would never end it. */
+  if (s->fixed_scale ? !(isfinite(s->scale) && s->scale >= 0)
+                     : !(s->scale_limit > 0 && isnormal(s->scale_limit)))
+    return tds_seterr(ctx, TDS_ERANGE, "%s %g is not usable: give a positive finite value",
+                      s->fixed_scale ? "the fixed scale" : "the scale limit",
+                      s->fixed_scale ? s->scale : s->scale_limit);
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
+  if (rc != TDS_OK) return rc;
+  if (n == 0) return tds_snap_end(ctx, s, &sn, tds_recalc_if_stale(ctx, s));
   work w;
-  int rc = n == 0 ? tds_recalc_if_stale(ctx, s) : TDS_OK;
-  if (rc != TDS_OK) return rc;
   rc = work_init(ctx, s, &w);
-  if (rc != TDS_OK) return rc;
+  if (rc != TDS_OK) {
+    tds_snap_free(&sn);
+    return rc;
+  }
   tds_progress_begin(ctx, 'g', n);
   int last = 0; /* countdown number of the last step done */
   for (int i = n; i > 0; i--) {
     rc = step(ctx, s, &w);
+    if (rc != TDS_OK && n > 1) { /* say which step failed */
+      char msg[sizeof ctx->errmsg];
+      snprintf(msg, sizeof msg, "%s", ctx->errmsg);
+      tds_seterr(ctx, rc, "step %d of %d: %s", n - i + 1, n, msg);
+    }
     if (rc != TDS_OK) break;
     last = i;
     if (!tds_progress_step(ctx, n - i + 1, s->energy, s->scale))
@@ -330,9 +333,10 @@ int tds_iterate(tds_ctx *ctx, tds_surf *s, int n) {
                s->area, s->energy, s->scale);
   work_free(&w);
   /* After a step, energy, area and volumes are those of its last trial,
-  ** which is where the vertices are; otherwise compute them. */
-  if (rc != TDS_OK || n == 0) tds_surf_update(ctx, s);
-  return rc;
+  ** which is where the vertices are; after an interruption compute them.
+  ** A failed command (not an interruption) puts the surface back. */
+  if (rc == TDS_EINTR) tds_surf_update(ctx, s);
+  return tds_snap_end(ctx, s, &sn, rc);
 }
 
 int tds_pressures(tds_ctx *ctx, tds_surf *s) {

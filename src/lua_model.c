@@ -165,9 +165,17 @@ static int add_method(lua_State *L, tds_state *st, int t, int qi,
   }
   tds_expr *ig[3];
   if (!vector_field(L, st, t, "vector_integrand", ig, what)) return 0;
-  if (!ig[0] && !ig[1] && !ig[2] &&
-      !compile_field(L, st, t, "scalar_integrand", 0, &ig[0], what))
-    return 0;
+  if (!ig[0] && !ig[1] && !ig[2]) {
+    if (!compile_field(L, st, t, "scalar_integrand", 0, &ig[0], what)) return 0;
+    if (ig[0] && (method == TDS_M_FACET_VECTOR_INTEGRAL ||
+                  method == TDS_M_EDGE_VECTOR_INTEGRAL)) {
+      tds_expr_free(ig[0]);
+      lua_pushnil(L);
+      lua_pushfstring(L, "%s: method %s needs a vector_integrand, not a scalar_integrand",
+                      what, tds_method_names[method]);
+      return 0;
+    }
+  }
   if (tds_model_method(&st->ctx, &st->s, qi, method, mod, ig) != TDS_OK) {
     lua_pushnil(L);
     lua_pushstring(L, st->ctx.errmsg);
@@ -208,24 +216,33 @@ static int l_quantity(lua_State *L) {
   double mod = lua_isnil(L, -1) ? 1 : lua_tonumber(L, -1);
   lua_pop(L, 1);
   int qi;
-  if (tds_model_quantity(&st->ctx, &st->s, name, kind, mod, target, &qi) != TDS_OK)
+  /* all or nothing: a failing method takes the declaration back (a
+  ** redeclared quantity keeps its old definition) */
+  tds_quantity saved;
+  if (tds_model_quantity(&st->ctx, &st->s, name, kind, mod, target, &qi, &saved) != TDS_OK)
     return core_failed(L, st);
   lua_getfield(L, 1, "methods");
   if (lua_istable(L, -1)) {
     int ms = lua_gettop(L);
     for (lua_Integer i = 1; i <= luaL_len(L, ms); i++) {
       lua_rawgeti(L, ms, i);
-      if (!lua_istable(L, -1) || !add_method(L, st, lua_gettop(L), qi, what, 1)) {
-        if (lua_istable(L, -1)) return 2;
+      if (!lua_istable(L, -1)) {
+        tds_model_quantity_undo(&st->s, qi, &saved);
         lua_pushnil(L);
         lua_pushfstring(L, "%s: methods must be a list of tables", what);
+        return 2;
+      }
+      if (!add_method(L, st, lua_gettop(L), qi, what, 1)) { /* nil, message pushed */
+        tds_model_quantity_undo(&st->s, qi, &saved);
         return 2;
       }
       lua_pop(L, 1);
     }
   } else if (!add_method(L, st, 1, qi, what, 0)) {
+    tds_model_quantity_undo(&st->s, qi, &saved);
     return 2;
   }
+  tds_model_quantity_forget(&saved);
   lua_pushboolean(L, 1);
   return 1;
 }

@@ -3,6 +3,7 @@
 #include "pg.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -14,6 +15,7 @@
 #include "progress.h"
 #include "pg_int.h"
 #include "recalc.h"
+#include "snap.h"
 #include "vec3.h"
 
 void pg_work_free(pgw *w) {
@@ -234,11 +236,13 @@ static double now(void) {
 }
 
 static void save_best(const tds_surf *s, pgw *w) {
+  if (!w->nv) return; /* empty surface: no arrays */
   memcpy(w->xbest, s->m.x, (size_t)w->nv * sizeof *w->xbest);
   memcpy(w->pbest, s->m.vp, (size_t)w->nv * sizeof *w->pbest);
 }
 
 static void load_best(tds_surf *s, pgw *w) {
+  if (!w->nv) return;
   memcpy(s->m.x, w->xbest, (size_t)w->nv * sizeof *w->xbest);
   memcpy(s->m.vp, w->pbest, (size_t)w->nv * sizeof *w->pbest);
   s->m.coord_gen++;
@@ -268,10 +272,12 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   memset(res, 0, sizeof *res);
   pgw w;
   int accel = o->accel && o->depth > 0;
-  int rc = tds_recalc_if_stale(ctx, s);
+  tds_snap sn; /* all or nothing: a failed run leaves the surface as it was */
+  int rc = tds_snap_take(ctx, s, &sn);
   if (rc != TDS_OK) return rc;
-  rc = pg_work_init(ctx, s, &w, accel ? o->depth : 0);
-  if (rc != TDS_OK) return rc;
+  rc = tds_recalc_if_stale(ctx, s);
+  if (rc == TDS_OK) rc = pg_work_init(ctx, s, &w, accel ? o->depth : 0);
+  if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
   tds_mesh *m = &s->m;
   w.flip_tol = 1e-3; /* hysteresis: no flipping back and forth */
 #ifdef _OPENMP
@@ -384,9 +390,7 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   tds_progress_end(ctx);
   if (k > nmaxit) k = nmaxit;
   res->iterations = k;
-  if (rc == TDS_ENUM || (until && rc == TDS_OK)) {
-    if (rbest < (double)INFINITY || rc == TDS_ENUM) load_best(s, &w);
-  }
+  if (until && rc == TDS_OK && rbest < (double)INFINITY) load_best(s, &w);
   if (until && rc == TDS_OK) {
     res->r = rbest;
     res->best_iteration = best;
@@ -402,8 +406,9 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   res->threaded = w.threaded;
   res->cpu_seconds = cpu_now() - c0;
   pg_work_free(&w);
-  int rc2 = tds_surf_update(ctx, s);
+  int rc2 = rc == TDS_OK || rc == TDS_EINTR ? tds_surf_update(ctx, s) : TDS_OK;
   if (rc == TDS_OK) rc = rc2;
+  tds_snap_end(ctx, s, &sn, rc);
   res->mean_edge = mean_edge(m);
   res->seconds = now() - t0;
   if (rc == TDS_OK || rc == TDS_EINTR)

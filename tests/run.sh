@@ -5,6 +5,10 @@
 TDS=$1
 BUILD=$2
 export TDS
+# The check mode (lua/check.lua): every command of every test run of tds is
+# verified: nothing non-finite after it, nothing changed if it failed.
+TDS_CHECK=1
+export TDS_CHECK
 cd "$(dirname "$0")/.." || exit 1
 # Evolver's outputs are cached across runs of the suite (see lib.sh).
 TDS_EVOLVER_CACHE=${TDS_EVOLVER_CACHE:-$(pwd)/build/evolver-cache}
@@ -44,6 +48,7 @@ trap 'rm -rf "$out"' EXIT
   for p in tests/pictures/*.py; do
     /usr/bin/python3 "$p" "$TDS" "$BUILD" || echo "FAIL pictures/$(basename "$p" .py): exit status $?"
   done
+  sh tests/repro.sh
   for e in tests/evolver/*.sh; do
     [ -f "$e" ] || continue
     sh "$e" || echo "FAIL evolver/$(basename "$e" .sh): exit status $?"
