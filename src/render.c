@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "export.h"
 #include "metrics.h"
 #include "render_int.h"
 #include "vec3.h"
@@ -48,15 +49,9 @@ void tds_render_body_color(tds_id b, double rgb[3]) {
 }
 
 void tds_render_evolver_color(int c, double rgb[3]) {
-  /* The 16-colour PC palette Evolver's colour names come from (BLACK,
-  ** BLUE, ..., WHITE); 2/3 for normal and 1/3 added for light colours. */
-  static const unsigned char pal[16][3] = {
-      {0, 0, 0},       {0, 0, 170},     {0, 170, 0},     {0, 170, 170},
-      {170, 0, 0},     {170, 0, 170},   {170, 85, 0},    {170, 170, 170},
-      {85, 85, 85},    {85, 85, 255},   {85, 255, 85},   {85, 255, 255},
-      {255, 85, 85},   {255, 85, 255},  {255, 255, 85},  {255, 255, 255}};
-  if (c < 0 || c > 15) c = 15;
-  for (int k = 0; k < 3; k++) rgb[k] = pal[c][k] / 255.0;
+  unsigned char rgba[4];
+  tds_export_rgba(c < 0 || c > 15 ? 15 : c, rgba); /* the one palette */
+  for (int k = 0; k < 3; k++) rgb[k] = rgba[k] / 255.0;
 }
 
 static const double neutral[3] = {0.80, 0.82, 0.88};

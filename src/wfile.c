@@ -145,7 +145,6 @@ static void drop_tmp(tds_wfile *w, int remove) {
 int tds_wfile_close(tds_ctx *ctx, tds_wfile *w) {
   if (!w->f) return TDS_OK;
   int err = 0;
-  errno = 0;
   if (fflush(w->f) != 0 || ferror(w->f)) err = errno ? errno : EIO;
   if (!err && fsync(fileno(w->f)) != 0) err = errno;
   if (fclose(w->f) != 0 && !err) err = errno;

@@ -6,9 +6,13 @@
 ** leave every edge in two triangles, once each way. */
 #include <stdlib.h>
 
+#include <math.h>
+#include <stdio.h>
+#include <unistd.h>
+
 #include "check.h"
 #include "export_int.h"
-#include "vec3.h"
+#include "helpers.h"
 
 static double rnd(unsigned *s) {
   *s = *s * 1103515245u + 12345u;
@@ -130,7 +134,31 @@ static void test_tables(void) {
   CHECK(tds_export_format_of("noext") == -1);
 }
 
+/* A coordinate that is not finite (the Lua setters refuse one, so only the
+** core can make it) is refused with TDS_ENUM naming the vertex, and no file
+** or temporary is left. */
+static void test_nonfinite_refused(void) {
+  tds_ctx ctx;
+  tds_surf s;
+  h_setup(&ctx, &s);
+  CHECK(h_triangle(&ctx, &s) == TDS_OK);
+  s.m.x[1][0] = NAN;
+  char dir[] = "/tmp/tds_export_XXXXXX";
+  CHECK(mkdtemp(dir) != NULL);
+  char path[64];
+  snprintf(path, sizeof path, "%s/t.obj", dir);
+  tds_export_opts o;
+  memset(&o, 0, sizeof o);
+  o.format = TDS_FMT_OBJ;
+  CHECK(tds_export(&ctx, &s, path, &o) == TDS_ENUM);
+  CHECK(strstr(ctx.errmsg, "vertex 2") != NULL);
+  CHECK(access(path, F_OK) != 0);
+  CHECK(rmdir(dir) == 0); /* empty: no temporary left behind */
+  tds_surf_free(&s);
+}
+
 int main(void) {
+  RUN(test_nonfinite_refused);
   RUN(test_caps_star);
   RUN(test_caps_closed);
   RUN(test_tables);
