@@ -20,7 +20,7 @@ UNIT_SRC := $(wildcard tests/unit/test_*.c)
 UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/%)
 TDS_BIN ?= tds
 
-.PHONY: all deps demo test test-asan unit bench bench-paper clean
+.PHONY: all deps demo test test-asan unit bench bench-paper clean fuzz fuzz-bins fuzz-smoke
 
 all: $(TDS_BIN)
 
@@ -54,6 +54,25 @@ test-asan:
 	$(MAKE) BUILD=build-asan TDS_BIN=build-asan/tds OPT=-O1 \
 	  SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" test
 
+# libFuzzer harnesses (tests/fuzz/, doc/reliability.md "Fuzzing"), built
+# with clang, ASan and UBSan into build-fuzz/. fuzz-smoke runs each one for
+# FUZZ_TIME seconds on its corpus (CI).
+FUZZ_BUILD ?= build-fuzz
+FUZZ_TIME ?= 60
+FUZZ_NAMES := $(patsubst tests/fuzz/fuzz_%.c,%,$(wildcard tests/fuzz/fuzz_*.c))
+FUZZ_SAN = -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+
+fuzz:
+	$(MAKE) BUILD=$(FUZZ_BUILD) CC=clang OPT=-O1 SAN="-fsanitize=fuzzer-no-link $(FUZZ_SAN)" fuzz-bins
+
+fuzz-bins: $(FUZZ_NAMES:%=$(BUILD)/fuzz_%)
+
+$(BUILD)/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_util.h $(CORE_OBJ) $(filter-out $(BUILD)/main.o,$(BIND_OBJ)) | deps
+	$(CC) $(CFLAGS_ALL) -fsanitize=fuzzer $(LUA_CFLAGS) -Isrc -o $@ $(filter %.c %.o,$^) $(LIBS)
+
+fuzz-smoke: fuzz
+	sh tests/fuzz/smoke.sh $(FUZZ_BUILD) $(FUZZ_TIME) $(FUZZ_NAMES)
+
 demo: $(TDS_BIN)
 	./$(TDS_BIN) scripts/demo.tds
 
@@ -64,4 +83,4 @@ bench-paper: $(TDS_BIN)
 	sh bench/paper.sh ./$(TDS_BIN)
 
 clean:
-	rm -rf build build-asan tds
+	rm -rf build build-asan build-fuzz tds

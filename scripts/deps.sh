@@ -3,7 +3,7 @@
 # Quiet and fast when everything is present; installs what is missing
 # (needs root, as on CI). Usage: scripts/deps.sh [--check]
 set -e
-PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev evolver-nox evolver-doc"
+PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev evolver-nox evolver-doc clang libclang-rt-14-dev libomp-14-dev llvm-14"
 
 missing=""
 for p in $PKGS; do
