@@ -156,10 +156,12 @@ end
 -- Surface Evolver datafile (vertices, edges, facets, bodies, gravity).
 -- header goes first (parameters, constraint declarations in Evolver
 -- syntax); constraint numbers are written as the surface has them.
+-- The file is written all or nothing by tds.write_text (temporary file,
+-- fsync, rename); a failure is an error at the caller's line.
 function write_fe(path, o)
   o = o or {}
-  local out = assert(io.open(path, "w"))
-  local w = function(...) out:write(string.format(...)) end
+  local buf = {}
+  local w = function(...) buf[#buf + 1] = string.format(...) end
   w("// %s: written by tds write_fe\n", path)
   if o.header then w("%s\n", o.header) end
   local G, on = tds.gravity()
@@ -209,7 +211,8 @@ function write_fe(path, o)
     end
   end
   if o.read then w("\nread\n%s\n", o.read) end
-  out:close()
+  local ok, err = tds.write_text(path, table.concat(buf))
+  if not ok then error(err, 2) end
 end
 
 return true

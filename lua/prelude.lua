@@ -7,16 +7,19 @@ local tds = tds
 local KIND = { vertex = tds.vertex, edge = tds.edge, facet = tds.facet, body = tds.body }
 local NAME = { [tds.vertex] = "vertex", [tds.edge] = "edge", [tds.facet] = "face",
                [tds.body] = "body" }
+local PLURAL = { [tds.vertex] = "vertices", [tds.edge] = "edges", [tds.facet] = "faces",
+                 [tds.body] = "bodies" }
 local DECL = { [tds.vertex] = tds.decl_vertex, [tds.edge] = tds.decl_edge,
                [tds.facet] = tds.decl_face, [tds.body] = tds.decl_body }
 
 -- The ids of a declaration table: its positive integer keys, in order.
+-- `level` is the caller's level as seen from declare.
 local function sorted_ids(kind, t, level)
   local ids = {}
   for k in pairs(t) do
     if math.type(k) ~= "integer" or k < 1 then
-      error(("%ss{}: key %s is not an id (use a list, or [id] = {...})")
-            :format(NAME[kind], tostring(k)), level)
+      error(("%s{}: key %s is not an id (use a list, or [id] = {...})")
+            :format(PLURAL[kind], tostring(k)), level + 1)
     end
     ids[#ids + 1] = k
   end
@@ -29,7 +32,8 @@ local function declare(kind, t)
   local ids = sorted_ids(kind, t, level)
   if kind == tds.facet and #ids > 0 then
     -- Facets split off polygons are appended after every declared id.
-    tds.reserve(tds.facet, ids[#ids])
+    local ok, err = tds.reserve(tds.facet, ids[#ids], #ids)
+    if not ok then error(err, level) end
   end
   local decl = DECL[kind]
   for _, id in ipairs(ids) do
@@ -258,5 +262,8 @@ tds.translate = require("evolver")
 
 -- The projected-gradient method and mesh metrics (lua/pg.lua).
 require("pg")
+
+-- The check mode: every command verified (lua/check.lua, doc/reliability.md).
+if os.getenv("TDS_CHECK") == "1" then require("check") end
 
 return true

@@ -38,7 +38,7 @@
 #define TDS_DF_MAXMACRO 4096        /* bytes of one macro body */
 #define TDS_DF_MACRODEPTH 64        /* nested macro expansions */
 #define TDS_DF_MAXID (1 << 26)      /* largest element id */
-#define TDS_DF_MAXTOTAL (512u << 20) /* bytes produced by the preprocessor */
+#define TDS_DF_MAXTOTAL (64u << 20) /* bytes produced by macro expansion */
 
 /* Load the datafile at path into s, which must be empty (freshly
 ** initialised: no elements, parameters or model). On success returns

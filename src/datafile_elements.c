@@ -269,11 +269,11 @@ static int id_list(df *d, int kind, const char *what, int *n) {
     int rc = df_read_int(d, 1, what, &v);
     if (rc) return rc;
     int64_t av = v < 0 ? -v : v;
-    int ok = kind == TDS_EDGE
+    int ok = v != 0 && (kind == TDS_EDGE
                  ? av <= m->ne && tds_alive(m->eflags, (tds_id)(av - 1))
                  : av <= m->nf && tds_alive(m->fflags, (tds_id)(av - 1)) &&
-                       m->forig[av - 1] == (tds_id)(av - 1);
-    if (v == 0 || !ok)
+                       m->forig[av - 1] == (tds_id)(av - 1));
+    if (!ok)
       return df_err(d, a, TDS_ERANGE, "%s refers to %s %lld, which does not exist", what,
                     kind == TDS_EDGE ? "edge" : "face", (long long)av);
     rc = push_oe(d, a, kind == TDS_EDGE ? TDS_OREF((tds_id)(av - 1), v < 0) : (int32_t)v);

@@ -6,6 +6,7 @@
 */
 #include "datafile_int.h"
 
+#include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <string.h>
@@ -253,6 +254,7 @@ typedef struct meth {
   int global;
   double modulus;
   tds_expr *in[3];
+  int scalar;         /* the integrand was a SCALAR_INTEGRAND */
   int line;
 } meth;
 
@@ -349,6 +351,7 @@ static int h_quantity(df *d, const hdr_kw *k) {
         rc = df_err(d, at, TDS_ESYNTAX, "%s: method has two integrands", what);
         goto fail;
       }
+      m->scalar = w[0] == 's';
       if (w[0] == 's')
         rc = df_header_expr(d, 0, &m->in[0], what);
       else
@@ -382,6 +385,14 @@ static int h_quantity(df *d, const hdr_kw *k) {
   }
   d->s->quant[idx].pressure = lagrange;
   d->s->quant[idx].volconst = volconst;
+  for (int i = 0; i < nm; i++)
+    if (ms[i].scalar && (ms[i].method == TDS_M_FACET_VECTOR_INTEGRAL ||
+                         ms[i].method == TDS_M_EDGE_VECTOR_INTEGRAL)) {
+      rc = df_err_line(d, ms[i].line, TDS_ESYNTAX,
+                       "quantity %s: method %s needs a vector_integrand, not a "
+                       "scalar_integrand", name, tds_method_names[ms[i].method]);
+      goto fail;
+    }
   for (int i = 0; i < nm; i++) {
     rc = tds_model_method(d->ctx, d->s, idx, ms[i].method, ms[i].modulus, ms[i].in);
     memset(ms[i].in, 0, sizeof ms[i].in); /* taken, also on failure */
@@ -408,6 +419,8 @@ static int h_value(df *d, const hdr_kw *k) {
   if (rc) return rc;
   if (k->check == POSITIVE && v <= 0)
     return df_err(d, NULL, TDS_ESYNTAX, "%s must be positive", u);
+  if (k->check == POSITIVE && !isnormal(v)) /* a subnormal limit never ends a search */
+    return df_err(d, NULL, TDS_ESYNTAX, "%s is too small (subnormal)", u);
   if (k->check == NONNEG && v < 0)
     return df_err(d, NULL, TDS_ESYNTAX, "%s must not be negative", u);
   if (k->off != NOWHERE) *(double *)((char *)d->s + k->off) = v;

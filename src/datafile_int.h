@@ -52,7 +52,7 @@ typedef struct df_lex {
   /* macros */
   df_macro *mac;
   int nmac, capmac;
-  size_t total;           /* bytes produced so far (bounded) */
+  size_t total;           /* bytes produced by macro expansion (bounded) */
   int depth;              /* current expansion depth */
   const df_macro *active[TDS_DF_MACRODEPTH]; /* macros being expanded */
 } df_lex;

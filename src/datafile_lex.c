@@ -64,7 +64,10 @@ static int lerr(df_lex *lx, int rc, int line, const char *fmt, ...) {
 
 /* Append one byte to the logical line. */
 static int put(df_lex *lx, char c) {
-  if (++lx->total > TDS_DF_MAXTOTAL)
+  /* Only expanded text counts: a large file without macros is bounded by
+  ** TDS_DF_MAXFILE, while a few nested #defines can multiply a 3 KB file
+  ** into gigabytes. */
+  if (lx->depth && ++lx->total > TDS_DF_MAXTOTAL)
     return lerr(lx, TDS_ESYNTAX, lx->line0,
                 "macro expansion produces more than %u bytes", TDS_DF_MAXTOTAL);
   if (lx->len + 2 > lx->cap) {
@@ -355,6 +358,10 @@ int df_lex_next(df_lex *lx) {
   }
   lx->buf[0] = 0;
   if (lx->pos >= lx->n) return 0;
+  if (lx->ctx->interrupt) { /* Ctrl-C while loading a large file */
+    lx->ctx->interrupt = 0;
+    return lerr(lx, TDS_EINTR, lx->line, "interrupted while loading");
+  }
   lx->line0 = lx->line;
   lx->raw0 = lx->pos;
   size_t i = lx->pos;

@@ -19,6 +19,7 @@
 
 #include "datafile.h"
 #include "model.h"
+#include "wfile.h"
 
 typedef struct out {
   FILE *f;
@@ -309,18 +310,11 @@ static void elements(out *o, const tds_surf *s) {
 }
 
 int tds_datafile_dump(tds_ctx *ctx, tds_surf *s, const char *path) {
-  size_t n = strlen(path);
-  char *tmp = malloc(n + 5);
-  if (!tmp) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
-  memcpy(tmp, path, n);
-  memcpy(tmp + n, ".tmp", 5);
+  tds_wfile w;
+  int rc = tds_wfile_open(ctx, &w, path);
+  if (rc != TDS_OK) return rc;
   out o = {0};
-  o.f = fopen(tmp, "w");
-  if (!o.f) {
-    int rc = tds_seterr(ctx, TDS_EIO, "cannot write '%s': %s", tmp, strerror(errno));
-    free(tmp);
-    return rc;
-  }
+  o.f = w.f;
   tds_ctx quiet = *ctx;
   double energy = NAN;
   if (tds_surf_update(&quiet, s) == TDS_OK) energy = s->energy;
@@ -339,22 +333,9 @@ int tds_datafile_dump(tds_ctx *ctx, tds_surf *s, const char *path) {
     size_t k = strlen(s->read_text);
     if (k && s->read_text[k - 1] != '\n') fputc('\n', o.f);
   }
-  int err = ferror(o.f);
-  int saved = errno;
-  if (fclose(o.f) != 0 && !err) {
-    err = 1;
-    saved = errno;
-  }
-  int rc = TDS_OK;
   if (o.bad) {
-    rc = tds_seterr(ctx, TDS_ENUM, "cannot dump to '%s': %s is not finite", path, o.what);
-  } else if (err) {
-    rc = tds_seterr(ctx, TDS_EIO, "cannot write '%s': %s", tmp, strerror(saved));
-  } else if (rename(tmp, path) != 0) {
-    rc = tds_seterr(ctx, TDS_EIO, "cannot rename '%s' to '%s': %s", tmp, path,
-                    strerror(errno));
+    tds_wfile_abort(&w);
+    return tds_seterr(ctx, TDS_ENUM, "cannot dump to '%s': %s is not finite", path, o.what);
   }
-  if (rc != TDS_OK) remove(tmp);
-  free(tmp);
-  return rc;
+  return tds_wfile_commit(ctx, &w);
 }

@@ -107,7 +107,8 @@ int tds_eval(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
       if (b != TDS_NONE) out->fq->value[q] = m->bvol[b];
     }
   if (!isfinite(out->energy))
-    return tds_seterr(ctx, TDS_ENUM, "energy is not finite (%g)", out->energy);
+    return tds_seterr(ctx, TDS_ENUM, "energy is not finite (%s)",
+                     isnan(out->energy) ? "NaN" : out->energy > 0 ? "inf" : "-inf");
   return TDS_OK;
 }
 

@@ -2,11 +2,13 @@
 #include "iterate.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "eval.h"
 #include "motion.h"
+#include "snap.h"
 #include "vec3.h"
 
 typedef struct work {
@@ -249,8 +251,10 @@ static int conjugate(tds_ctx *ctx, tds_surf *s, work *w) {
 
 static int step(tds_ctx *ctx, tds_surf *s, work *w) {
   tds_mesh *m = &s->m;
-  memcpy(w->x0, m->x, (size_t)m->nv * sizeof *w->x0);
-  memcpy(w->p0, m->vp, (size_t)m->nv * sizeof *w->p0);
+  if (m->nv) { /* an empty surface has no arrays (memcpy from NULL is UB) */
+    memcpy(w->x0, m->x, (size_t)m->nv * sizeof *w->x0);
+    memcpy(w->p0, m->vp, (size_t)m->nv * sizeof *w->p0);
+  }
   int rc = direction(ctx, s, w);
   if (rc == TDS_OK && s->conj_grad) rc = conjugate(ctx, s, w);
   if (rc != TDS_OK) return rc;
@@ -263,25 +267,42 @@ static int step(tds_ctx *ctx, tds_surf *s, work *w) {
     scale = line_search(ctx, s, w, E0, w->slope, &E);
     s->scale = scale;
   }
-  if (!isfinite(E)) {
-    memcpy(m->x, w->x0, (size_t)m->nv * sizeof *w->x0);
-    memcpy(m->vp, w->p0, (size_t)m->nv * sizeof *w->p0);
-    m->coord_gen++;
-    tds_surf_update(ctx, s);
-    return tds_seterr(ctx, TDS_ENUM,
-                      "iteration produced a non-finite energy; step undone");
-  }
+  if (!isfinite(E)) /* tds_iterate puts the surface back */
+    return tds_seterr(ctx, TDS_ENUM, "iteration produced a non-finite energy");
   s->energy = E;
   s->iterations++;
   return TDS_OK;
 }
 
 int tds_iterate(tds_ctx *ctx, tds_surf *s, int n) {
-  work w;
-  int rc = work_init(ctx, s, &w);
+  /* The line search shrinks from the limit to 1e-12 of it: a limit that is
+  ** not a positive normal number would never end it. */
+  if (s->fixed_scale ? !(isfinite(s->scale) && s->scale >= 0)
+                     : !(s->scale_limit > 0 && isnormal(s->scale_limit)))
+    return tds_seterr(ctx, TDS_ERANGE, "%s %g is not usable: give a positive finite value",
+                      s->fixed_scale ? "the fixed scale" : "the scale limit",
+                      s->fixed_scale ? s->scale : s->scale_limit);
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
   if (rc != TDS_OK) return rc;
+  work w;
+  rc = work_init(ctx, s, &w);
+  if (rc != TDS_OK) {
+    tds_snap_free(&sn);
+    return rc;
+  }
   for (int i = n; i > 0; i--) {
     rc = step(ctx, s, &w);
+    if (rc == TDS_ENUM && n > 1) {
+      char msg[sizeof ctx->errmsg];
+      snprintf(msg, sizeof msg, "%s", ctx->errmsg);
+      tds_seterr(ctx, rc, "step %d of %d: %s; the surface is as before the command",
+                 n - i + 1, n, msg);
+    } else if (rc == TDS_ENUM) {
+      char msg[sizeof ctx->errmsg];
+      snprintf(msg, sizeof msg, "%s", ctx->errmsg);
+      tds_seterr(ctx, rc, "%s; the surface is as before the command", msg);
+    }
     if (rc != TDS_OK) break;
     tds_printf(ctx, "%3d. area: %#17.15g energy: %#17.15g  scale: %g\n", i,
                s->area, s->energy, s->scale);
@@ -299,9 +320,10 @@ int tds_iterate(tds_ctx *ctx, tds_surf *s, int n) {
   }
   work_free(&w);
   /* After a step, energy, area and volumes are those of its last trial,
-  ** which is where the vertices are; otherwise compute them. */
-  if (rc != TDS_OK || n == 0) tds_surf_update(ctx, s);
-  return rc;
+  ** which is where the vertices are; otherwise compute them. A failed
+  ** command (not an interruption) puts the surface back as it was. */
+  if (rc == TDS_EINTR || n == 0) tds_surf_update(ctx, s);
+  return tds_snap_end(s, &sn, rc);
 }
 
 int tds_pressures(tds_ctx *ctx, tds_surf *s) {

@@ -1,6 +1,7 @@
 /* lua_cmd.c: command primitives (iterate, refine, equiangulate, average,
 ** scale, gravity, parameters, totals, checks). The prelude gives them
 ** their user names (g, r, u, V, ...). */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -9,10 +10,7 @@
 #include "topo.h"
 
 static int check_rc(lua_State *L, tds_state *st, int rc) {
-  if (rc != TDS_OK) {
-    if (rc == TDS_EINTR) lua_sethook(L, NULL, 0, 0);
-    return tds_lua_fail(L, st, rc);
-  }
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc); /* EINTR: the hook stays armed */
   return 0;
 }
 
@@ -95,8 +93,8 @@ static int l_pressures(lua_State *L) {
 static int l_scale(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   if (!lua_isnoneornil(L, 1)) {
-    double sc = luaL_checknumber(L, 1);
-    luaL_argcheck(L, sc >= 0, 1, "scale must not be negative");
+    double sc = tds_lua_checkfinite(L, 1, "scale");
+    if (sc < 0) tds_lua_error(L, "scale must not be negative, not %f", sc);
     st->s.scale = sc;
     st->s.fixed_scale = 1;
   }
@@ -105,13 +103,21 @@ static int l_scale(lua_State *L) {
   return 2;
 }
 
+/* A scale limit: a positive normal number. Infinity, NaN, 0 and
+** subnormals would make the line search loop forever (its smallest trial
+** scale is 1e-12 times the limit). */
+static double check_scale_limit(lua_State *L, int i) {
+  double lim = tds_lua_checkfinite(L, i, "scale limit");
+  if (!(lim > 0 && isnormal(lim)))
+    tds_lua_error(L, "scale limit must be a positive normal number, not %f", lim);
+  return lim;
+}
+
 /* tds.optimize([limit]): optimizing scale, with an optional upper bound. */
 static int l_optimize(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   if (!lua_isnoneornil(L, 1)) {
-    double lim = luaL_checknumber(L, 1);
-    luaL_argcheck(L, lim > 0, 1, "scale limit must be positive");
-    st->s.scale_limit = lim;
+    st->s.scale_limit = check_scale_limit(L, 1);
   }
   st->s.fixed_scale = 0;
   return 0;
@@ -120,7 +126,7 @@ static int l_optimize(lua_State *L) {
 /* tds.gravity([G [, on]]) -> G, on */
 static int l_gravity(lua_State *L) {
   tds_state *st = TDS_STATE(L);
-  if (!lua_isnoneornil(L, 1)) st->s.gravity = luaL_checknumber(L, 1);
+  if (!lua_isnoneornil(L, 1)) st->s.gravity = tds_lua_checkfinite(L, 1, "gravity constant");
   if (!lua_isnoneornil(L, 2)) st->s.gravity_on = lua_toboolean(L, 2);
   lua_pushnumber(L, st->s.gravity);
   lua_pushboolean(L, st->s.gravity_on);
@@ -142,7 +148,9 @@ static int l_param(lua_State *L) {
   size_t len;
   const char *name = luaL_checklstring(L, 1, &len);
   if (!lua_isnoneornil(L, 2)) {
-    double v = luaL_checknumber(L, 2);
+    lua_pushfstring(L, "parameter %s", name);
+    double v = tds_lua_checkfinite(L, 2, lua_tostring(L, -1));
+    lua_pop(L, 1);
     if (tds_surf_param_set(&st->s, name, v) < 0) return luaL_error(L, "out of memory");
     st->s.m.coord_gen++;
   }
@@ -175,15 +183,19 @@ static int l_setting(lua_State *L) {
     lua_pushboolean(L, s->symmetric_content);
     break;
   case 1:
-    if (set) s->scale_limit = luaL_checknumber(L, 2);
+    if (set) s->scale_limit = check_scale_limit(L, 2);
     lua_pushnumber(L, s->scale_limit);
     break;
   case 2:
-    if (set) s->constraint_tol = luaL_checknumber(L, 2);
+    if (set) {
+      double tol = tds_lua_checkfinite(L, 2, "constraint tolerance");
+      if (!(tol > 0)) tds_lua_error(L, "constraint tolerance must be positive, not %f", tol);
+      s->constraint_tol = tol;
+    }
     lua_pushnumber(L, s->constraint_tol);
     break;
   case 3:
-    if (set) s->gap_constant = luaL_checknumber(L, 2);
+    if (set) s->gap_constant = tds_lua_checkfinite(L, 2, "gap constant");
     lua_pushnumber(L, s->gap_constant);
     break;
   case 4:

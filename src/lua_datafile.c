@@ -3,7 +3,8 @@
 **   tds.load_datafile(path)      load into the current, empty surface;
 **                                raises "path:line: message" on failure
 **   tds.dump([path])             write the surface as a datafile; returns
-**                                true, or nil and a message (like io.open).
+**                                true, or nil and a message (like io.open);
+**                                dump([path]) raises the message instead.
 **                                Without path: the loaded file's name with
 **                                extension .dmp (Evolver's default)
 **   tds.load_chunk(path)         for main.c: a function that loads the
@@ -14,13 +15,14 @@
 **                                touched); returns a table of counts, energy
 **                                and parameters, or nil and the message.
 **                                For tests and diagnostics.
-**   dump(path)                   global alias of tds.dump
+**   tds.write_text(path, text)   write a file all or nothing (wfile.h)
 */
 #include <stdlib.h>
 #include <string.h>
 
 #include "datafile.h"
 #include "lua_tds.h"
+#include "wfile.h"
 
 /* Raise msg as is (no position prefix: it has its own file:line). */
 static int raise_msg(lua_State *L, const char *msg) {
@@ -69,13 +71,22 @@ static int datafile_chunk(lua_State *L) {
 static int l_load_chunk(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   const char *path = luaL_checkstring(L, 1);
-  if (tds_datafile_detect(path)) {
+  /* In safe mode only a file named .tds or .lua runs as Lua: a name that
+  ** does not say so is read as a datafile, whatever its content. */
+  size_t n = strlen(path);
+  int named_lua = (n >= 4 && !strcmp(path + n - 4, ".tds")) ||
+                  (n >= 4 && !strcmp(path + n - 4, ".lua"));
+  if (st->safe ? !named_lua : tds_datafile_detect(path)) {
     lua_pushlightuserdata(L, st);
     lua_pushvalue(L, 1);
     lua_pushcclosure(L, datafile_chunk, 2);
     return 1;
   }
-  if (luaL_loadfile(L, path) != LUA_OK) return lua_error(L);
+  if (luaL_loadfilex(L, path, "t") != LUA_OK) { /* never bytecode */
+    const char *msg = lua_tostring(L, -1);
+    if (msg && !strstr(msg, path)) lua_pushfstring(L, "%s: %s", path, msg); /* name the file */
+    return lua_error(L);
+  }
   return 1;
 }
 
@@ -97,12 +108,41 @@ static int l_dump(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   const char *path = luaL_optstring(L, 1, NULL);
   if (!path) path = default_dump_name(L, st);
-  if (!path) {
+  if (!path) return tds_lua_nilmsg(L, "dump: give a file name (no datafile was loaded)");
+  if (!tds_lua_may_write(L, st, path)) return 2;
+  if (tds_datafile_dump(&st->ctx, &st->s, path) != TDS_OK) {
     lua_pushnil(L);
-    lua_pushliteral(L, "dump: give a file name (no datafile was loaded)");
+    lua_pushstring(L, st->ctx.errmsg);
     return 2;
   }
-  if (tds_datafile_dump(&st->ctx, &st->s, path) != TDS_OK) {
+  lua_pushboolean(L, 1);
+  return 1;
+}
+
+/* dump([path]) -> true; a failure is an error at the caller's line (a
+** script stops with a non-zero status, the prompt shows the message). */
+static int l_dump_global(lua_State *L) {
+  int n = l_dump(L);
+  if (n == 2) return tds_lua_error(L, "%s", lua_tostring(L, -1));
+  return n;
+}
+
+/* tds.write_text(path, text) -> true | nil, msg: write a whole file the
+** way dumps are written (wfile.h: temporary file, fsync, rename; refused
+** outside the output folder in safe mode). */
+static int l_write_text(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  const char *path = luaL_checkstring(L, 1);
+  size_t len;
+  const char *text = luaL_checklstring(L, 2, &len);
+  if (!tds_lua_may_write(L, st, path)) return 2;
+  tds_wfile w;
+  int rc = tds_wfile_open(&st->ctx, &w, path);
+  if (rc == TDS_OK) {
+    fwrite(text, 1, len, w.f); /* a short write shows in the commit's check */
+    rc = tds_wfile_commit(&st->ctx, &w);
+  }
+  if (rc != TDS_OK) {
     lua_pushnil(L);
     lua_pushstring(L, st->ctx.errmsg);
     return 2;
@@ -183,8 +223,10 @@ void tds_open_datafile(lua_State *L, tds_state *st) {
                                  {"dump", l_dump},
                                  {"load_chunk", l_load_chunk},
                                  {"datafile_info", l_datafile_info},
+                                 {"write_text", l_write_text},
                                  {NULL, NULL}};
   tds_lua_register(L, st, fns);
-  lua_getfield(L, -1, "dump"); /* the raw tds table is on top */
+  lua_pushlightuserdata(L, st);
+  lua_pushcclosure(L, l_dump_global, 1);
   lua_setglobal(L, "dump");
 }

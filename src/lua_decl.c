@@ -4,6 +4,7 @@
 ** the user's line). */
 #include <string.h>
 
+#include "datafile.h"
 #include "lua_tds.h"
 #include "topo.h"
 
@@ -96,21 +97,41 @@ static double num_field(lua_State *L, int t, const char *k, double dflt, int *gi
   lua_getfield(L, t, k);
   int isnum;
   double v = lua_tonumberx(L, -1, &isnum);
+  if (isnum) tds_lua_checkfinite(L, -1, k); /* NaN and inf never enter the surface */
   lua_pop(L, 1);
   if (given) *given = isnum;
   return isnum ? v : dflt;
 }
 
-static int check_id(lua_State *L) {
+/* The largest explicit id a declaration may use: as the .fe reader, ids
+** are bounded by the size of the input (here 16 per element already
+** declared of the kind, plus `extra` about to be), so that one huge id
+** cannot make every lower slot exist (gigabytes for one vertex). */
+static lua_Integer max_id(const tds_mesh *m, int kind, lua_Integer extra) {
+  lua_Integer lim = 1000000 + 16 * ((lua_Integer)tds_mesh_count(m, kind) + extra);
+  return lim < TDS_DF_MAXID ? lim : TDS_DF_MAXID;
+}
+
+static const char *const decl_name[TDS_NKINDS] = {"vertex", "edge", "face", "body"};
+
+/* Argument 1 as an id of `kind` within max_id; 0 with nil, message pushed
+** otherwise. */
+static int check_id(lua_State *L, tds_state *st, int kind) {
   lua_Integer id = luaL_checkinteger(L, 1);
-  luaL_argcheck(L, id >= 1 && id <= INT32_MAX / 8, 1, "id out of range");
   luaL_checktype(L, 2, LUA_TTABLE);
+  lua_Integer lim = max_id(&st->s.m, kind, 1);
+  if (id < 1 || id > lim) {
+    tds_lua_nilmsg(L, "%s id %I is out of range (1 to %I)",
+                   decl_name[kind], id, lim);
+    return 0;
+  }
   return (int)id;
 }
 
 static int l_decl_vertex(lua_State *L) {
   tds_state *st = TDS_STATE(L);
-  int id = check_id(L);
+  int id = check_id(L, st, TDS_VERTEX);
+  if (!id) return 2;
   if (bad_keys(L, 2, "vertex", id, vertex_keys)) return 2;
   tds_cmask con;
   if (!cmask_field(L, st, 2, &con, "vertex", id)) return 2;
@@ -140,7 +161,8 @@ static int l_decl_vertex(lua_State *L) {
 
 static int l_decl_edge(lua_State *L) {
   tds_state *st = TDS_STATE(L);
-  int id = check_id(L);
+  int id = check_id(L, st, TDS_EDGE);
+  if (!id) return 2;
   if (bad_keys(L, 2, "edge", id, edge_keys)) return 2;
   if (luaL_len(L, 2) != 2) return fail(L, "edge %d needs two vertex ids", id);
   lua_Integer ends[2];
@@ -170,7 +192,8 @@ static int l_decl_edge(lua_State *L) {
 
 static int l_decl_face(lua_State *L) {
   tds_state *st = TDS_STATE(L);
-  int id = check_id(L);
+  int id = check_id(L, st, TDS_FACET);
+  if (!id) return 2;
   if (bad_keys(L, 2, "face", id, face_keys)) return 2;
   int n = (int)luaL_len(L, 2);
   if (n < 3) return fail(L, "face %d needs at least 3 edges, got %d", id, n);
@@ -202,7 +225,8 @@ static int l_decl_face(lua_State *L) {
 
 static int l_decl_body(lua_State *L) {
   tds_state *st = TDS_STATE(L);
-  int id = check_id(L);
+  int id = check_id(L, st, TDS_BODY);
+  if (!id) return 2;
   if (bad_keys(L, 2, "body", id, body_keys)) return 2;
   int n = (int)luaL_len(L, 2);
   int32_t *faces = lua_newuserdatauv(L, sizeof *faces * (size_t)(n > 0 ? n : 1), 0);
@@ -215,26 +239,28 @@ static int l_decl_body(lua_State *L) {
       return fail(L, "body %d: face %d of the list is not a nonzero integer", id, k + 1);
     faces[k] = (int32_t)f;
   }
+  /* every value is read and checked before the body exists (all or nothing) */
+  int has_vol, has_pr, has_den, has_vc;
+  double vol = num_field(L, 2, "volume", 0, &has_vol);
+  double pr = num_field(L, 2, "pressure", 0, &has_pr);
+  double den = num_field(L, 2, "density", 0, &has_den);
+  double vc = num_field(L, 2, "volconst", 0, &has_vc);
+  if (has_vol && has_pr) return fail(L, "body %d: give either volume or pressure, not both", id);
   int rc = tds_decl_body(&st->ctx, &st->s, id - 1, n, faces);
   if (rc != TDS_OK) return fail(L, "%s", st->ctx.errmsg);
   tds_mesh *m = &st->s.m;
-  int given;
-  double vol = num_field(L, 2, "volume", 0, &given);
-  if (given) {
+  if (has_vol) {
     m->btarget[id - 1] = vol;
     m->bflags[id - 1] |= TDS_TARGET;
   }
-  double pr = num_field(L, 2, "pressure", 0, &given);
-  if (given) {
-    if (m->bflags[id - 1] & TDS_TARGET)
-      return fail(L, "body %d: give either volume or pressure, not both", id);
+  if (has_pr) {
     m->bpressure[id - 1] = pr;
     m->bflags[id - 1] |= TDS_PRESSURE;
   }
-  m->bdensity[id - 1] = num_field(L, 2, "density", 0, &given);
-  if (given) st->s.gravity_on = 1; /* Evolver: any declared density, even 0 */
-  m->bvolconst[id - 1] = num_field(L, 2, "volconst", 0, &given);
-  if (given) m->bflags[id - 1] |= TDS_VOLCONST;
+  m->bdensity[id - 1] = den;
+  if (has_den) st->s.gravity_on = 1; /* Evolver: any declared density, even 0 */
+  m->bvolconst[id - 1] = vc;
+  if (has_vc) m->bflags[id - 1] |= TDS_VOLCONST;
   tds_push_elem(L, TDS_BODY, id - 1);
   return 1;
 }
@@ -246,10 +272,16 @@ static int l_reserve(lua_State *L) {
   int kind = (int)luaL_checkinteger(L, 1);
   lua_Integer n = luaL_checkinteger(L, 2);
   luaL_argcheck(L, kind >= 0 && kind < TDS_NKINDS, 1, "bad element kind");
-  luaL_argcheck(L, n >= 0 && n <= INT32_MAX / 8, 2, "count out of range");
+  lua_Integer extra = luaL_optinteger(L, 3, 0);
+  luaL_argcheck(L, extra >= 0 && extra <= INT32_MAX, 3, "count out of range");
+  lua_Integer lim = max_id(&st->s.m, kind, extra);
+  if (n < 0 || n > lim)
+    return tds_lua_nilmsg(L, "%s id %I is out of range (1 to %I)",
+                          decl_name[kind], n, lim);
   if (tds_mesh_extend_dead(&st->s.m, kind, (int32_t)n) != TDS_OK)
     return luaL_error(L, "out of memory");
-  return 0;
+  lua_pushboolean(L, 1);
+  return 1;
 }
 
 void tds_open_decl(lua_State *L, tds_state *st) {

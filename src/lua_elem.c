@@ -1,6 +1,7 @@
 /* lua_elem.c: element handles (tds.vertex, tds.edge, tds.facet, tds.body),
 ** their attributes, iteration and selections. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -101,6 +102,14 @@ static tds_cmask check_cmask(lua_State *L, const tds_surf *s, int i) {
   return mask;
 }
 
+/* The value being assigned (argument 3) as a finite number, or raise
+** "vertex 1: x must be finite, not nan" at the user's line. */
+static double finite_value(lua_State *L, int kind, tds_id id, const char *k) {
+  char what[64];
+  snprintf(what, sizeof what, "%s %d: %s", kind_name[kind], (int)id + 1, k);
+  return tds_lua_checkfinite(L, 3, what);
+}
+
 static int set_flag(lua_State *L, uint32_t *flags, tds_id id, uint32_t bit, int i) {
   if (lua_toboolean(L, i))
     flags[id] |= bit;
@@ -173,15 +182,22 @@ static int vertex_set(lua_State *L, tds_state *st, tds_id v, const char *k) {
   tds_surf *s = &st->s;
   tds_mesh *m = &s->m;
   if (!strcmp(k, "x") || !strcmp(k, "y") || !strcmp(k, "z")) {
-    m->x[v][k[0] - 'x'] = luaL_checknumber(L, 3);
+    m->x[v][k[0] - 'x'] = finite_value(L, TDS_VERTEX, v, k);
     m->coord_gen++;
   } else if (!strcmp(k, "fixed")) set_flag(L, m->vflags, v, TDS_FIXED, 3);
   else if (!strcmp(k, "bare")) set_flag(L, m->vflags, v, TDS_BARE, 3);
   else if (!strcmp(k, "constraint") || !strcmp(k, "constraints")) {
+    /* all or nothing: a failed projection leaves the vertex as it was */
+    tds_cmask old = m->vcon[v];
+    double x[3] = {m->x[v][0], m->x[v][1], m->x[v][2]}, p[2] = {m->vp[v][0], m->vp[v][1]};
     m->vcon[v] = check_cmask(L, s, 3);
-    if (tds_motion_enforce(s, v) != TDS_OK)
-      return luaL_error(L, "vertex %d could not be projected onto its constraints", v + 1);
     m->coord_gen++;
+    if (tds_motion_enforce(s, v) != TDS_OK) {
+      m->vcon[v] = old;
+      memcpy(m->x[v], x, sizeof x);
+      memcpy(m->vp[v], p, sizeof p);
+      return tds_lua_error(L, "vertex %d could not be projected onto its constraints", v + 1);
+    }
   } else return 0;
   return 1;
 }
@@ -210,7 +226,7 @@ static int edge_set(lua_State *L, tds_state *st, tds_id e, const char *k) {
   tds_mesh *m = &s->m;
   if (!strcmp(k, "fixed")) set_flag(L, m->eflags, e, TDS_FIXED, 3);
   else if (!strcmp(k, "no_refine")) set_flag(L, m->eflags, e, TDS_NO_REFINE, 3);
-  else if (!strcmp(k, "tension") || !strcmp(k, "density")) m->eten[e] = luaL_checknumber(L, 3);
+  else if (!strcmp(k, "tension") || !strcmp(k, "density")) m->eten[e] = finite_value(L, TDS_EDGE, e, k);
   else if (!strcmp(k, "color")) m->ecolor[e] = (int16_t)luaL_checkinteger(L, 3);
   else if (!strcmp(k, "constraint") || !strcmp(k, "constraints")) m->econ[e] = check_cmask(L, s, 3);
   else return 0;
@@ -260,7 +276,7 @@ static tds_id opt_body(lua_State *L, tds_state *st, int i) {
 static int facet_set(lua_State *L, tds_state *st, tds_id f, const char *k) {
   tds_surf *s = &st->s;
   tds_mesh *m = &s->m;
-  if (!strcmp(k, "tension") || !strcmp(k, "density")) m->ften[f] = luaL_checknumber(L, 3);
+  if (!strcmp(k, "tension") || !strcmp(k, "density")) m->ften[f] = finite_value(L, TDS_FACET, f, k);
   else if (!strcmp(k, "fixed")) set_flag(L, m->fflags, f, TDS_FIXED, 3);
   else if (!strcmp(k, "no_refine")) set_flag(L, m->fflags, f, TDS_NO_REFINE, 3);
   else if (!strcmp(k, "nodisplay")) set_flag(L, m->fflags, f, TDS_NODISPLAY, 3);
@@ -297,21 +313,21 @@ static int body_set(lua_State *L, tds_state *st, tds_id b, const char *k) {
     if (lua_isnil(L, 3)) {
       m->bflags[b] &= ~TDS_TARGET;
     } else {
-      m->btarget[b] = luaL_checknumber(L, 3);
+      m->btarget[b] = finite_value(L, TDS_BODY, b, k);
       m->bflags[b] = (m->bflags[b] | TDS_TARGET) & ~TDS_PRESSURE;
     }
   } else if (!strcmp(k, "pressure")) {
     if (lua_isnil(L, 3)) {
       m->bflags[b] &= ~TDS_PRESSURE;
     } else {
-      m->bpressure[b] = luaL_checknumber(L, 3);
+      m->bpressure[b] = finite_value(L, TDS_BODY, b, k);
       m->bflags[b] = (m->bflags[b] | TDS_PRESSURE) & ~TDS_TARGET;
     }
   } else if (!strcmp(k, "density")) {
-    m->bdensity[b] = luaL_checknumber(L, 3);
+    m->bdensity[b] = finite_value(L, TDS_BODY, b, k);
     if (m->bdensity[b] != 0) s->gravity_on = 1;
   } else if (!strcmp(k, "volconst")) {
-    m->bvolconst[b] = luaL_checknumber(L, 3);
+    m->bvolconst[b] = finite_value(L, TDS_BODY, b, k);
     m->bflags[b] |= TDS_VOLCONST;
   } else return 0;
   return 1;

@@ -165,9 +165,17 @@ static int add_method(lua_State *L, tds_state *st, int t, int qi,
   }
   tds_expr *ig[3];
   if (!vector_field(L, st, t, "vector_integrand", ig, what)) return 0;
-  if (!ig[0] && !ig[1] && !ig[2] &&
-      !compile_field(L, st, t, "scalar_integrand", 0, &ig[0], what))
-    return 0;
+  if (!ig[0] && !ig[1] && !ig[2]) {
+    if (!compile_field(L, st, t, "scalar_integrand", 0, &ig[0], what)) return 0;
+    if (ig[0] && (method == TDS_M_FACET_VECTOR_INTEGRAL ||
+                  method == TDS_M_EDGE_VECTOR_INTEGRAL)) {
+      tds_expr_free(ig[0]);
+      lua_pushnil(L);
+      lua_pushfstring(L, "%s: method %s needs a vector_integrand, not a scalar_integrand",
+                      what, tds_method_names[method]);
+      return 0;
+    }
+  }
   if (tds_model_method(&st->ctx, &st->s, qi, method, mod, ig) != TDS_OK) {
     lua_pushnil(L);
     lua_pushstring(L, st->ctx.errmsg);

@@ -77,7 +77,6 @@ static int l_pg(lua_State *L) {
   tds_pg_result r;
   int rc = tds_pg_run(&st->ctx, &st->s, &o, &r);
   if (rc != TDS_OK) {
-    if (rc == TDS_EINTR) lua_sethook(L, NULL, 0, 0);
     return tds_lua_fail(L, st, rc);
   }
   lua_createtable(L, 0, 14);

@@ -2,6 +2,7 @@
 #include "lua_tds.h"
 
 #include <lualib.h>
+#include <math.h>
 #include <signal.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -29,6 +30,25 @@ int tds_lua_fail(lua_State *L, tds_state *st, int rc) {
   lua_pushstring(L, st->ctx.errmsg);
   lua_concat(L, 2);
   return lua_error(L);
+}
+
+int tds_lua_error(lua_State *L, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  where_user(L);
+  lua_pushvfstring(L, fmt, ap);
+  va_end(ap);
+  lua_concat(L, 2);
+  return lua_error(L);
+}
+
+double tds_lua_checkfinite(lua_State *L, int i, const char *what) {
+  if (lua_type(L, i) != LUA_TNUMBER)
+    tds_lua_error(L, "%s must be a number, not %s", what, luaL_typename(L, i));
+  double v = lua_tonumber(L, i);
+  if (isnan(v)) tds_lua_error(L, "%s must be finite, not NaN", what);
+  if (!isfinite(v)) tds_lua_error(L, "%s must be finite, not %sinf", what, v < 0 ? "-" : "");
+  return v;
 }
 
 int tds_lua_field_bool(lua_State *L, int t, const char *k, int dflt) {
@@ -60,6 +80,8 @@ static int state_gc(lua_State *L) {
   tds_surf_free(&st->s);
   free(st->datafile);
   st->datafile = NULL;
+  free(st->outdir);
+  st->outdir = NULL;
   return 0;
 }
 
@@ -84,19 +106,24 @@ static int load_embedded(lua_State *L) {
   return 1;
 }
 
-/* SIGINT: flag the core's loops and stop running Lua code (as lua.c). */
+/* SIGINT: flag the core's loops and stop running Lua code (as lua.c).
+** The stop is sticky until the chunk ends: the hook stays armed, so a
+** pcall that catches the interruption is interrupted again at its next
+** instruction, and the whole chunk (script, -e code, prompt line) stops. */
 static lua_State *sig_L;
 static tds_state *sig_st;
+static volatile sig_atomic_t sig_seen; /* an interruption since the chunk began */
+static int sig_also_term;              /* --on-interrupt: SIGTERM stops too */
 
 static void stop_hook(lua_State *L, lua_Debug *ar) {
   (void)ar;
-  lua_sethook(L, NULL, 0, 0);
   if (sig_st) sig_st->ctx.interrupt = 0;
   luaL_error(L, "interrupted");
 }
 
 static void on_sigint(int sig) {
   signal(sig, SIG_DFL); /* a second Ctrl-C kills the process */
+  sig_seen = 1;
   if (sig_st) sig_st->ctx.interrupt = 1;
   if (sig_L)
     lua_sethook(sig_L, stop_hook, LUA_MASKCALL | LUA_MASKRET | LUA_MASKCOUNT, 1);
@@ -106,15 +133,22 @@ void tds_lua_sigint(lua_State *L, tds_state *st, int on) {
   if (on) {
     sig_L = L;
     sig_st = st;
+    sig_seen = 0;
     st->ctx.interrupt = 0;
     signal(SIGINT, on_sigint);
+    if (sig_also_term) signal(SIGTERM, on_sigint);
   } else {
     signal(SIGINT, SIG_DFL);
+    if (sig_also_term) signal(SIGTERM, SIG_DFL);
     lua_sethook(L, NULL, 0, 0);
     sig_L = NULL;
     sig_st = NULL;
   }
 }
+
+int tds_lua_interrupted(void) { return sig_seen != 0; }
+
+void tds_lua_sigterm_stops(int on) { sig_also_term = on; }
 
 tds_state *tds_lua_open(lua_State *L) {
   luaL_openlibs(L);
@@ -135,6 +169,7 @@ tds_state *tds_lua_open(lua_State *L) {
   tds_open_model(L, st);
   tds_open_datafile(L, st);
   tds_open_pg(L, st);
+  tds_open_check(L, st);
   lua_setglobal(L, "tds");
 
   lua_getglobal(L, "package");

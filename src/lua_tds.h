@@ -18,6 +18,8 @@ typedef struct tds_state {
   tds_ctx ctx;
   tds_surf s;
   char *datafile;    /* name of the loaded file, for messages and dumps */
+  int safe;          /* safe mode (lua_safe.c) */
+  char *outdir;      /* safe mode: the only folder written to (resolved) */
 } tds_state;
 
 #define TDS_STATE(L) ((tds_state *)lua_touserdata(L, lua_upvalueindex(1)))
@@ -29,6 +31,15 @@ int tds_lua_fail(lua_State *L, tds_state *st, int rc);
 ** Returns the state (owned by L) or NULL with an error message on the
 ** stack. */
 tds_state *tds_lua_open(lua_State *L);
+
+/* Raise a formatted message prefixed with the user's "file:line: " (the
+** innermost frame outside C and the embedded prelude). Never returns. */
+int tds_lua_error(lua_State *L, const char *fmt, ...);
+
+/* Argument i as a finite number, or raise "<what> must be finite, not nan"
+** at the user's line (NaN and infinities are refused everywhere a value
+** enters the surface). */
+double tds_lua_checkfinite(lua_State *L, int i, const char *what);
 
 /* Field k of the table at index t as a boolean, dflt when absent. */
 int tds_lua_field_bool(lua_State *L, int t, const char *k, int dflt);
@@ -48,6 +59,16 @@ void tds_open_cmd(lua_State *L, tds_state *st);
 void tds_open_model(lua_State *L, tds_state *st);     /* lua_model.c */
 void tds_open_datafile(lua_State *L, tds_state *st);  /* lua_datafile.c */
 void tds_open_pg(lua_State *L, tds_state *st);        /* lua_pg.c */
+void tds_open_check(lua_State *L, tds_state *st);     /* lua_check.c */
+
+/* Safe mode (lua_safe.c): no process spawning, no native libraries, no
+** bytecode, no file written outside outdir (NULL: the current folder).
+** Returns 1, or 0 with an error message on the stack. */
+int tds_lua_safe(lua_State *L, tds_state *st, const char *outdir);
+/* May the session write `path`? Always outside safe mode; in safe mode
+** only inside the output folder. Returns 1, or 0 after pushing nil and
+** the reason (the io.open convention). */
+int tds_lua_may_write(lua_State *L, tds_state *st, const char *path);
 
 /* Push a handle for element (kind, 0-based id). */
 void tds_push_elem(lua_State *L, int kind, tds_id id);
@@ -63,6 +84,11 @@ uint8_t *tds_lua_selection(lua_State *L, tds_state *st, int arg, int kind);
 /* Sigint support for the REPL and main: install / restore the handler that
 ** sets ctx.interrupt and interrupts running Lua code. */
 void tds_lua_sigint(lua_State *L, tds_state *st, int on);
+
+/* Whether the last chunk run under tds_lua_sigint was interrupted. */
+int tds_lua_interrupted(void);
+/* Make SIGTERM stop a chunk as SIGINT does (tds --on-interrupt). */
+void tds_lua_sigterm_stops(int on);
 
 /* q()/quit() raise a table { tds_quit = code }; this recognises it. */
 int tds_lua_is_quit(lua_State *L, int idx, int *code);

@@ -1,9 +1,11 @@
 /* main.c: command line of the tds program. */
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
+#include "datafile.h"
 #include "repl.h"
 
 static const char usage[] =
@@ -13,6 +15,13 @@ static const char usage[] =
     "  -i          open the interactive prompt after FILE (tds alone opens it)\n"
     "  -e CODE     run Lua CODE after FILE; may be repeated\n"
     "  -q          quiet: no per-iteration lines\n"
+    "  --safe      safe mode for files from others: no processes, no native\n"
+    "              libraries, no bytecode, no file written outside the output\n"
+    "              folder; only .tds/.lua files run as Lua (doc/reliability.md)\n"
+    "  --out DIR   the output folder of safe mode (default: the current folder)\n"
+    "  --on-interrupt dump[=PATH]\n"
+    "              when Ctrl-C (or SIGTERM) stops FILE or -e code, dump the\n"
+    "              surface first (default PATH: FILE with extension .dmp)\n"
     "  --help      show this help\n"
     "  --version   show the version\n"
     "\n"
@@ -32,9 +41,31 @@ static int load_file(lua_State *L, const char *path) {
   return luaL_loadfile(L, path);
 }
 
+/* The surface so far, saved when an interruption stopped the run
+** (--on-interrupt dump). */
+static void dump_on_interrupt(tds_state *st, const char *path, const char *file) {
+  char *name = NULL;
+  if (!path) {
+    const char *base = st->datafile ? st->datafile : file ? file : "tds";
+    const char *slash = strrchr(base, '/'), *dot = strrchr(base, '.');
+    size_t n = dot && dot > (slash ? slash : base) ? (size_t)(dot - base) : strlen(base);
+    name = malloc(n + 5);
+    if (!name) return;
+    memcpy(name, base, n);
+    memcpy(name + n, ".dmp", 5);
+    path = name;
+  }
+  if (tds_datafile_dump(&st->ctx, &st->s, path) == TDS_OK)
+    fprintf(stderr, "tds: interrupted; the surface is saved in '%s'\n", path);
+  else
+    fprintf(stderr, "tds: interrupted; saving the surface failed: %s\n", st->ctx.errmsg);
+  free(name);
+}
+
 int main(int argc, char **argv) {
-  int interactive = 0, quiet = 0, status = 0, quit_code = 0;
-  const char *file = NULL;
+  int interactive = 0, quiet = 0, status = 0, quit_code = 0, safe = 0;
+  int on_interrupt_dump = 0;
+  const char *file = NULL, *outdir = NULL, *interrupt_path = NULL;
   const char **code = calloc((size_t)argc + 1, sizeof *code);
   int ncode = 0;
   if (!code) return 1;
@@ -52,6 +83,24 @@ int main(int argc, char **argv) {
       interactive = 1;
     } else if (!strcmp(a, "-q")) {
       quiet = 1;
+    } else if (!strcmp(a, "--safe")) {
+      safe = 1;
+    } else if (!strcmp(a, "--out")) {
+      if (++i == argc) {
+        fprintf(stderr, "tds: --out needs a folder\n%s", usage);
+        free(code);
+        return 1;
+      }
+      outdir = argv[i];
+    } else if (!strcmp(a, "--on-interrupt") || !strncmp(a, "--on-interrupt=", 15)) {
+      const char *v = a[14] == '=' ? a + 15 : (++i < argc ? argv[i] : NULL);
+      if (!v || strncmp(v, "dump", 4) || (v[4] && (v[4] != '=' || !v[5]))) {
+        fprintf(stderr, "tds: --on-interrupt takes 'dump' or 'dump=PATH'\n%s", usage);
+        free(code);
+        return 1;
+      }
+      on_interrupt_dump = 1;
+      interrupt_path = v[4] ? v + 5 : NULL;
     } else if (!strcmp(a, "-e")) {
       if (++i == argc) {
         fprintf(stderr, "tds: -e needs an argument\n%s", usage);
@@ -85,13 +134,30 @@ int main(int argc, char **argv) {
     return 1;
   }
   st->ctx.quiet = quiet;
-  int rc = 0;
+  if (outdir && !safe) {
+    fprintf(stderr, "tds: --out is the output folder of --safe; give --safe too\n");
+    lua_close(L);
+    free(code);
+    return 1;
+  }
+  if (safe && !tds_lua_safe(L, st, outdir)) {
+    fprintf(stderr, "tds: %s\n", lua_tostring(L, -1));
+    lua_close(L);
+    free(code);
+    return 1;
+  }
+  /* A file-size limit (ulimit -f) makes writes fail with EFBIG, reported
+  ** by the writer, instead of killing the process mid-file. */
+  signal(SIGXFSZ, SIG_IGN);
+  tds_lua_sigterm_stops(on_interrupt_dump);
+  int rc = 0, stopped = 0;
   if (file) {
     if (load_file(L, file) != LUA_OK) {
       fprintf(stderr, "%s\n", lua_tostring(L, -1));
       rc = 1;
     } else {
       rc = tds_run_chunk(L, st, &quit_code);
+      stopped |= rc == 1 && tds_lua_interrupted();
     }
   }
   for (int i = 0; i < ncode && rc == 0; i++) {
@@ -101,8 +167,10 @@ int main(int argc, char **argv) {
       rc = 1;
     } else {
       rc = tds_run_chunk(L, st, &quit_code);
+      stopped |= rc == 1 && tds_lua_interrupted();
     }
   }
+  if (stopped && on_interrupt_dump) dump_on_interrupt(st, interrupt_path, file);
   if (rc == 2) {
     status = quit_code;
   } else if (interactive || (!file && ncode == 0)) {

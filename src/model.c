@@ -202,19 +202,35 @@ int tds_model_method(tds_ctx *ctx, tds_surf *s, int idx, int method,
                  : 0;
   int have = 0;
   for (int i = 0; integrand && i < 3; i++) have += integrand[i] != NULL;
-  if (method < 0 || method >= TDS_M_COUNT || q->ninst == 4 ||
-      (need == 1 && !integrand[0]) || (need == 0 && have)) {
+  /* A scalar integrand sits alone in slot 0; anything in slots 1-2 means a
+  ** vector integrand was given to a scalar method (evaluating it would use
+  ** a missing slot 0). A vector method needs at least one component. */
+  int scalar_given = have == 1 && integrand[0];
+  const char *why = NULL;
+  if (q->ninst == 4) {
     free3(integrand);
-    if (q->ninst == 4)
-      return tds_seterr(ctx, TDS_ERANGE, "quantity %s: at most 4 methods", q->name);
+    return tds_seterr(ctx, TDS_ERANGE, "quantity %s: at most 4 methods", q->name);
+  }
+  if (method < 0 || method >= TDS_M_COUNT) why = "is not a method";
+  else if (need == 1 && !have) why = "needs a scalar_integrand";
+  else if (need == 1 && !scalar_given) why = "needs a scalar_integrand, not a vector_integrand";
+  else if (need == 3 && !have) why = "needs a vector_integrand";
+  else if (need == 0 && have) why = "takes no integrand";
+  if (why) {
+    free3(integrand);
     return tds_seterr(ctx, TDS_ESYNTAX, "quantity %s: method %s %s", q->name,
                       method >= 0 && method < TDS_M_COUNT ? tds_method_names[method] : "?",
-                      need ? "needs its integrand" : "takes no integrand");
+                      why);
   }
   tds_method_inst *mi = &q->inst[q->ninst++];
   mi->method = method;
   mi->modulus = modulus;
-  take3(mi->integrand, integrand);
+  if (need == 1) { /* a scalar integrand is kept even when constant 0 */
+    mi->integrand[0] = integrand[0];
+    integrand[0] = NULL;
+  } else {
+    take3(mi->integrand, integrand);
+  }
   mi->npts = method == TDS_M_EDGE_VECTOR_INTEGRAL || method == TDS_M_EDGE_SCALAR_INTEGRAL
                  ? edge_points(mi->integrand)
                  : facet_points(mi->integrand);

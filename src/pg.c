@@ -3,6 +3,7 @@
 #include "pg.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -12,6 +13,7 @@
 
 #include "motion.h"
 #include "pg_int.h"
+#include "snap.h"
 #include "vec3.h"
 
 void pg_work_free(pgw *w) {
@@ -232,11 +234,13 @@ static double now(void) {
 }
 
 static void save_best(const tds_surf *s, pgw *w) {
+  if (!w->nv) return; /* empty surface: no arrays */
   memcpy(w->xbest, s->m.x, (size_t)w->nv * sizeof *w->xbest);
   memcpy(w->pbest, s->m.vp, (size_t)w->nv * sizeof *w->pbest);
 }
 
 static void load_best(tds_surf *s, pgw *w) {
+  if (!w->nv) return;
   memcpy(s->m.x, w->xbest, (size_t)w->nv * sizeof *w->xbest);
   memcpy(s->m.vp, w->pbest, (size_t)w->nv * sizeof *w->pbest);
   s->m.coord_gen++;
@@ -266,8 +270,14 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   memset(res, 0, sizeof *res);
   pgw w;
   int accel = o->accel && o->depth > 0;
-  int rc = pg_work_init(ctx, s, &w, accel ? o->depth : 0);
+  tds_snap sn; /* all or nothing: a failed run leaves the surface as it was */
+  int rc = tds_snap_take(ctx, s, &sn);
   if (rc != TDS_OK) return rc;
+  rc = pg_work_init(ctx, s, &w, accel ? o->depth : 0);
+  if (rc != TDS_OK) {
+    tds_snap_free(&sn);
+    return rc;
+  }
   tds_mesh *m = &s->m;
   w.flip_tol = 1e-3; /* hysteresis: no flipping back and forth */
 #ifdef _OPENMP
@@ -375,9 +385,7 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   }
   if (k > nmaxit) k = nmaxit;
   res->iterations = k;
-  if (rc == TDS_ENUM || (until && rc == TDS_OK)) {
-    if (rbest < INFINITY || rc == TDS_ENUM) load_best(s, &w);
-  }
+  if (until && rc == TDS_OK && rbest < INFINITY) load_best(s, &w);
   if (until && rc == TDS_OK) {
     res->r = rbest;
     res->best_iteration = best;
@@ -393,8 +401,14 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   res->threaded = w.threaded;
   res->cpu_seconds = cpu_now() - c0;
   pg_work_free(&w);
-  int rc2 = tds_surf_update(ctx, s);
+  int rc2 = rc == TDS_OK || rc == TDS_EINTR ? tds_surf_update(ctx, s) : TDS_OK;
   if (rc == TDS_OK) rc = rc2;
+  if (rc != TDS_OK && rc != TDS_EINTR) {
+    char msg[sizeof ctx->errmsg];
+    snprintf(msg, sizeof msg, "%s", ctx->errmsg);
+    tds_seterr(ctx, rc, "%s; the surface is as before the command", msg);
+  }
+  tds_snap_end(s, &sn, rc);
   res->mean_edge = mean_edge(m);
   res->seconds = now() - t0;
   if (rc == TDS_OK || rc == TDS_EINTR)

@@ -790,6 +790,7 @@ int pg_pass(tds_ctx *ctx, tds_surf *s, pgw *w, double *energy_out) {
   s->area = out.area;
   *energy_out = out.energy;
   if (!isfinite(out.energy))
-    return tds_seterr(ctx, TDS_ENUM, "energy is not finite (%g)", out.energy);
+    return tds_seterr(ctx, TDS_ENUM, "energy is not finite (%s)",
+                     isnan(out.energy) ? "NaN" : out.energy > 0 ? "inf" : "-inf");
   return TDS_OK;
 }

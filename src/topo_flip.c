@@ -1,5 +1,6 @@
 /* topo_flip.c: edge flips and equiangulation (the u command). */
 #include "topo.h"
+#include "snap.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -64,7 +65,7 @@ static double opposite_sum(const tds_mesh *m, tds_id e, tds_id f1, tds_id f2) {
          geom_angle(m->x[d], m->x[a], m->x[b]);
 }
 
-int tds_equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
+static int equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
                      int32_t *nflips) {
   tds_mesh *m = &s->m;
   int32_t ne = m->ne, flips = 0;
@@ -120,4 +121,12 @@ int tds_equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
   if (nflips) *nflips = flips;
   if (flips) m->coord_gen++;
   return tds_surf_update(ctx, s);
+}
+
+/* All or nothing, as tds_refine. */
+int tds_equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nflips) {
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
+  if (rc != TDS_OK) return rc;
+  return tds_snap_end(s, &sn, equiangulate(ctx, s, sel, nflips));
 }

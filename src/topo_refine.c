@@ -4,6 +4,7 @@
 #include <stdlib.h>
 
 #include "motion.h"
+#include "snap.h"
 #include "vec3.h"
 
 /* Oriented reference to the first (tail side) or second half of the split
@@ -130,7 +131,7 @@ static tds_id split_edge(tds_surf *s, tds_id e, int32_t *e2) {
   return v;
 }
 
-int tds_refine(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nsplit) {
+static int refine(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nsplit) {
   tds_mesh *m = &s->m;
   int32_t ne = m->ne, nf = m->nf, nv0 = m->nv;
   tds_id *midv = malloc((size_t)(ne > 0 ? ne : 1) * sizeof *midv);
@@ -180,4 +181,13 @@ int tds_refine(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nsplit) {
     tds_warnf(ctx, "refine: %d new vertices could not be projected onto "
               "their constraints\n", bad);
   return tds_surf_update(ctx, s);
+}
+
+/* All or nothing: a failure (out of memory, a non-finite energy after the
+** split) leaves the surface as it was. */
+int tds_refine(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nsplit) {
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
+  if (rc != TDS_OK) return rc;
+  return tds_snap_end(s, &sn, refine(ctx, s, sel, nsplit));
 }

@@ -6,6 +6,7 @@
 
 #include "geom.h"
 #include "motion.h"
+#include "snap.h"
 
 /* Mean of the neighbours of v along its "curve" edges (triple edges, or
 ** edges on the same constraints when v is on a contact line), if there are
@@ -54,8 +55,8 @@ static int over_facets(const tds_mesh *m, tds_id v, double out[3]) {
   return 1;
 }
 
-int tds_vertex_average(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
-                       int32_t *nmoved) {
+static int vertex_average(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
+                          int32_t *nmoved) {
   tds_mesh *m = &s->m;
   if (tds_mesh_adjacency(m) != TDS_OK)
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
@@ -94,4 +95,13 @@ int tds_vertex_average(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
   m->coord_gen++;
   if (nmoved) *nmoved = moved;
   return tds_surf_update(ctx, s);
+}
+
+/* All or nothing: a move that makes the energy non-finite is taken back. */
+int tds_vertex_average(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
+                       int32_t *nmoved) {
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
+  if (rc != TDS_OK) return rc;
+  return tds_snap_end(s, &sn, vertex_average(ctx, s, sel, nmoved));
 }

@@ -19,7 +19,8 @@ trap 'rm -rf "$out"' EXIT
   done
   for s in tests/scripts/*.tds; do
     name=$(basename "$s" .tds)
-    if (cd tests/scripts && "$TDS" -q "$name.tds") > "$out/$name.log" 2>&1; then
+    # TDS_CHECK=1: every command is verified (lua/check.lua)
+    if (cd tests/scripts && TDS_CHECK=1 "$TDS" -q "$name.tds") > "$out/$name.log" 2>&1; then
       echo "PASS script/$name"
     else
       echo "FAIL script/$name: $(tail -n 3 "$out/$name.log" | tr '\n' ' ')"
@@ -36,6 +37,7 @@ trap 'rm -rf "$out"' EXIT
     fi
   done
   sh tests/docs.sh
+  sh tests/repro.sh
   for e in tests/evolver/*.sh; do
     [ -f "$e" ] || continue
     sh "$e" || echo "FAIL evolver/$(basename "$e" .sh): exit status $?"
