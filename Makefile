@@ -18,9 +18,11 @@ CORE_OBJ := $(CORE_SRC:src/%.c=$(BUILD)/%.o)
 BIND_OBJ := $(BIND_SRC:src/%.c=$(BUILD)/%.o)
 UNIT_SRC := $(wildcard tests/unit/test_*.c)
 UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/%)
+FUZZ_NAMES := $(patsubst tests/fuzz/fuzz_%.c,%,$(wildcard tests/fuzz/fuzz_*.c))
+FUZZ_REPLAY := $(FUZZ_NAMES:%=$(BUILD)/test_fuzz_%)
 TDS_BIN ?= tds
 
-.PHONY: all deps demo test test-asan unit bench bench-paper clean fuzz fuzz-bins fuzz-smoke
+.PHONY: all deps demo test test-asan unit bench bench-paper clean fuzz fuzz-bins fuzz-smoke fuzz-cov
 
 all: $(TDS_BIN)
 
@@ -44,7 +46,7 @@ $(BUILD)/test_%: tests/unit/test_%.c tests/unit/*.h $(CORE_OBJ) | deps
 $(BUILD):
 	mkdir -p $(BUILD)
 
-unit: $(UNIT_BIN)
+unit: $(UNIT_BIN) $(FUZZ_REPLAY)
 
 test: $(TDS_BIN) unit
 	@sh tests/run.sh $(abspath $(TDS_BIN)) $(abspath $(BUILD))
@@ -59,7 +61,6 @@ test-asan:
 # FUZZ_TIME seconds on its corpus (CI).
 FUZZ_BUILD ?= build-fuzz
 FUZZ_TIME ?= 60
-FUZZ_NAMES := $(patsubst tests/fuzz/fuzz_%.c,%,$(wildcard tests/fuzz/fuzz_*.c))
 FUZZ_SAN = -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 
 fuzz:
@@ -67,11 +68,21 @@ fuzz:
 
 fuzz-bins: $(FUZZ_NAMES:%=$(BUILD)/fuzz_%)
 
+# The harnesses without libFuzzer replay their corpora in `make test`.
+$(BUILD)/test_fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c tests/fuzz/fuzz_util.h $(CORE_OBJ) $(filter-out $(BUILD)/main.o,$(BIND_OBJ)) | deps
+	$(CC) $(CFLAGS_ALL) $(LUA_CFLAGS) -DFUZZ_NAME='"$*"' -Isrc -o $@ $(filter %.c %.o,$^) $(LIBS)
+
 $(BUILD)/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_util.h $(CORE_OBJ) $(filter-out $(BUILD)/main.o,$(BIND_OBJ)) | deps
 	$(CC) $(CFLAGS_ALL) -fsanitize=fuzzer $(LUA_CFLAGS) -Isrc -o $@ $(filter %.c %.o,$^) $(LIBS)
 
 fuzz-smoke: fuzz
 	sh tests/fuzz/smoke.sh $(FUZZ_BUILD) $(FUZZ_TIME) $(FUZZ_NAMES)
+
+# Source coverage of each harness over its corpus (FUZZ_CORPUS=dir of corpora).
+fuzz-cov:
+	$(MAKE) BUILD=build-fuzzcov CC=clang OPT=-O1 \
+	  SAN="-fsanitize=fuzzer-no-link -fprofile-instr-generate -fcoverage-mapping" fuzz-bins
+	sh tests/fuzz/coverage.sh build-fuzzcov $(FUZZ_NAMES)
 
 demo: $(TDS_BIN)
 	./$(TDS_BIN) scripts/demo.tds

@@ -12,8 +12,11 @@
 ** iterations, r() only on small surfaces.
 **
 ** Checked after every tds command (success or failure): the mesh passes
-** tds.check(). A crash, sanitizer report or broken mesh is a bug; a Lua
-** error is the normal way to refuse bad input.
+** tds.check(), and the check mode (TDS_CHECK=1, lua/check.lua) holds: no
+** NaN or infinity after a command that succeeded, the surface exactly as
+** before after one that failed. A crash, sanitizer report, broken mesh or
+** check-mode report (the process exits) is a bug; a Lua error is the
+** normal way to refuse bad input.
 */
 #include <lauxlib.h>
 #include <lua.h>
@@ -133,6 +136,10 @@ int LLVMFuzzerInitialize(int *argc, char ***argv) {
   (void)argc;
   (void)argv;
   setenv("OMP_NUM_THREADS", "1", 1);
+  /* The check mode (lua/check.lua): after every command nothing is NaN or
+     infinite, and a failed command left the surface exactly as before; a
+     violation ends the process, which libFuzzer records as a finding. */
+  setenv("TDS_CHECK", "1", 1);
   return 0;
 }
 
