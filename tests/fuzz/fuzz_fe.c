@@ -5,8 +5,9 @@
 ** round of commands on it -- a dump that must reload to the same counts
 ** and energy, one `g` step, one `r` (small surfaces only), another `g` --
 ** checks the mesh invariants after each, and dumps and reloads again. A
-** failing command is fine (it must leave a consistent mesh); a crash,
-** sanitizer report, broken mesh or a dump that does not reload is a bug.
+** failing command is fine if it leaves the surface exactly as before; a
+** crash, sanitizer report, broken mesh, non-finite value after a load or
+** a successful command, or a dump that does not reload is a bug.
 */
 #include <math.h>
 #include <stdint.h>
@@ -15,6 +16,7 @@
 #include "fuzz_util.h"
 #include "iterate.h"
 #include "mesh.h"
+#include "snap.h"
 #include "surf.h"
 #include "topo.h"
 
@@ -66,6 +68,26 @@ static void check_mesh(tds_surf *s, const char *after) {
              ctx.errmsg);
 }
 
+/* Run one command (g or r) with the all-or-nothing rule checked: after a
+** success everything is finite, after a failure the surface is bit for bit
+** what it was. */
+static void command(tds_surf *s, const char *name) {
+  tds_ctx ctx;
+  init_ctx(&ctx);
+  tds_snap before;
+  if (tds_snap_take(&ctx, s, &before) != TDS_OK) return;
+  int rc = name[0] == 'r' ? tds_refine(&ctx, s, NULL, NULL) : tds_iterate(&ctx, s, 1);
+  check_mesh(s, name);
+  tds_ctx c2;
+  init_ctx(&c2);
+  if (rc == TDS_OK)
+    FUZZ_CHECK(tds_surf_all_finite(&c2, s, 1) == TDS_OK, "after %s: %s", name, c2.errmsg);
+  else
+    FUZZ_CHECK(tds_snap_same(&c2, s, &before) == TDS_OK, "%s failed (%s) and changed: %s", name,
+               ctx.errmsg, c2.errmsg);
+  tds_snap_free(&before);
+}
+
 int LLVMFuzzerInitialize(int *argc, char ***argv) {
   (void)argc;
   (void)argv;
@@ -84,17 +106,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     return 0;
   }
   check_mesh(&s, "load");
+  FUZZ_CHECK(tds_surf_all_finite(&ctx, &s, 0) == TDS_OK, "after load: %s", ctx.errmsg);
   dump_reload(&s);
   if (tds_mesh_count(&s.m, TDS_FACET) <= MAX_ITER_FACETS &&
       tds_mesh_count(&s.m, TDS_VERTEX) <= 3 * MAX_ITER_FACETS) {
-    tds_iterate(&ctx, &s, 1);
-    check_mesh(&s, "g");
+    command(&s, "g");
     if (tds_mesh_count(&s.m, TDS_FACET) <= MAX_REFINE_FACETS &&
         tds_mesh_count(&s.m, TDS_EDGE) <= 3 * MAX_REFINE_FACETS) {
-      tds_refine(&ctx, &s, NULL, NULL);
-      check_mesh(&s, "r");
-      tds_iterate(&ctx, &s, 1);
-      check_mesh(&s, "g after r");
+      command(&s, "r");
+      command(&s, "g after r");
     }
     dump_reload(&s);
   }
