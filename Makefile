@@ -31,9 +31,11 @@ BIND_OBJ := $(BIND_SRC:src/%.c=$(BUILD)/%.o)
 LIVE_OBJ := $(LIVE_SRC:src/%.c=$(BUILD)/%.o)
 UNIT_SRC := $(wildcard tests/unit/test_*.c)
 UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/%)
+FUZZ_NAMES := $(patsubst tests/fuzz/fuzz_%.c,%,$(wildcard tests/fuzz/fuzz_*.c))
+FUZZ_REPLAY := $(FUZZ_NAMES:%=$(BUILD)/test_fuzz_%)
 TDS_BIN ?= tds
 
-.PHONY: all deps deps-test web demo test test-asan unit bench bench-paper clean
+.PHONY: all deps deps-test web demo test test-asan unit bench bench-paper clean fuzz fuzz-bins fuzz-smoke fuzz-cov
 
 all: $(TDS_BIN) web
 
@@ -73,7 +75,7 @@ $(BUILD):
 $(BUILD)/png2ppm: tests/pictures/png2ppm.c | deps $(BUILD)
 	$(CC) $(CFLAGS_ALL) $(CAIRO_CFLAGS) -o $@ $< $(CAIRO_LIBS)
 
-unit: $(UNIT_BIN) $(BUILD)/png2ppm
+unit: $(UNIT_BIN) $(FUZZ_REPLAY) $(BUILD)/png2ppm
 
 test: $(TDS_BIN) unit web | deps-test
 	@sh tests/run.sh $(abspath $(TDS_BIN)) $(abspath $(BUILD))
@@ -82,6 +84,39 @@ test: $(TDS_BIN) unit web | deps-test
 test-asan:
 	LSAN_OPTIONS=suppressions=$(abspath tests/lsan.supp) $(MAKE) BUILD=build-asan TDS_BIN=build-asan/tds OPT=-O1 \
 	  SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" test
+
+# libFuzzer harnesses (tests/fuzz/, doc/reliability.md "Fuzzing"), built
+# with clang, ASan and UBSan into build-fuzz/. fuzz-smoke runs each one for
+# FUZZ_TIME seconds on its corpus (CI).
+FUZZ_BUILD ?= build-fuzz
+FUZZ_TIME ?= 60
+FUZZ_SAN = -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+# Smaller macro-expansion limits, so an input that expands to the full
+# 64 MiB does not take a minute under the sanitizers (doc/reliability.md).
+FUZZ_LIMITS = -DTDS_DF_MAXTOTAL='(4u<<20)' -DTDS_DF_MAXLINE='(1u<<20)'
+
+fuzz:
+	@sh scripts/deps.sh fuzz
+	$(MAKE) BUILD=$(FUZZ_BUILD) CC=clang OPT=-O1 SAN="-fsanitize=fuzzer-no-link $(FUZZ_SAN) $(FUZZ_LIMITS)" fuzz-bins
+
+fuzz-bins: $(FUZZ_NAMES:%=$(BUILD)/fuzz_%)
+
+# The harnesses without libFuzzer replay their corpora in `make test`.
+FUZZ_OBJ = $(CORE_OBJ) $(filter-out $(BUILD)/main.o,$(BIND_OBJ)) $(LIVE_OBJ)
+$(BUILD)/test_fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c tests/fuzz/fuzz_util.h $(FUZZ_OBJ) | deps
+	$(CC) $(CFLAGS_ALL) -fopenmp $(LUA_CFLAGS) -DFUZZ_NAME='"$*"' -Isrc -o $@ $(filter %.c %.o,$^) $(LIBS) $(LIVE_LIBS)
+
+$(BUILD)/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_util.h $(FUZZ_OBJ) | deps
+	$(CC) $(CFLAGS_ALL) -fopenmp -fsanitize=fuzzer $(LUA_CFLAGS) -Isrc -o $@ $(filter %.c %.o,$^) $(LIBS) $(LIVE_LIBS)
+
+fuzz-smoke: fuzz
+	sh tests/fuzz/smoke.sh $(FUZZ_BUILD) $(FUZZ_TIME) $(FUZZ_NAMES)
+
+# Source coverage of each harness over its corpus (FUZZ_CORPUS=dir of corpora).
+fuzz-cov:
+	$(MAKE) BUILD=build-fuzzcov CC=clang OPT=-O1 \
+	  SAN="-fsanitize=fuzzer-no-link -fprofile-instr-generate -fcoverage-mapping $(FUZZ_LIMITS)" fuzz-bins
+	sh tests/fuzz/coverage.sh build-fuzzcov $(FUZZ_NAMES)
 
 demo: $(TDS_BIN)
 	./$(TDS_BIN) scripts/demo.tds
@@ -94,4 +129,4 @@ bench-paper: $(TDS_BIN) | deps-test
 	sh bench/paper.sh ./$(TDS_BIN)
 
 clean:
-	rm -rf build build-asan tds
+	rm -rf build build-asan build-fuzz tds

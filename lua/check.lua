@@ -10,10 +10,12 @@ local tds = tds
 local snapshot, same, finite = tds.check_snapshot, tds.check_same, tds.check_finite
 local release = tds.check_release
 
+-- Captured now, so a script that replaces io or os cannot silence a report.
+local stderr, exit = io.stderr, os.exit
 local function violation(what, msg)
-  io.stderr:write(("TDS_CHECK: after %s: %s\n"):format(what, msg))
-  io.stderr:flush()
-  os.exit(3)
+  stderr:write(("TDS_CHECK: after %s: %s\n"):format(what, msg))
+  stderr:flush()
+  exit(3)
 end
 
 -- `derived`: the command evaluates the energy and succeeds only if it is

@@ -15,18 +15,21 @@ BUILD_PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev libmicrohttpd-dev
 # test, tests/web).
 TEST_PKGS="evolver-nox evolver-doc python3-meshio python3-vtk9 python3-numpy
   chromium chromium-driver"
+# The fuzzers (make fuzz, make fuzz-smoke): clang with libFuzzer and OpenMP.
+FUZZ_PKGS="clang libclang-rt-14-dev libomp-14-dev llvm-14"
 
 what=build
 check=""
 for a in "$@"; do
   case $a in
-    build|test) what=$a ;;
+    build|test|fuzz) what=$a ;;
     --check) check=1 ;;
-    *) echo "deps.sh: unknown argument '$a' (use build, test, --check)" >&2; exit 2 ;;
+    *) echo "deps.sh: unknown argument '$a' (use build, test, fuzz, --check)" >&2; exit 2 ;;
   esac
 done
 PKGS=$BUILD_PKGS
 [ "$what" = test ] && PKGS="$BUILD_PKGS $TEST_PKGS"
+[ "$what" = fuzz ] && PKGS="$BUILD_PKGS $FUZZ_PKGS"
 
 missing=""
 for p in $PKGS; do

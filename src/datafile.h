@@ -34,11 +34,15 @@
 
 /* Limits of the reader (inputs beyond them are refused with a message). */
 #define TDS_DF_MAXFILE (256u << 20) /* bytes of a datafile */
+#ifndef TDS_DF_MAXLINE /* the fuzz build lowers the two expansion limits */
 #define TDS_DF_MAXLINE (4u << 20)   /* bytes of a logical line after macros */
+#endif
 #define TDS_DF_MAXMACRO 4096        /* bytes of one macro body */
 #define TDS_DF_MACRODEPTH 64        /* nested macro expansions */
 #define TDS_DF_MAXID (1 << 26)      /* largest element id */
+#ifndef TDS_DF_MAXTOTAL
 #define TDS_DF_MAXTOTAL (64u << 20) /* bytes produced by macro expansion */
+#endif
 
 /* Load the datafile at path into s, which must be empty (freshly
 ** initialised: no elements, parameters or model). On success returns
