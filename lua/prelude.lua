@@ -253,10 +253,16 @@ setmetatable(_G, {
   end,
 })
 
--- The REPL's reader of Evolver-style lines (g 5; r; u).
-tds.translate = require("evolver")
+-- Evolver's command language: the runtime (tds.E, evolver [[...]]), read
+-- sections run at load, and the prompt's Lua/Evolver rule.
+require("evorun")
+tds.on_load = function(path) tds.E.run_read(path) end
+require("evolver")
 
 -- The projected-gradient method and mesh metrics (lua/pg.lua).
 require("pg")
+
+-- Evolver text cannot redefine the names above (lua/evorun.lua).
+tds.E.protect()
 
 return true

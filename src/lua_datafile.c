@@ -14,6 +14,10 @@
 **                                touched); returns a table of counts, energy
 **                                and parameters, or nil and the message.
 **                                For tests and diagnostics.
+**   tds.read_text()              the loaded datafile's read section (or nil)
+**   tds.datafile_name()          the loaded datafile's path (or nil)
+**   After a load, tds.on_load(path) is called if set: it runs the read
+**   section (lua/evorun.lua); its errors are the load's errors.
 **   dump(path)                   global alias of tds.dump
 */
 #include <stdlib.h>
@@ -49,6 +53,32 @@ static void load(lua_State *L, tds_state *st, const char *path) {
     free(st->datafile);
     st->datafile = copy;
   }
+  /* The read section runs now, as in Evolver (tds.on_load, lua/evorun.lua). */
+  lua_getglobal(L, "tds");
+  lua_getfield(L, -1, "on_load");
+  lua_remove(L, -2);
+  if (lua_isfunction(L, -1)) {
+    lua_pushstring(L, path);
+    lua_call(L, 1, 0);
+  } else {
+    lua_pop(L, 1);
+  }
+}
+
+/* tds.read_text() -> the loaded datafile's read section, or nil */
+static int l_read_text(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  if (!st->s.read_text) return 0;
+  lua_pushstring(L, st->s.read_text);
+  return 1;
+}
+
+/* tds.datafile_name() -> the loaded datafile's path, or nil */
+static int l_datafile_name(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  if (!st->datafile) return 0;
+  lua_pushstring(L, st->datafile);
+  return 1;
 }
 
 /* tds.load_datafile(path) */
@@ -183,6 +213,8 @@ void tds_open_datafile(lua_State *L, tds_state *st) {
                                  {"dump", l_dump},
                                  {"load_chunk", l_load_chunk},
                                  {"datafile_info", l_datafile_info},
+                                 {"read_text", l_read_text},
+                                 {"datafile_name", l_datafile_name},
                                  {NULL, NULL}};
   tds_lua_register(L, st, fns);
   lua_getfield(L, -1, "dump"); /* the raw tds table is on top */

@@ -1,0 +1,1092 @@
+-- evorun.lua: the run-time side of Evolver command text (tds.E).
+--
+-- Code made by evolang.translate calls these functions. They give Evolver's
+-- meaning to values (1/0 truth, reals), elements (vertex[3].x, sub-element
+-- generators), commands (g 5, r, v, user commands with counts) and output
+-- (print, printf, redirection). Variables are Lua globals, so Evolver text
+-- and Lua scripts share them; parameters are the surface's.
+--
+--   E.run(text [, chunkname [, line0]])  translate and run command text
+--   E.run_file(path)                     run a command file (tds -f, read)
+--   E.run_read(path)                     run a loaded datafile's read section
+
+local evolang = require("evolang")
+local tds = tds
+local E = {}
+tds.E = E
+
+local KINDNUM = { vertex = tds.vertex, edge = tds.edge, facet = tds.facet, body = tds.body }
+
+---------------------------------------------------------------- errors
+
+-- Raise msg at the innermost line of Evolver or Lua user code.
+local function where()
+  for level = 2, 50 do
+    local info = debug.getinfo(level, "Sl")
+    if not info then break end
+    if info.currentline and info.currentline > 0 and not info.source:match("^=%[tds ") then
+      return info.short_src .. ":" .. info.currentline .. ": "
+    end
+  end
+  return ""
+end
+local function fail(msg) error(where() .. msg, 0) end
+E.fail = fail
+
+---------------------------------------------------------------- values
+
+local function num(v, what)
+  if type(v) == "number" then return v end
+  if type(v) == "boolean" then return v and 1 or 0 end
+  if v == nil then return 0 end
+  local n = tonumber(v)
+  if n then return n end
+  fail(("%s: expected a number, got %s"):format(what or "expression", type(v) == "string" and ("'" .. v .. "'") or type(v)))
+end
+E.num = num
+
+function E.truth(v)
+  if type(v) == "number" then return v ~= 0 end
+  if type(v) == "boolean" then return v end
+  if v == nil then return false end
+  if type(v) == "string" then return v ~= "" end
+  return true
+end
+
+function E.choose(c, a, b) if c then return a else return b end end
+
+function E.arith(op, a, b)
+  if op == "+" then
+    if type(a) == "string" and type(b) == "string" then return a .. b end
+    return num(a) + num(b)
+  elseif op == "-" then return num(a) - num(b)
+  elseif op == "*" then return num(a) * num(b)
+  elseif op == "/" then
+    b = num(b)
+    if b == 0 then fail("division by zero") end
+    return num(a) / b
+  elseif op == "%" or op == "mod" then
+    a, b = num(a) + 0.0, num(b) + 0.0
+    if b == 0 then fail("modulus by zero") end
+    return a - math.floor(a / b) * b
+  elseif op == "imod" then
+    a, b = math.floor(num(a)), math.floor(num(b))
+    if b == 0 then fail("imod by zero") end
+    return (a - math.floor(a / b) * b) + 0.0
+  elseif op == "idiv" then
+    local x, y = num(a), num(b)
+    x = x < 0 and math.ceil(x) or math.floor(x)
+    y = y < 0 and math.ceil(y) or math.floor(y)
+    if y == 0 then fail("idiv by zero") end
+    local r = x / y
+    return (r < 0 and math.ceil(r) or math.floor(r)) + 0.0
+  end
+  fail("unknown operator " .. tostring(op))
+end
+
+function E.pow(a, b)
+  a, b = num(a), num(b)
+  if a < 0 and b % 1 ~= 0 then fail(("negative number %g to a fractional power %g"):format(a, b)) end
+  return a ^ b
+end
+
+local function checked(name, f, ok)
+  return function(...)
+    local args = { ... }
+    for i = 1, select("#", ...) do args[i] = num(args[i], name) end
+    if ok and not ok(table.unpack(args)) then
+      fail(("%s(%s): argument out of range"):format(name, table.concat(args, ", ")))
+    end
+    return f(table.unpack(args)) + 0.0
+  end
+end
+
+local function agm_ellipticK(m)
+  if m >= 1 then fail("ellipticK(m) needs m < 1") end
+  local a, b = 1.0, math.sqrt(1 - m)
+  for _ = 1, 60 do a, b = (a + b) / 2, math.sqrt(a * b) end
+  return math.pi / (2 * a)
+end
+local function ellipticE(m)
+  if m > 1 then fail("ellipticE(m) needs m <= 1") end
+  if m == 1 then return 1.0 end
+  local a, b, c = 1.0, math.sqrt(1 - m), math.sqrt(m)
+  local sum, p = c * c / 2, 0.5
+  for _ = 1, 60 do
+    a, b, c = (a + b) / 2, math.sqrt(a * b), (a - b) / 2
+    p = p * 2
+    sum = sum + p * c * c
+  end
+  return math.pi / (2 * a) * (1 - sum)
+end
+
+E.fn = {
+  abs = checked("abs", math.abs), sqr = checked("sqr", function(x) return x * x end),
+  sqrt = checked("sqrt", math.sqrt, function(x) return x >= 0 end),
+  sin = checked("sin", math.sin), cos = checked("cos", math.cos), tan = checked("tan", math.tan),
+  asin = checked("asin", math.asin, function(x) return x >= -1 and x <= 1 end),
+  acos = checked("acos", math.acos, function(x) return x >= -1 and x <= 1 end),
+  atan = checked("atan", math.atan), atan2 = checked("atan2", function(y, x) return math.atan(y, x) end),
+  log = checked("log", math.log, function(x) return x >= 0 end), exp = checked("exp", math.exp),
+  sinh = checked("sinh", function(x) return (math.exp(x) - math.exp(-x)) / 2 end),
+  cosh = checked("cosh", function(x) return (math.exp(x) + math.exp(-x)) / 2 end),
+  tanh = checked("tanh", function(x) local a, b = math.exp(x), math.exp(-x); return (a - b) / (a + b) end),
+  asinh = checked("asinh", function(x) return math.log(x + math.sqrt(x * x + 1)) end),
+  acosh = checked("acosh", function(x) return math.log(x + math.sqrt(x * x - 1)) end, function(x) return x >= 1 end),
+  atanh = checked("atanh", function(x) return 0.5 * math.log((1 + x) / (1 - x)) end, function(x) return x > -1 and x < 1 end),
+  ceil = checked("ceil", math.ceil), floor = checked("floor", math.floor),
+  pow = checked("pow", function(a, b) return a ^ b end),
+  minimum = checked("minimum", math.min), maximum = checked("maximum", math.max),
+  elliptick = checked("ellipticK", agm_ellipticK), elliptice = checked("ellipticE", ellipticE),
+  incompleteelliptice = function() fail("incompleteEllipticE: not supported yet") end,
+  incompleteellipticf = function() fail("incompleteEllipticF: not supported yet") end,
+  is_defined = function(name)
+    if type(name) ~= "string" then fail("is_defined(\"name\") needs a string") end
+    local ok = pcall(E.getv, name)
+    return (ok or E.B[name:lower()] or type(rawget(_G, name:lower())) == "function") and 1 or 0
+  end,
+  sizeof = function(v)
+    if type(v) == "string" then return #v end
+    if type(v) == "table" then return #v end
+    fail("sizeof: expected an array or a string")
+  end,
+  valid_constraint = function(n)
+    local ok, info = pcall(tds.constraint_info, math.floor(num(n)))
+    return ok and info and 1 or 0
+  end,
+  valid_boundary = function() fail("valid_boundary: not supported yet") end,
+}
+
+---------------------------------------------------------------- elements
+
+-- An oriented element: a handle, or a reversed edge { h = handle } (as a
+-- facet or a vertex sees it; Evolver's negative ids).
+local REV = {}
+local function reversed(h) return setmetatable({ h = h }, REV) end
+local function unwrap(x)
+  if getmetatable(x) == REV then return x.h, true end
+  return x, false
+end
+local function ishandle(v) return type(v) == "userdata" and getmetatable(v) and getmetatable(v).__tds_kind ~= nil end
+local function isel(v) return ishandle(v) or getmetatable(v) == REV end
+E.isel = isel
+local KINDNAME = { [tds.vertex] = "vertex", [tds.edge] = "edge", [tds.facet] = "facet", [tds.body] = "body" }
+local function kindof(x) return KINDNAME[getmetatable((unwrap(x))).__tds_kind] end
+E.unwrap = unwrap
+
+function E.getelem(kind, i, soft)
+  local id = num(i, kind .. "[]")
+  if id % 1 ~= 0 then fail(("%s[%g]: the index must be a whole number"):format(kind, id)) end
+  local h = tds.get(KINDNUM[kind], math.floor(math.abs(id)))
+  if not h and not soft then fail(("%s[%d] does not exist"):format(kind, math.floor(id))) end
+  if h and id < 0 and kind == "edge" then return reversed(h) end
+  return h
+end
+
+function E.all(kind)
+  local list, i, k = {}, 0, KINDNUM[kind]
+  while true do
+    local id, h = tds.next(k, i)
+    if not id then break end
+    list[#list + 1] = h
+    i = id
+  end
+  return list
+end
+
+function E.live(h) return true end
+
+-- Elements around an element (sub-element generators).
+local function around(x, kind)
+  local from = kindof(x)
+  local h, rev = unwrap(x)
+  if from == "facet" and kind == "edge" then
+    local out = {}
+    for _, id in ipairs(h.edges) do
+      local e = tds.get(tds.edge, math.abs(id))
+      out[#out + 1] = id < 0 and reversed(e) or e
+    end
+    return out
+  elseif from == "facet" and kind == "vertex" then return h.vertices
+  elseif from == "facet" and kind == "body" then
+    local out = {}
+    if h.frontbody then out[#out + 1] = h.frontbody end
+    if h.backbody then out[#out + 1] = h.backbody end
+    return out
+  elseif from == "edge" and kind == "vertex" then
+    if rev then return { h.head, h.tail } end
+    return { h.tail, h.head }
+  elseif from == "edge" and kind == "facet" then
+    -- oriented like the edge: a facet that traverses it backwards is
+    -- seen reversed (negative oid, opposite normal)
+    local out = {}
+    for _, f in ipairs(E.all("facet")) do
+      for _, id in ipairs(f.edges) do
+        if math.abs(id) == h.id then
+          out[#out + 1] = ((id < 0) ~= rev) and reversed(f) or f
+          break
+        end
+      end
+    end
+    return out
+  elseif from == "vertex" and kind == "edge" then
+    local out = {}
+    for _, e in ipairs(E.all("edge")) do -- oriented away from the vertex
+      if e.tail == h then out[#out + 1] = e
+      elseif e.head == h then out[#out + 1] = reversed(e) end
+    end
+    return out
+  elseif from == "vertex" and kind == "facet" then
+    local out = {}
+    for _, f in ipairs(E.all("facet")) do
+      for _, v in ipairs(f.vertices) do if v == h then out[#out + 1] = f; break end end
+    end
+    return out
+  elseif from == "body" and kind == "facet" then
+    local out = {}
+    for _, f in ipairs(E.all("facet")) do
+      if f.frontbody == h or f.backbody == h then out[#out + 1] = f end
+    end
+    return out
+  elseif from == "vertex" and kind == "body" or from == "edge" and kind == "body" then
+    local seen, out = {}, {}
+    for _, f in ipairs(around(h, "facet")) do
+      for _, b in ipairs(around(f, "body")) do
+        if not seen[b.id] then seen[b.id] = true; out[#out + 1] = b end
+      end
+    end
+    return out
+  elseif from == "body" and (kind == "vertex" or kind == "edge") then
+    local seen, out = {}, {}
+    for _, f in ipairs(around(h, "facet")) do
+      for _, x in ipairs(around(f, kind)) do
+        if not seen[x.id] then seen[x.id] = true; out[#out + 1] = x end
+      end
+    end
+    return out
+  end
+  fail(("%s.%s: not supported yet"):format(from, kind))
+end
+
+function E.subs(h, kind)
+  if not isel(h) then fail("." .. kind .. " needs an element") end
+  return around(h, kind)
+end
+
+function E.subelem(h, kind, i)
+  if not isel(h) then fail("." .. kind .. "[] needs an element") end
+  local list = around(h, kind)
+  local k = math.floor(math.abs(num(i)))
+  local x = list[k]
+  if not x then fail(("%s %d has no %s[%d]"):format(kindof(h), unwrap(h).id, kind, k)) end
+  return x
+end
+
+-- Extra attributes defined at run time: extra[kind][name] = { type, dim, vals }.
+local extra = { vertex = {}, edge = {}, facet = {}, body = {} }
+
+function E.defattr(kind, name, ty, dim)
+  if extra[kind][name] then return end
+  extra[kind][name] = { type = ty, dim = math.floor(num(dim)), vals = {} }
+end
+
+local function vec(x)
+  local k = kindof(x)
+  local h, rev = unwrap(x)
+  if k == "edge" then
+    local a, b = h.tail, h.head
+    if rev then a, b = b, a end
+    return b.x - a.x, b.y - a.y, b.z - a.z
+  elseif k == "facet" then
+    local v = h.vertices
+    -- the cross product of the first two edges as the facet traverses them
+    local ax, ay, az = v[2].x - v[1].x, v[2].y - v[1].y, v[2].z - v[1].z
+    local bx, by, bz = v[3].x - v[2].x, v[3].y - v[2].y, v[3].z - v[2].z
+    local sg = rev and -0.5 or 0.5
+    return (ay * bz - az * by) * sg, (az * bx - ax * bz) * sg, (ax * by - ay * bx) * sg
+  end
+end
+
+local ATTR = {
+  id = function(h) return h.id + 0.0 end,
+  oid = function(h, rev) return (rev and -h.id or h.id) + 0.0 end,
+  fixed = function(h) return h.fixed and 1.0 or 0.0 end,
+  no_refine = function(h) return h.no_refine and 1.0 or 0.0 end,
+  bare = function(h) return h.bare and 1.0 or 0.0 end,
+  frontbody = function(h) local b = h.frontbody; return b and b.id + 0.0 or 0.0 end,
+  backbody = function(h) local b = h.backbody; return b and b.id + 0.0 or 0.0 end,
+  target = function(h) return (h.target or 0) + 0.0 end,
+  -- tds keeps one colour per facet: front and back are the same
+  frontcolor = function(h) return h.color + 0.0 end,
+  backcolor = function(h) return h.color + 0.0 end,
+  valence = function(h)
+    local k = kindof(h)
+    if k == "facet" then return 3.0 end
+    if k == "body" then return #around(h, "facet") + 0.0 end
+    return h.valence + 0.0
+  end,
+  on_boundary = function(h) return h.boundary and 1.0 or 0.0 end,
+  -- Evolver's default display criteria: facets unless nodisplay; edges
+  -- that are fixed or not between exactly two facets.
+  show = function(h)
+    local k = kindof(h)
+    if k == "facet" then return h.nodisplay and 0.0 or 1.0 end
+    if k == "edge" then return (h.fixed or h.valence ~= 2) and 1.0 or 0.0 end
+    return 1.0
+  end,
+}
+for i, c in ipairs { "x", "y", "z" } do
+  ATTR[c] = function(h)
+    local k = kindof(h)
+    if k == "vertex" then return unwrap(h)[c] end
+    if k == "edge" or k == "facet" then return (select(i, vec(h))) end
+    fail("body has no attribute " .. c)
+  end
+end
+
+function E.attr(o, name)
+  if type(o) == "table" and o.__quantity then return E.qattr(o, name) end
+  if not isel(o) then fail(("'.%s' needs an element, got %s"):format(name, type(o))) end
+  if name == "x" or name == "y" or name == "z" then return ATTR[name](o) end
+  local h, rev = unwrap(o)
+  local x = extra[kindof(h)][name]
+  if x then
+    local v = x.vals[h.id]
+    if v == nil then
+      if x.dim > 0 then v = {}; for i = 1, x.dim do v[i] = 0.0 end; x.vals[h.id] = v
+      else v = 0.0 end
+    end
+    return v
+  end
+  local f = ATTR[name]
+  if f then return f(h, rev) end
+  local ok, v = pcall(function() return h[name] end)
+  if not ok then fail(v) end
+  if v == nil then
+    if name == "pressure" or name == "volume" or name == "density" or name == "tension" then return 0.0 end
+    fail(("%s %d has no attribute '%s'"):format(kindof(h), h.id, name))
+  end
+  if type(v) == "boolean" then return v and 1.0 or 0.0 end
+  if type(v) == "function" then fail(("%s.%s is not an attribute"):format(kindof(h), name)) end
+  return v
+end
+
+function E.pred(h, what, n)
+  if not isel(h) then fail(what .. " needs an element") end
+  h = unwrap(h)
+  n = math.floor(num(n))
+  if what == "on_constraint" or what == "hit_constraint" then
+    local cs = h.constraints or {}
+    for _, c in ipairs(cs) do if c == n then return true end end
+    return false
+  end
+  return h.boundary == n
+end
+
+local function has_con(h, n)
+  for _, c in ipairs(h.constraints or {}) do if c == n then return true end end
+end
+
+-- set/unset of attributes; `fromset` marks Evolver's set command (no value
+-- means a flag is switched on).
+function E.setattr(h, name, v, fromset)
+  if type(h) == "table" and h.__quantity then return E.setqattr(h, name, v) end
+  if not isel(h) then fail(("cannot set '%s' of a %s"):format(name, type(h))) end
+  h = unwrap(h)
+  local k = kindof(h)
+  local x = extra[k][name]
+  if x then x.vals[h.id] = v; return end
+  if name == "fixed" or name == "no_refine" or name == "bare" or name == "nodisplay" or name == "no_display" then
+    if name == "no_display" then name = "nodisplay" end
+    h[name] = E.truth(v == true and 1 or v)
+  elseif name == "constraint" then
+    local n = math.floor(num(v))
+    if not has_con(h, n) then
+      local cs = h.constraints or {}
+      cs[#cs + 1] = n
+      local ok, err = pcall(function() h.constraints = cs end)
+      if not ok then fail(err) end
+    end
+  elseif (name == "frontcolor" or name == "backcolor") and k == "facet" then
+    fail(("set facet %s: tds has one colour per facet; set color"):format(name))
+  elseif name == "target" or name == "volume" then
+    if k ~= "body" then fail(k .. " has no " .. name) end
+    h.target = num(v)
+  else
+    if v == true then fail(("set %s %s needs a value"):format(k, name)) end
+    local ok, err = pcall(function() h[name] = v end)
+    if not ok then fail(tostring(err):gsub("^.-:%d+: ", "")) end
+  end
+end
+
+function E.unsetattr(h, name, v)
+  h = unwrap(h)
+  local k = kindof(h)
+  if name == "fixed" or name == "no_refine" or name == "bare" then h[name] = false
+  elseif name == "constraint" then
+    local cs, out = h.constraints or {}, {}
+    local n = v and math.floor(num(v))
+    for _, c in ipairs(cs) do if n and c ~= n then out[#out + 1] = c end end
+    h.constraints = out
+  elseif (name == "target" or name == "volume") and k == "body" then h.target = nil
+  elseif name == "pressure" and k == "body" then h.pressure = nil
+  elseif extra[k][name] then extra[k][name].vals[h.id] = nil
+  else fail(("unset %s %s: not supported"):format(k, name)) end
+end
+
+function E.agg(kind, list, f)
+  local acc, n
+  if kind == "sum" or kind == "count" or kind == "avg" then acc = 0.0 end
+  n = 0
+  for _, h in ipairs(list) do
+    local v = f(h)
+    if v ~= nil then
+      v = num(v)
+      n = n + 1
+      if kind == "sum" or kind == "avg" then acc = acc + v
+      elseif kind == "count" then acc = acc + 1
+      elseif kind == "max" then acc = (acc == nil or v > acc) and v or acc
+      else acc = (acc == nil or v < acc) and v or acc end
+    end
+  end
+  if kind == "avg" then return n > 0 and acc / n or 0.0 end
+  return acc or 0.0
+end
+
+---------------------------------------------------------------- variables
+
+-- Internal read-only variables (syntax.htm#internal-variables).
+local INTERNAL = {
+  total_energy = function() return (tds.totals()) end,
+  total_area = function() local _, a = tds.totals(); return a end,
+  vertex_count = function() return tds.count(tds.vertex) + 0.0 end,
+  edge_count = function() return tds.count(tds.edge) + 0.0 end,
+  facet_count = function() return tds.count(tds.facet) + 0.0 end,
+  body_count = function() return tds.count(tds.body) + 0.0 end,
+  facetedge_count = function() return 3.0 * tds.count(tds.facet) end,
+  scale = function() return (tds.scale()) end,
+  scale_limit = function() return tds.setting("scale_limit") end,
+  iteration_counter = function() return tds.setting("iterations") + 0.0 end,
+  gravity_constant = function() return (tds.gravity()) end,
+  G = function() local g, on = tds.gravity(); return on and g or 0.0 end,
+  space_dimension = function() return 3.0 end,
+  surface_dimension = function() return 2.0 end,
+  torus = function() return 0.0 end,
+  symmetry_group = function() return 0.0 end,
+  simplex_representation = function() return 0.0 end,
+  lagrange_order = function() return 1.0 end,
+  linear = function() return 1.0 end,
+  quadratic = function() return 0.0 end,
+  clock = function() return os.clock() end,
+  cpu_counter = function() return os.clock() end,
+  random = function() return math.random() end,
+  constraint_tolerance = function() return tds.setting("constraint_tolerance") end,
+  datafilename = function() return tds.datafile_name and tds.datafile_name() or "" end,
+  date_and_time = function() return os.date("%a %b %d %H:%M:%S %Y") end,
+  conj_grad = function() return tds.setting("conj_grad") and 1.0 or 0.0 end,
+  quiet = function() return tds.quiet() and 1.0 or 0.0 end,
+  gravity = function() local _, on = tds.gravity(); return on and 1.0 or 0.0 end,
+  total_length = function()
+    local s = 0.0
+    for _, e in ipairs(E.all("edge")) do s = s + e.length end
+    return s
+  end,
+}
+E.INTERNAL = INTERNAL
+-- Colour names are integers (syntax.htm#colors).
+for i, c in ipairs { "black", "blue", "green", "cyan", "red", "magenta", "brown", "lightgray",
+                     "darkgray", "lightblue", "lightgreen", "lightcyan", "lightred",
+                     "lightmagenta", "yellow", "white" } do
+  local v = i - 1.0
+  INTERNAL[c] = function() return v end
+end
+INTERNAL.clear = function() return -1.0 end
+INTERNAL.rgb_colors = function() return 0.0 end -- the toggle: off (colour numbers)
+INTERNAL.transparent = INTERNAL.clear
+
+-- Variables that may be assigned with their effect.
+local SETTABLE = {
+  scale = function(v) tds.scale(num(v)) end,
+  gravity_constant = function(v) local _, on = tds.gravity(); tds.gravity(num(v), on) end,
+  constraint_tolerance = function(v) tds.setting("constraint_tolerance", num(v)) end,
+  scale_limit = function(v) tds.setting("scale_limit", num(v)) end,
+  random_seed = function(v) math.randomseed(math.floor(num(v))) end,
+}
+
+function E.getv(name, cur)
+  local f = INTERNAL[name] or INTERNAL[name:lower()]
+  if f then return f() end
+  local v = _G[name]
+  local low = name:lower()
+  if v == nil and low ~= name then v = _G[low] end
+  if v == nil and cur and isel(cur) and extra[kindof(cur)][low] then return E.attr(cur, low) end
+  if v == nil and tds.quantity_info(low) ~= nil then return { __quantity = low } end
+  if v == nil then fail(("undefined variable '%s'"):format(name)) end
+  if type(v) == "function" then fail(("'%s' is a command, not a value"):format(name)) end
+  if type(v) == "boolean" then return v and 1.0 or 0.0 end
+  return v
+end
+
+function E.setv(name, v)
+  if SETTABLE[name] then return SETTABLE[name](v) end
+  if INTERNAL[name] then fail(("%s is read-only"):format(name)) end
+  if E.B[name] then fail(("'%s' is a command and cannot be assigned"):format(name)) end
+  local old = rawget(_G, name)
+  if type(old) == "function" then fail(("'%s' is a command and cannot be assigned"):format(name)) end
+  if tds.param(name) ~= nil then
+    tds.param(name, num(v, name))
+    return
+  end
+  rawset(_G, name, E.assign(old, v))
+end
+
+function E.index(a, i)
+  if type(a) ~= "table" then fail("indexing a value that is not an array") end
+  local k = num(i)
+  local v = a[math.floor(k)]
+  if v == nil then fail(("array index %d out of range 1..%d"):format(math.floor(k), #a)) end
+  return v
+end
+
+function E.setindex(a, i, v)
+  if type(a) ~= "table" then fail("indexing a value that is not an array") end
+  local k = math.floor(num(i))
+  if k < 1 or k > #a then fail(("array index %d out of range 1..%d"):format(k, #a)) end
+  a[k] = v
+end
+
+local function newarray(dims, d, ty, init)
+  local n = math.floor(num(dims[d]))
+  local a = {}
+  for i = 1, n do
+    local iv = type(init) == "table" and init[i] or nil
+    if d < #dims then a[i] = newarray(dims, d + 1, ty, iv)
+    else a[i] = iv ~= nil and iv or (ty == "string" and "" or 0.0) end
+  end
+  return a
+end
+
+-- name := {{...}, ...}: fill an array from an initializer of its shape.
+function E.setarray(name, init)
+  local a = rawget(_G, name)
+  if type(a) ~= "table" then fail(("'%s' is not an array (define it first)"):format(name)) end
+  local function fill(dst, src, path)
+    for i = 1, #src do
+      if i > #dst then fail(("%s: too many initializers at %s[%d]"):format(name, path, i)) end
+      if type(src[i]) == "table" then
+        if type(dst[i]) ~= "table" then fail(("%s: too many braces at %s[%d]"):format(name, path, i)) end
+        fill(dst[i], src[i], path .. "[" .. i .. "]")
+      else
+        dst[i] = src[i]
+      end
+    end
+  end
+  fill(a, init, name)
+end
+
+function E.newvalue(ty, dims, init)
+  if #dims > 0 then return newarray(dims, 1, ty, init) end
+  if init ~= nil then return init end
+  return ty == "string" and "" or 0.0
+end
+
+function E.define(name, ty, dims, init)
+  if tds.param(name) ~= nil or INTERNAL[name] or E.B[name] then
+    fail(("define: '%s' is already a parameter, variable or command"):format(name))
+  end
+  rawset(_G, name, E.newvalue(ty, dims, init))
+end
+
+-- Assignment of v to a variable holding old: a number assigned to an
+-- array sets every element (Evolver's whole-array assignment).
+function E.assign(old, v)
+  if type(old) == "table" and old.__quantity == nil and type(v) ~= "table" then
+    local function fill(a) for i = 1, #a do if type(a[i]) == "table" then fill(a[i]) else a[i] = v end end end
+    fill(old)
+    return old
+  end
+  return v
+end
+
+function E.count(n)
+  n = num(n, "repetition count")
+  if n % 1 ~= 0 then fail(("repetition count %g is not a whole number"):format(n)) end
+  return math.floor(n)
+end
+
+---------------------------------------------------------------- quantities
+
+function E.qattr(q, name)
+  local value, target, pressure = tds.quantity_info(q.__quantity)
+  local v = ({ value = value, target = target, pressure = pressure })[name]
+  if v == nil then fail(("quantity %s: attribute '%s' not supported yet"):format(q.__quantity, name)) end
+  return v
+end
+function E.setqattr(q, name)
+  fail(("setting %s.%s: not supported yet"):format(q.__quantity, name))
+end
+
+---------------------------------------------------------------- output
+
+E.out = function(s) io.write(s) end
+
+local function fmtnum(v)
+  if math.type(v) == "integer" then return tostring(v) end
+  return ("%.15g"):format(v)
+end
+E.fmtnum = fmtnum
+
+function E.print(v)
+  if type(v) == "number" then E.out(("%20s\n"):format(fmtnum(v)))
+  elseif type(v) == "string" then E.out(v .. "\n")
+  elseif type(v) == "table" then
+    local function show(a)
+      local p = {}
+      for i = 1, #a do p[i] = type(a[i]) == "table" and show(a[i]) or (type(a[i]) == "number" and fmtnum(a[i]) or tostring(a[i])) end
+      return "{" .. table.concat(p, ",") .. "}"
+    end
+    E.out(show(v) .. "\n")
+  elseif isel(v) then E.out(tostring(v) .. "\n")
+  else E.out(tostring(v) .. "\n") end
+end
+
+-- C-style formatting with Evolver's conversions: %d of a real truncates.
+function E.sprintf(fmt, ...)
+  if type(fmt) ~= "string" then fail("printf: the format must be a string") end
+  local args, n, ai = { ... }, select("#", ...), 0
+  local out = fmt:gsub("%%([-+ #0]*%d*%.?%d*)([%a%%])", function(flags, conv)
+    if conv == "%" then return "%" end
+    ai = ai + 1
+    if ai > n then fail(("printf: too few arguments for the format \"%s\""):format(fmt)) end
+    local a = args[ai]
+    if conv == "d" or conv == "i" or conv == "x" or conv == "X" or conv == "o" or conv == "c" or conv == "u" then
+      local x = num(a, "printf %" .. conv)
+      x = x < 0 and math.ceil(x) or math.floor(x)
+      if conv == "u" or conv == "i" then conv = "d" end
+      return ("%" .. flags .. conv):format(math.tointeger(x) or 0)
+    elseif conv == "s" then
+      if type(a) == "number" then a = fmtnum(a) end
+      return ("%" .. flags .. "s"):format(tostring(a))
+    elseif ("eEfgGaA"):find(conv, 1, true) then
+      return ("%" .. flags .. conv):format(num(a, "printf %" .. conv))
+    end
+    fail(("printf: unknown conversion %%%s"):format(conv))
+  end)
+  return out
+end
+
+function E.printf(fmt, ...) E.out(E.sprintf(fmt, ...)) end
+function E.errprintf(fmt, ...) io.stdout:flush(); io.stderr:write(E.sprintf(fmt, ...)) end
+function E.eprint(v)
+  local o = E.out
+  E.out = function(s) io.stdout:flush(); io.stderr:write(s) end
+  local ok, err = pcall(E.print, v)
+  E.out = o
+  if not ok then error(err, 0) end
+end
+
+function E.redirect(mode, target, fn)
+  if type(target) ~= "string" then fail("redirection needs a file name or command string") end
+  local f, err
+  if mode == "|" then f, err = io.popen(target, "w")
+  else f, err = io.open(target, mode == ">>" and "a" or "w") end
+  if not f then fail(("cannot open '%s': %s"):format(target, err)) end
+  local o = E.out
+  io.stdout:flush()
+  E.out = function(s) f:write(s) end
+  local ok, e = pcall(fn)
+  E.out = o
+  f:close()
+  if not ok then error(e, 0) end
+end
+
+-- list GEN in Evolver's layout.
+function E.list(h, kind, first)
+  h = unwrap(h)
+  if kind == "vertex" then
+    if first then E.out("// Id               X                Y               Z\n") end
+    E.out(("%3d  %17.15g %17.15g %17.15g\n"):format(h.id, h.x, h.y, h.z))
+  elseif kind == "edge" then
+    if first then E.out("// Id    endpoints\n") end
+    E.out(("%3d    %4d %4d     /*length %.15g*/ \n"):format(h.id, h.tail.id, h.head.id, h.length))
+  elseif kind == "facet" then
+    if first then E.out("// Id    edges\n") end
+    local ids = {}
+    for i, e in ipairs(h.edges) do ids[i] = tostring(e) end
+    E.out(("%3d   %s /*area %.15g*/\n"):format(h.id, table.concat(ids, " "), h.area))
+  elseif kind == "body" then
+    if first then E.out("// Id    facets\n") end
+    local ids = {}
+    for _, f in ipairs(around(h, "facet")) do ids[#ids + 1] = tostring(f.backbody == h and -f.id or f.id) end
+    E.out(("%3d    %s  volume %.15g\n"):format(h.id, table.concat(ids, " "), h.volume))
+  end
+end
+
+---------------------------------------------------------------- commands
+
+local function counts_line()
+  local nf = tds.count(tds.facet)
+  return ("Vertices: %d  Edges: %d  Facets: %d  Bodies: %d  Facetedges: %d\n"):format(
+    tds.count(tds.vertex), tds.count(tds.edge), nf, tds.count(tds.body), 3 * nf)
+end
+
+local function times(n, what)
+  if n == nil then return 1 end
+  n = num(n, what)
+  if n % 1 ~= 0 or n < 0 then fail(("%s: count %g must be a whole number >= 0"):format(what, n)) end
+  return math.floor(n)
+end
+
+local function flush() io.stdout:flush() end
+
+local TOGGLE_MSG = {
+  conj_grad = "Conjugate gradient now %s. (was %s)",
+  quiet = "Quiet %s. (was %s)",
+  gravity = "Gravity %s. (was %s)",
+}
+
+local function toggle_get(name)
+  if name == "conj_grad" then return tds.setting("conj_grad") end
+  if name == "quiet" then return tds.quiet() end
+  if name == "gravity" then local _, on = tds.gravity(); return on end
+end
+local function toggle_set(name, on)
+  if name == "conj_grad" then tds.setting("conj_grad", on)
+  elseif name == "quiet" then tds.quiet(on)
+  elseif name == "gravity" then local g = tds.gravity(); tds.gravity(g, on) end
+end
+
+-- Toggles tds has no switch for, accepted in the state tds always is in
+-- (Evolver writes them into every dump's read section): name -> the
+-- accepted state (true/false), or "any" for display-only toggles, which
+-- have no effect without graphics.
+local FIXED_TOGGLE = {
+  metric_conversion = false, autorecalc = true, gv_binary = "any", autodisplay = "any",
+  transforms = "any", clipped = "any", connected = "any", raw_cells = "any",
+  show_inner = "any", show_outer = "any", thicken = "any", pscolorflag = "any",
+  ps_colorflag = "any", gridflag = "any", crossingflag = "any", labelflag = "any",
+  show_all_edges = "any", big_endian = "any", little_endian = "any", rgb_colors = false,
+  smooth_graph = "any", view_transforms_use_unique_point = "any", visibility_test = "any",
+}
+E.FIXED_TOGGLE = FIXED_TOGGLE
+
+function E.toggle(name, on)
+  local fixed = FIXED_TOGGLE[name]
+  if fixed ~= nil then
+    if on == nil then on = true end
+    if fixed == "any" or fixed == on then return end
+    fail(("%s %s: not supported yet (tds always has %s %s)"):format(name, on and "on" or "off",
+         name, fixed and "on" or "off"))
+  end
+  if not TOGGLE_MSG[name] then
+    if E.B[name] or rawget(_G, name) then fail(("%s takes no on/off"):format(name)) end
+    fail(("%s: not supported yet"):format(name))
+  end
+  local was = toggle_get(name)
+  if on == nil then on = true end
+  toggle_set(name, on)
+  if name == "quiet" and on then return end
+  E.out((TOGGLE_MSG[name] .. "\n"):format(on and "ON" or "OFF", was and "on" or "off"))
+end
+
+function E.setting(name, v)
+  if TOGGLE_MSG[name] then return E.toggle(name, v == nil or E.truth(v)) end
+  if v == nil then fail(("set %s needs a value"):format(name)) end
+  E.setv(name, v)
+end
+
+local B = {}
+E.B = B
+
+B.g = function(n)
+  n = times(n, "g")
+  flush()
+  tds.iterate(n)
+end
+B.iterate, B.go = B.g, B.g
+B.r = function(n) for _ = 1, times(n, "r") do flush(); tds.refine(nil) end end
+B.refine = B.r
+B.u = function(n) for _ = 1, times(n, "u") do flush(); tds.equiangulate(nil) end end
+B.equiangulate = B.u
+B.V = function(n) for _ = 1, times(n, "V") do flush(); tds.vertex_average(nil) end end
+B.vertex_average = B.V
+B.v = function() E.out("\n"); flush(); v() end
+B.show_vol = B.v
+B.U = function(n)
+  local on = tds.setting("conj_grad")
+  if n ~= nil and num(n) == 2 then
+    tds.setting("conj_grad", true)
+    E.out("Conjugate gradient history reset.\n")
+    return
+  end
+  tds.setting("conj_grad", not on)
+  E.out(("Conjugate gradient now %s. (was %s)\n"):format(on and "OFF" or "ON", on and "on" or "off"))
+end
+B.m = function(s)
+  if s == nil then
+    tds.optimize()
+    E.out("Scale optimizing.\n")
+  else
+    s = num(s, "m")
+    if s < 0 then fail("m: the scale must not be negative") end
+    tds.scale(s)
+    E.out(("Scale fixed at %g.\n"):format(s))
+  end
+end
+B.optimize = function(lim) tds.optimize(lim and num(lim)) end
+B.optimise = B.optimize
+B.G = function(v)
+  local g, on = tds.gravity()
+  if v == nil then
+    tds.gravity(g, not on)
+    E.out(("Gravity is now %s.\n"):format(on and "OFF" or "ON"))
+  else
+    tds.gravity(num(v, "G"), true)
+  end
+end
+B.q = function(code) error({ tds_quit = code and math.floor(num(code)) or 0 }, 0) end
+B.x, B.quit, B.bye, B.exit = B.q, B.q, B.q, B.q
+B.C = function() tds.check(); E.out("Checks completed.\n") end
+B.check = B.C
+B.c = function() E.out(counts_line()) end
+B.counts = B.c
+B.i = function()
+  local en, ar = tds.totals()
+  E.out(("Total energy: %28.15g\nTotal area: %30.15g\n"):format(en, ar))
+  E.out(counts_line())
+  local sc, fixed = tds.scale()
+  E.out(("Motion scale factor %s at %g\n"):format(fixed and "fixed" or "optimizing", sc))
+end
+B.recalc = function() tds.totals(); if tds.pressures then tds.pressures() end end
+B.dump = function(path)
+  local ok, err = tds.dump(path)
+  if not ok then fail(err) end
+end
+B.d = B.dump
+B.system = function(cmd)
+  if type(cmd) ~= "string" then fail("system needs a command string") end
+  flush()
+  os.execute(cmd)
+end
+B.shell = function() fail("shell: not supported (no interactive subshell); use system \"command\"") end
+B.help = function() help() end
+B.N = function()
+  for _, b in ipairs(E.all("body")) do if b.target then b.target = b.volume end end
+end
+B.list = function() fail("list needs a generator: list vertex, list edge where ...") end
+B.read = function(path) E.readfile(path) end
+B.exec = function(text) E.exec(text) end
+
+-- A toggle's name alone turns it on, as in Evolver (conj_grad; quiet).
+for name in pairs(TOGGLE_MSG) do B[name] = function() E.toggle(name, true) end end
+
+for name in pairs(FIXED_TOGGLE) do B[name] = function() E.toggle(name, true) end end
+-- Energies are computed one way in tds: nothing to convert.
+B.convert_to_quantities = function() end
+
+-- Evolver commands tds does not have: named in the error.
+local UNSUPPORTED = {}
+for w in ([[t o O w l K n j J e A a b f k M p Q W y Z z s P D F H h X hessian hessian_seek
+  saddle ritz eigenprobe lanczos hessian_menu move lagrange edgeweed areaweed edge_divide
+  notch dirichlet dirichlet_seek sobolev sobolev_seek delete dissolve pop pop_edge_to_tri
+  pop_tri_to_edge pop_quad_to_quad t1_edgeswap edgeswap raw_vertex_average
+  rawest_vertex_average rawv rawestv new_vertex new_edge new_facet new_body vertex_merge
+  edge_merge facet_merge facet_crosscut reverse_orientation rebody zoom detorus wrap_vertex 
+  histogram loghistogram load addload replace_load permload
+  logfile keylogfile history pause subcommand breakpoint whereami flush_counts
+  reset_counts metis kmetis body_metis ometis matrix_inverse matrix_multiply
+  exprint show show_expr showq show_trans close_show transforms transform_expr
+  display_text delete_text chdir postscript binary_off_file off_file geomview
+  jiggle homothety autopop autochop ribiere check_increase hessian_normal
+  linear_metric quietgo quietload verbose approximate_curvature runge_kutta
+  post_project volgrads_every area_normalization effective_area normal_motion
+  hessian_diff ysmp bunch_kaufman sparse_constraints augmented_hessian
+  torus_filled kusner conf_edge normal_curvature boundary_curvature
+  show_all_quantities interp_bdry_param break_after_warning break_on_warning
+  itdebug memdebug debug estimate extrapolate set_body_target quantity]]):gmatch("%S+") do UNSUPPORTED[w] = true end
+E.UNSUPPORTED = UNSUPPORTED
+
+local user = {}       -- functions defined by name := {...} (true) or procedure
+-- Names defined by tds itself (the prelude and Lua's libraries): Evolver
+-- text cannot redefine them as commands by accident (E.protect).
+local protected = {}
+local redefined = {}  -- single letters redefined with :::=
+
+function E.defcmd(name, fn)
+  if B[name] then fail(("'%s' is a built-in command and cannot be redefined (use a new name)"):format(name)) end
+  if protected[name] and not user[rawget(_G, name)] then
+    fail(("'%s' is a tds function and cannot be redefined (use a new name)"):format(name))
+  end
+  if INTERNAL[name] then fail(("'%s' is an internal variable"):format(name)) end
+  if tds.param(name) ~= nil then fail(("'%s' is a parameter, not a command"):format(name)) end
+  user[fn] = true
+  rawset(_G, name, fn)
+end
+
+function E.defproc(name, fn)
+  if B[name] or INTERNAL[name] or protected[name] and not user[rawget(_G, name)] then
+    fail(("'%s' is a built-in name"):format(name))
+  end
+  user[fn] = "proc"
+  rawset(_G, name, fn)
+end
+
+function E.redefine(letter, fn)
+  user[fn] = true
+  redefined[letter] = fn
+end
+
+-- Run command `name` with arguments (counts repeat user commands).
+function E.cmd(name, ...)
+  local nargs = select("#", ...)
+  local r = redefined[name]
+  if r then
+    for _ = 1, times(nargs > 0 and ... or nil, name) do r() end
+    return
+  end
+  local b = B[name]
+  if not b and #name > 1 then b = B[name:lower()] end
+  if b then return b(...) end
+  local f = rawget(_G, name)
+  if f == nil then f = rawget(_G, name:lower()) end
+  if type(f) == "function" then
+    if user[f] == true then
+      if nargs > 1 then fail(("%s takes at most a repetition count"):format(name)) end
+      for _ = 1, times(nargs > 0 and ... or nil, name) do f() end
+      return
+    end
+    return f(...)
+  end
+  local low = name:lower()
+  if #name == 1 and UNSUPPORTED[name] or #name > 1 and UNSUPPORTED[low] then
+    fail(("%s: not supported yet"):format(name))
+  end
+  if f ~= nil or tds.param(name) ~= nil or INTERNAL[low] then
+    if nargs == 0 then return E.print(E.getv(name)) end
+    fail(("'%s' is a variable, not a command"):format(name))
+  end
+  fail(("'%s' is not a command, variable or function"):format(name))
+end
+
+function E.cmdvalue(v) E.print(v) end
+
+-- 'r': the built-in single-letter command, bypassing :::= redefinitions.
+function E.orig(letter, ...)
+  local b = B[letter]
+  if not b then fail(("'%s': not supported yet"):format(letter)) end
+  return b(...)
+end
+
+function E.protect()
+  for k, v in pairs(_G) do if type(v) == "function" or type(v) == "table" then protected[k] = true end end
+end
+
+-- A function called in an expression: user functions, procedures, Lua.
+function E.callf(name, ...)
+  local f = rawget(_G, name)
+  if f == nil then f = rawget(_G, name:lower()) end
+  if type(f) ~= "function" then
+    if UNSUPPORTED[name:lower()] then fail(name .. ": not supported yet") end
+    fail(("'%s' is not a function"):format(name))
+  end
+  local v = f(...)
+  if type(v) == "boolean" then v = v and 1.0 or 0.0 end
+  return v
+end
+
+-- Act on a collected element list (refine edges where ...).
+function E.oncollection(name, kind, list)
+  flush()
+  for i, x in ipairs(list) do list[i] = unwrap(x) end
+  if name == "refine" then
+    if kind ~= "edge" then fail("refine " .. kind .. ": not supported yet (refine edges)") end
+    tds.refine(list)
+  elseif name == "equiangulate" then
+    if kind ~= "edge" then fail("equiangulate needs edges") end
+    tds.equiangulate(list)
+  elseif name == "vertex_average" then
+    if kind ~= "vertex" then fail("vertex_average needs vertices") end
+    tds.vertex_average(list)
+  else
+    fail(name .. ": not supported yet")
+  end
+end
+
+function E.abort() error({ evolver_abort = true }, 0) end
+
+-- One top-level command: abort ends it quietly and returns to the caller.
+function E.top(fn)
+  local ok, err = pcall(fn)
+  if ok then return end
+  if type(err) == "table" and err.evolver_abort then return end
+  error(err, 0)
+end
+
+---------------------------------------------------------------- running text
+
+local function compile(text, chunk, line0)
+  local src, err = evolang.translate(text, line0)
+  if not src then error((chunk or "evolver") .. ":" .. err, 0) end
+  local fn, lerr = load(src, "@" .. (chunk or "evolver"), "t")
+  if not fn then error("evolver translation failed: " .. lerr, 0) end
+  return fn
+end
+E.compile = compile
+
+function E.run(text, chunk, line0)
+  if type(text) ~= "string" then fail("evolver: expected command text") end
+  return compile(text, chunk, line0)(E)
+end
+
+function E.run_file(path)
+  local f, err = io.open(path, "r")
+  if not f then error("cannot read command file " .. err, 0) end
+  local text = f:read("a")
+  f:close()
+  return E.run(text, path, 1)
+end
+
+function E.readfile(path)
+  if type(path) ~= "string" then fail("read needs a file name string") end
+  local f = io.open(path, "r")
+  if not f then fail(("read: cannot open '%s'"):format(path)) end
+  f:close()
+  E.run_file(path)
+end
+
+function E.exec(text)
+  if type(text) ~= "string" then fail("exec needs a string") end
+  E.run(text, "exec", 1)
+end
+
+-- The read section of the datafile just loaded from `path`, run with its
+-- own line numbers.
+function E.run_read(path)
+  local text = tds.read_text and tds.read_text()
+  if not text then return end
+  local line0 = 1
+  local f = io.open(path, "r")
+  if f then
+    local all = f:read("a")
+    f:close()
+    if #all >= #text and all:sub(-#text) == text then
+      local _, n = all:sub(1, #all - #text):gsub("\n", "")
+      line0 = n + 1
+    end
+  end
+  E.run(text, path, line0)
+end
+
+-- evolver [[ text ]]: run Evolver command text from Lua. Errors read
+-- "script.tds:CALLLINE: evolver:LINE: message" (LINE within the text).
+function evolver(text)
+  if type(text) ~= "string" then error("evolver(text): expected a string of Evolver commands", 2) end
+  local info = debug.getinfo(2, "Sl")
+  local name = "evolver"
+  if info and info.currentline and info.currentline > 0 then
+    name = ("%s:%d: evolver"):format(info.short_src, info.currentline)
+  end
+  return E.run(text, name, 1)
+end
+
+return E
