@@ -125,7 +125,8 @@ for c in ("gruVvUmGqxtowlKnjJiCcAabfkMNpQWyZzdsPDFHhXeYBORT"):gmatch(".") do LET
 local P = {}
 P.__index = P
 
-local function q(s) return string.format("%q", s) end
+-- A Lua string literal on one line (so the translation keeps line numbers).
+local function q(s) return (string.format("%q", s):gsub("\\\n", "\\n")) end
 
 local function numlit(v)
   if v ~= v then return "(0/0)" end

@@ -55,7 +55,29 @@ end
 
 function E.choose(c, a, b) if c then return a else return b end end
 
+-- Whole-array arithmetic: array +- array elementwise, array */ scalar,
+-- scalar * array (syntax.htm#arrays).
+local function arrayop(op, a, b)
+  local ta, tb = type(a) == "table", type(b) == "table"
+  local out = {}
+  if ta and tb then
+    if op ~= "+" and op ~= "-" then fail("arrays can only be added or subtracted elementwise") end
+    if #a ~= #b then fail(("array sizes differ: %d and %d"):format(#a, #b)) end
+    for i = 1, #a do out[i] = E.arith(op, a[i], b[i]) end
+  elseif ta then
+    if op ~= "*" and op ~= "/" then fail("an array can only be multiplied or divided by a number") end
+    for i = 1, #a do out[i] = E.arith(op, a[i], b) end
+  else
+    if op ~= "*" then fail("a number can only multiply an array") end
+    for i = 1, #b do out[i] = E.arith(op, a, b[i]) end
+  end
+  return out
+end
+
 function E.arith(op, a, b)
+  if (type(a) == "table" and a.__quantity == nil) or (type(b) == "table" and b.__quantity == nil) then
+    return arrayop(op, a, b)
+  end
   if op == "+" then
     if type(a) == "string" and type(b) == "string" then return a .. b end
     return num(a) + num(b)
@@ -335,6 +357,19 @@ local ATTR = {
     return 1.0
   end,
 }
+ATTR.facet_normal = function(h, rev)
+  if kindof(h) ~= "facet" then fail("facet_normal is a facet attribute") end
+  local x, y, z = vec(rev and reversed(h) or h)
+  return { x, y, z } -- the normal scaled by the area, as facet.x, .y, .z
+end
+ATTR.edge_vector = function(h, rev)
+  if kindof(h) ~= "edge" then fail("edge_vector is an edge attribute") end
+  return { vec(rev and reversed(h) or h) }
+end
+ATTR.__x = function(h)
+  if kindof(h) ~= "vertex" then fail("__x is a vertex attribute") end
+  return { h.x, h.y, h.z }
+end
 for i, c in ipairs { "x", "y", "z" } do
   ATTR[c] = function(h)
     local k = kindof(h)
@@ -640,12 +675,19 @@ function E.print(v)
   if type(v) == "number" then E.out(("%20s\n"):format(fmtnum(v)))
   elseif type(v) == "string" then E.out(v .. "\n")
   elseif type(v) == "table" then
-    local function show(a)
+    -- Evolver's layout: {{ 0,1e-07},\n { 0, 0}}, numbers as %2.15g
+    local function show(a, depth)
       local p = {}
-      for i = 1, #a do p[i] = type(a[i]) == "table" and show(a[i]) or (type(a[i]) == "number" and fmtnum(a[i]) or tostring(a[i])) end
-      return "{" .. table.concat(p, ",") .. "}"
+      for i = 1, #a do
+        local x = a[i]
+        if type(x) == "table" then p[i] = show(x, depth + 1)
+        elseif type(x) == "number" then p[i] = ("%2.15g"):format(x)
+        else p[i] = tostring(x) end
+      end
+      local sep = type(a[1]) == "table" and (",\n" .. (" "):rep(depth + 1)) or ","
+      return "{" .. table.concat(p, sep) .. "}"
     end
-    E.out(show(v) .. "\n")
+    E.out(show(v, 0) .. "\n")
   elseif isel(v) then E.out(tostring(v) .. "\n")
   else E.out(tostring(v) .. "\n") end
 end
