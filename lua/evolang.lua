@@ -22,9 +22,12 @@ local OPS2 = { [":="] = true, ["+="] = true, ["-="] = true, ["*="] = true, ["/="
                ["=="] = true, ["!="] = true, ["<="] = true, [">="] = true, ["&&"] = true,
                ["||"] = true, ["**"] = true, [">>"] = true }
 
+-- Tokens of text. A lexical error ends the list with an eof token that
+-- carries it (lexerr), so the commands before it still run.
 local function lex(text, line0)
   local toks, i, n, line, nl = {}, 1, #text, line0 or 1, true
   local function err(msg) error({ evo = true, line = line, msg = msg }, 0) end
+  local ok, e = pcall(function()
   while true do
     -- whitespace, comments, line splices
     while i <= n do
@@ -83,7 +86,13 @@ local function lex(text, line0)
     end
     toks[#toks + 1] = tok
   end
-  toks[#toks + 1] = { t = "eof", line = line, nl = true }
+  end)
+  local eof = { t = "eof", line = line, nl = true }
+  if not ok then
+    if type(e) ~= "table" or not e.evo then error(e, 0) end
+    eof.lexerr = e
+  end
+  toks[#toks + 1] = eof
   return toks
 end
 
@@ -140,7 +149,11 @@ function P:peek(k) return self.toks[self.i + (k or 0)] end
 function P:next() local t = self.toks[self.i]; self.i = self.i + 1; return t end
 function P:isop(v, k) local t = self:peek(k); return t.t == "op" and t.v == v end
 function P:isname(w, k) local t = self:peek(k); return t.t == "name" and t.s == w end
-function P:err(msg, tok) tok = tok or self:peek(); error({ evo = true, line = tok.line, msg = msg }, 0) end
+function P:err(msg, tok)
+  tok = tok or self:peek()
+  if tok.lexerr then error(tok.lexerr, 0) end
+  error({ evo = true, line = tok.line, msg = msg }, 0)
+end
 function P:desc(t)
   t = t or self:peek()
   if t.t == "eof" then return "end of input" end
@@ -658,16 +671,18 @@ function P:statement1()
   if w == "else" then self:err("'else' without 'if' (no ';' goes before else)") end
   if w == "then" then self:err("'then' without 'if'") end
 
-  -- histogram(gen, expr): parsed, not supported yet (named at run time)
+  -- histogram(gen, expr), loghistogram(gen, expr)
   if (w == "histogram" or w == "loghistogram") and nxt.t == "op" and nxt.v == "(" then
     self:next(); self:next()
     local g = self:generator()
-    self:expect(",")
+    self:expect(",", "after the generator of " .. w .. "()")
     self:pushgen(g)
-    self:expr()
+    local v, vk = self:expr()
     self:popgen()
     self:expect(")")
-    return "E.cmd(" .. q(w) .. ")"
+    local cond = g.cond and ("if " .. g.cond .. " then ") or "if true then "
+    return ("E.histogram(%s, %s, function(%s) %s return %s end end)"):format(
+      tostring(w == "loghistogram"), g.arr, g.var, cond, asnum(v, vk))
   end
 
   if t.orig then
@@ -1097,21 +1112,29 @@ local function place(code, line0)
   return table.concat(out)
 end
 
+-- translate(text [, line0]) -> source | nil, "LINE: message", partial
+-- partial: the source of the command lines before the error, which
+-- Evolver would have run before meeting it.
 function M.translate(text, line0)
   line0 = line0 or 1
+  local parts
   local ok, res = pcall(function()
     local p = setmetatable({ toks = lex(text, line0), i = 1, nsym = 0, depth = 0, scopes = { {} },
                              elems = {}, loops = {}, usedlabels = {}, extra = {} }, P)
     -- Each input line (with its continuations) is one command for abort,
     -- as at Evolver's prompt: E.top runs it.
-    local parts, unit = {}, nil
+    local unit
+    parts = {}
     local function close()
       if unit then parts[#parts + 1] = "E.top(function() " .. table.concat(unit, "; ") .. " end)" end
       unit = nil
     end
     while true do
       while p:acceptop(";") do end
-      if p:peek().t == "eof" then break end
+      if p:peek().t == "eof" then
+        if p:peek().lexerr then close(); p:err("") end
+        break
+      end
       if p:peek().nl then close() end
       unit = unit or {}
       unit[#unit + 1] = p:statement()
@@ -1124,7 +1147,10 @@ function M.translate(text, line0)
     return "local E = ... or tds.E; " .. place(table.concat(parts, "; "), 1)
   end)
   if ok then return res end
-  if type(res) == "table" and res.evo then return nil, res.line .. ": " .. res.msg end
+  if type(res) == "table" and res.evo then
+    local partial = parts and #parts > 0 and ("local E = ... or tds.E; " .. place(table.concat(parts, "; "), 1)) or nil
+    return nil, res.line .. ": " .. res.msg, partial
+  end
   error(res, 0)
 end
 

@@ -218,6 +218,30 @@ end
 
 function E.live(h) return true end
 
+-- Adjacency of the current mesh, built in one pass when a generator
+-- needs it and dropped whenever the topology may have changed (E.touch:
+-- around every top-level command, after commands and Lua calls).
+local adj
+local function adjacency()
+  if adj then return adj end
+  local a = { efacets = {}, vedges = {}, vfacets = {}, bfacets = {} }
+  local function push(t, k, v) local l = t[k]; if not l then l = {}; t[k] = l end; l[#l + 1] = v end
+  for _, e in ipairs(E.all("edge")) do
+    push(a.vedges, e.tail.id, { e, false })
+    push(a.vedges, e.head.id, { e, true })
+  end
+  for _, f in ipairs(E.all("facet")) do
+    for _, id in ipairs(f.edges) do push(a.efacets, math.abs(id), { f, id }) end
+    for _, v in ipairs(f.vertices) do push(a.vfacets, v.id, f) end
+    local fb, bb = f.frontbody, f.backbody
+    if fb then push(a.bfacets, fb.id, f) end
+    if bb and bb ~= fb then push(a.bfacets, bb.id, f) end
+  end
+  adj = a
+  return a
+end
+function E.touch() adj = nil end
+
 -- Elements around an element (sub-element generators).
 local function around(x, kind)
   local from = kindof(x)
@@ -242,34 +266,20 @@ local function around(x, kind)
     -- oriented like the edge: a facet that traverses it backwards is
     -- seen reversed (negative oid, opposite normal)
     local out = {}
-    for _, f in ipairs(E.all("facet")) do
-      for _, id in ipairs(f.edges) do
-        if math.abs(id) == h.id then
-          out[#out + 1] = ((id < 0) ~= rev) and reversed(f) or f
-          break
-        end
-      end
+    for _, fs in ipairs(adjacency().efacets[h.id] or {}) do
+      out[#out + 1] = ((fs[2] < 0) ~= rev) and reversed(fs[1]) or fs[1]
     end
     return out
   elseif from == "vertex" and kind == "edge" then
     local out = {}
-    for _, e in ipairs(E.all("edge")) do -- oriented away from the vertex
-      if e.tail == h then out[#out + 1] = e
-      elseif e.head == h then out[#out + 1] = reversed(e) end
+    for _, es in ipairs(adjacency().vedges[h.id] or {}) do -- oriented away from the vertex
+      out[#out + 1] = es[2] and reversed(es[1]) or es[1]
     end
     return out
   elseif from == "vertex" and kind == "facet" then
-    local out = {}
-    for _, f in ipairs(E.all("facet")) do
-      for _, v in ipairs(f.vertices) do if v == h then out[#out + 1] = f; break end end
-    end
-    return out
+    return { table.unpack(adjacency().vfacets[h.id] or {}) }
   elseif from == "body" and kind == "facet" then
-    local out = {}
-    for _, f in ipairs(E.all("facet")) do
-      if f.frontbody == h or f.backbody == h then out[#out + 1] = f end
-    end
-    return out
+    return { table.unpack(adjacency().bfacets[h.id] or {}) }
   elseif from == "vertex" and kind == "body" or from == "edge" and kind == "body" then
     local seen, out = {}, {}
     for _, f in ipairs(around(h, "facet")) do
@@ -488,6 +498,43 @@ function E.agg(kind, list, f)
   return acc or 0.0
 end
 
+-- histogram: 21 equal bins from the least to the greatest value;
+-- loghistogram: 20 bins of equal ratio (positive values), as Evolver.
+function E.histogram(log, list, f)
+  local vals = {}
+  for _, h in ipairs(list) do
+    local v = f(h)
+    if v ~= nil then vals[#vals + 1] = num(v) end
+  end
+  if log then
+    for _, v in ipairs(vals) do
+      if v <= 0 then fail(("loghistogram: value %g is not positive"):format(v)) end
+    end
+  end
+  if #vals == 0 then E.out("No qualifying values.\n"); return end
+  local lo, hi = math.huge, -math.huge
+  for _, v in ipairs(vals) do lo = math.min(lo, v); hi = math.max(hi, v) end
+  if lo == hi then
+    E.out(("%10.5g - %10.5g     %d\n"):format(lo, hi, #vals))
+    return
+  end
+  local nb = log and 20 or 21
+  local counts = {}
+  for i = 1, nb do counts[i] = 0 end
+  for _, v in ipairs(vals) do
+    local t = log and (math.log(v / lo) / math.log(hi / lo)) or ((v - lo) / (hi - lo))
+    local b = math.min(nb, math.floor(t * nb) + 1)
+    counts[b] = counts[b] + 1
+  end
+  for i = 1, nb do
+    local a, b
+    if log then a, b = lo * (hi / lo) ^ ((i - 1) / nb), lo * (hi / lo) ^ (i / nb)
+    else a, b = lo + (hi - lo) * (i - 1) / nb, lo + (hi - lo) * i / nb end
+    if i == nb then b = hi end
+    E.out(("%10.5g - %10.5g     %d\n"):format(a, b, counts[i]))
+  end
+end
+
 ---------------------------------------------------------------- variables
 
 -- Internal read-only variables (syntax.htm#internal-variables).
@@ -551,6 +598,8 @@ local SETTABLE = {
 function E.getv(name, cur)
   local f = INTERNAL[name] or INTERNAL[name:lower()]
   if f then return f() end
+  local p = tds.param(name) -- parameters first: one named like a Lua function stays readable
+  if p ~= nil then return p end
   local v = _G[name]
   local low = name:lower()
   if v == nil and low ~= name then v = _G[low] end
@@ -565,6 +614,10 @@ end
 function E.setv(name, v)
   if SETTABLE[name] then return SETTABLE[name](v) end
   if INTERNAL[name] then fail(("%s is read-only"):format(name)) end
+  if tds.param(name) ~= nil then
+    tds.param(name, num(v, name))
+    return
+  end
   if E.B[name] then fail(("'%s' is a command and cannot be assigned"):format(name)) end
   local old = rawget(_G, name)
   if type(old) == "function" then fail(("'%s' is a command and cannot be assigned"):format(name)) end
@@ -934,7 +987,7 @@ for w in ([[t o O w l K n j J e A a b f k M p Q W y Z z s P D F H h X hessian he
   pop_tri_to_edge pop_quad_to_quad t1_edgeswap edgeswap raw_vertex_average
   rawest_vertex_average rawv rawestv new_vertex new_edge new_facet new_body vertex_merge
   edge_merge facet_merge facet_crosscut reverse_orientation rebody zoom detorus wrap_vertex 
-  histogram loghistogram load addload replace_load permload
+  load addload replace_load permload
   logfile keylogfile history pause subcommand breakpoint whereami flush_counts
   reset_counts metis kmetis body_metis ometis matrix_inverse matrix_multiply
   exprint show show_expr showq show_trans close_show transforms transform_expr
@@ -988,7 +1041,7 @@ function E.cmd(name, ...)
   end
   local b = B[name]
   if not b and #name > 1 then b = B[name:lower()] end
-  if b then return b(...) end
+  if b then adj = nil; return b(...) end
   local f = rawget(_G, name)
   if f == nil then f = rawget(_G, name:lower()) end
   if type(f) == "function" then
@@ -997,7 +1050,10 @@ function E.cmd(name, ...)
       for _ = 1, times(nargs > 0 and ... or nil, name) do f() end
       return
     end
-    return f(...)
+    adj = nil
+    local r = table.pack(f(...))
+    adj = nil -- a Lua function may have changed the mesh
+    return table.unpack(r, 1, r.n)
   end
   local low = name:lower()
   if #name == 1 and UNSUPPORTED[name] or #name > 1 and UNSUPPORTED[low] then
@@ -1025,6 +1081,7 @@ end
 
 -- A function called in an expression: user functions, procedures, Lua.
 function E.callf(name, ...)
+  adj = nil
   local f = rawget(_G, name)
   if f == nil then f = rawget(_G, name:lower()) end
   if type(f) ~= "function" then
@@ -1032,6 +1089,7 @@ function E.callf(name, ...)
     fail(("'%s' is not a function"):format(name))
   end
   local v = f(...)
+  adj = nil
   if type(v) == "boolean" then v = v and 1.0 or 0.0 end
   return v
 end
@@ -1039,6 +1097,7 @@ end
 -- Act on a collected element list (refine edges where ...).
 function E.oncollection(name, kind, list)
   flush()
+  adj = nil
   for i, x in ipairs(list) do list[i] = unwrap(x) end
   if name == "refine" then
     if kind ~= "edge" then fail("refine " .. kind .. ": not supported yet (refine edges)") end
@@ -1058,7 +1117,9 @@ function E.abort() error({ evolver_abort = true }, 0) end
 
 -- One top-level command: abort ends it quietly and returns to the caller.
 function E.top(fn)
+  adj = nil
   local ok, err = pcall(fn)
+  adj = nil
   if ok then return end
   if type(err) == "table" and err.evolver_abort then return end
   error(err, 0)
@@ -1066,18 +1127,20 @@ end
 
 ---------------------------------------------------------------- running text
 
-local function compile(text, chunk, line0)
-  local src, err = evolang.translate(text, line0)
-  if not src then error((chunk or "evolver") .. ":" .. err, 0) end
+local function load_src(src, chunk)
   local fn, lerr = load(src, "@" .. (chunk or "evolver"), "t")
   if not fn then error("evolver translation failed: " .. lerr, 0) end
   return fn
 end
-E.compile = compile
 
+-- Run text. A syntax error is raised after the command lines before it
+-- have run, as Evolver reads and runs a file line by line.
 function E.run(text, chunk, line0)
   if type(text) ~= "string" then fail("evolver: expected command text") end
-  return compile(text, chunk, line0)(E)
+  local src, err, partial = evolang.translate(text, line0)
+  if src then return load_src(src, chunk)(E) end
+  if partial then load_src(partial, chunk)(E) end
+  error((chunk or "evolver") .. ":" .. err, 0)
 end
 
 function E.run_file(path)
