@@ -6,8 +6,9 @@
 --                    mode, or a line that starts with an Evolver command
 --                    and an argument: `g 5`, `G -5`, `gogo 2`, or with an
 --                    Evolver statement word that is not Lua: `printf`,
---                    `foreach`, `set`, or is a bare Evolver command tds has
---                    no Lua global for: `C`, `i`, `hessian`)
+--                    `foreach`, `set`, or is a bare built-in Evolver
+--                    command (`U`, `v`, `r`) or one tds has no Lua global
+--                    for: `C`, `i`, `hessian`)
 --   "auto", line     Lua if it compiles as Lua, else Evolver
 --   "mode", message  a mode switch (`.lua`, `.evolver`, `.auto` alone)
 -- tds.translate(text) -> Lua source | nil, message, incomplete
@@ -56,8 +57,9 @@ function tds.repl_classify(line)
     if evolang.STMT[word] and not LUA_KEYWORDS[word] and rawget(_G, word) == nil then
       return "evolver", line
     end
-    -- a bare Evolver command without a Lua function of that name: C, i, hessian
-    if after == "" and rawget(_G, word) == nil and evolver_command(word) then
+    -- a bare built-in Evolver command (with Evolver's messages: U, m, v),
+    -- or one without a Lua function of that name: C, i, hessian
+    if after == "" and (E.B[word] or rawget(_G, word) == nil and evolver_command(word)) then
       return "evolver", line
     end
   end

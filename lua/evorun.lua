@@ -749,8 +749,8 @@ end
 function E.sprintf(fmt, ...)
   if type(fmt) ~= "string" then fail("printf: the format must be a string") end
   local args, n, ai = { ... }, select("#", ...), 0
-  local out = fmt:gsub("%%([-+ #0]*%d*%.?%d*)([%a%%])", function(flags, conv)
-    if conv == "%" then return "%" end
+  local out = fmt:gsub("%%([-+ #0]*%d*%.?%d*)([hlLqjzt]*)([%a%%])", function(flags, _, conv)
+    if conv == "%" then return "%" end -- length modifiers (%ld) are accepted and ignored
     ai = ai + 1
     if ai > n then fail(("printf: too few arguments for the format \"%s\""):format(fmt)) end
     local a = args[ai]
@@ -970,6 +970,21 @@ B.N = function()
 end
 B.list = function() fail("list needs a generator: list vertex, list edge where ...") end
 B.read = function(path) E.readfile(path) end
+-- load "file": a new surface in the same session; variables and commands
+-- (Evolver's and Lua's) are kept, as with Evolver's permload.
+B.load = function(path)
+  if type(path) ~= "string" then fail("load needs a datafile name: load \"file.fe\"") end
+  flush()
+  adj = nil
+  local ok, err = pcall(tds.load_replace, path)
+  if not ok then
+    err = tostring(err)
+    if err:find("^" .. path:gsub("%p", "%%%0") .. ":%d") then error(err, 0) end -- has its place
+    fail(err)
+  end
+end
+B.replace_load = B.load
+B.permload = B.load
 B.exec = function(text) E.exec(text) end
 
 -- A toggle's name alone turns it on, as in Evolver (conj_grad; quiet).
@@ -987,7 +1002,7 @@ for w in ([[t o O w l K n j J e A a b f k M p Q W y Z z s P D F H h X hessian he
   pop_tri_to_edge pop_quad_to_quad t1_edgeswap edgeswap raw_vertex_average
   rawest_vertex_average rawv rawestv new_vertex new_edge new_facet new_body vertex_merge
   edge_merge facet_merge facet_crosscut reverse_orientation rebody zoom detorus wrap_vertex 
-  load addload replace_load permload
+  addload
   logfile keylogfile history pause subcommand breakpoint whereami flush_counts
   reset_counts metis kmetis body_metis ometis matrix_inverse matrix_multiply
   exprint show show_expr showq show_trans close_show transforms transform_expr

@@ -14,6 +14,8 @@
 **                                touched); returns a table of counts, energy
 **                                and parameters, or nil and the message.
 **                                For tests and diagnostics.
+**   tds.load_replace(path)       Evolver's load: path's surface replaces the
+**                                current one (unchanged if path is bad)
 **   tds.read_text()              the loaded datafile's read section (or nil)
 **   tds.datafile_name()          the loaded datafile's path (or nil)
 **   After a load, tds.on_load(path) is called if set: it runs the read
@@ -79,6 +81,23 @@ static int l_datafile_name(lua_State *L) {
   if (!st->datafile) return 0;
   lua_pushstring(L, st->datafile);
   return 1;
+}
+
+/* tds.load_replace(path): Evolver's `load`: a new surface from path in
+** place of the current one. The file is parsed into a scratch surface
+** first, so a bad file leaves the current surface as it was. */
+static int l_load_replace(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  const char *path = luaL_checkstring(L, 1);
+  tds_surf *tmp = lua_newuserdatauv(L, sizeof *tmp, 0);
+  tds_surf_init(tmp);
+  int rc = tds_datafile_load(&st->ctx, tmp, path);
+  tds_surf_free(tmp);
+  if (rc != TDS_OK) return raise_msg(L, st->ctx.errmsg);
+  tds_surf_free(&st->s);
+  tds_surf_init(&st->s);
+  load(L, st, path);
+  return 0;
 }
 
 /* tds.load_datafile(path) */
@@ -214,6 +233,7 @@ void tds_open_datafile(lua_State *L, tds_state *st) {
                                  {"load_chunk", l_load_chunk},
                                  {"datafile_info", l_datafile_info},
                                  {"read_text", l_read_text},
+                                 {"load_replace", l_load_replace},
                                  {"datafile_name", l_datafile_name},
                                  {NULL, NULL}};
   tds_lua_register(L, st, fns);
