@@ -1021,6 +1021,9 @@ local user = {}       -- functions defined by name := {...} (true) or procedure
 -- text cannot redefine them as commands by accident (E.protect).
 local protected = {}
 local redefined = {}  -- single letters redefined with :::=
+-- depth: how many top-level Evolver commands are running; an abort is
+-- caught by the outermost one only (abort returns to the prompt).
+local depth = 0
 
 function E.defcmd(name, fn)
   if B[name] then fail(("'%s' is a built-in command and cannot be redefined (use a new name)"):format(name)) end
@@ -1029,20 +1032,22 @@ function E.defcmd(name, fn)
   end
   if INTERNAL[name] then fail(("'%s' is an internal variable"):format(name)) end
   if tds.param(name) ~= nil then fail(("'%s' is a parameter, not a command"):format(name)) end
-  user[fn] = true
-  rawset(_G, name, fn)
+  -- Called from Lua (or the prompt) the command is a top-level one.
+  local cmd = function() if depth == 0 then return E.top(fn) end return fn() end
+  user[cmd] = true
+  rawset(_G, name, cmd)
 end
 
 function E.defproc(name, fn)
   if B[name] or INTERNAL[name] or protected[name] and not user[rawget(_G, name)] then
     fail(("'%s' is a built-in name"):format(name))
   end
-  user[fn] = "proc"
-  rawset(_G, name, fn)
+  local proc = function(...) if depth == 0 then return E.top(fn, ...) end return fn(...) end
+  user[proc] = "proc"
+  rawset(_G, name, proc)
 end
 
 function E.redefine(letter, fn)
-  user[fn] = true
   redefined[letter] = fn
 end
 
@@ -1131,12 +1136,16 @@ end
 function E.abort() error({ evolver_abort = true }, 0) end
 
 -- One top-level command: abort ends it quietly and returns to the caller.
-function E.top(fn)
+function E.top(fn, ...)
   adj = nil
-  local ok, err = pcall(fn)
+  depth = depth + 1
+  local r = table.pack(pcall(fn, ...))
+  depth = depth - 1
   adj = nil
-  if ok then return end
-  if type(err) == "table" and err.evolver_abort then return end
+  if r[1] then return table.unpack(r, 2, r.n) end
+  local err = r[2]
+  if type(err) == "table" and err.evolver_abort and depth == 0 then return end
+  if type(err) == "string" and err:match("^%[tds evo%a+%]:%d+: interrupted$") then err = "interrupted" end
   error(err, 0)
 end
 

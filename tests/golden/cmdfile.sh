@@ -8,3 +8,6 @@ run -q ../../scripts/cube.tds -f cmdfiles/bad.cmd -e 'print("not run")'
 run -q ../../scripts/cube.tds -f cmdfiles/quit.cmd
 run -q ../../scripts/cube.tds -f cmdfiles/missing.cmd
 run -q ../../scripts/cube.tds -f 2>&1 | head -n 1
+# A Lua script piped in runs as one chunk with its line numbers.
+printf 'local n = 2\nprint(n + 1)\nerror("line three")\n' | "$TDS" 2>&1; echo "exit $?"
+printf 'print("dash")\n' | "$TDS" - 2>&1; echo "exit $?"
