@@ -17,6 +17,15 @@ tds.E = E
 
 local KINDNUM = { vertex = tds.vertex, edge = tds.edge, facet = tds.facet, body = tds.body }
 
+local user = {}       -- functions defined by name := {...} (true) or procedure
+-- Names defined by tds itself (the prelude and Lua's libraries): Evolver
+-- text cannot redefine them as commands by accident (E.protect).
+local protected = {}
+local redefined = {}  -- single letters redefined with :::=
+-- depth: how many top-level Evolver commands are running; an abort is
+-- caught by the outermost one only (abort returns to the prompt).
+local depth = 0
+
 ---------------------------------------------------------------- errors
 
 -- Raise msg at the innermost line of Evolver or Lua user code.
@@ -619,6 +628,7 @@ function E.setv(name, v)
     return
   end
   if E.B[name] then fail(("'%s' is a command and cannot be assigned"):format(name)) end
+  if protected[name] then fail(("'%s' is a tds name and cannot be assigned"):format(name)) end
   local old = rawget(_G, name)
   if type(old) == "function" then fail(("'%s' is a command and cannot be assigned"):format(name)) end
   if tds.param(name) ~= nil then
@@ -679,7 +689,7 @@ function E.newvalue(ty, dims, init)
 end
 
 function E.define(name, ty, dims, init)
-  if tds.param(name) ~= nil or INTERNAL[name] or E.B[name] then
+  if tds.param(name) ~= nil or INTERNAL[name] or E.B[name] or protected[name] then
     fail(("define: '%s' is already a parameter, variable or command"):format(name))
   end
   rawset(_G, name, E.newvalue(ty, dims, init))
@@ -895,6 +905,7 @@ E.B = B
 
 B.g = function(n)
   n = times(n, "g")
+  if tds.count(tds.vertex) == 0 then fail("g: there is no surface (load a datafile first)") end
   flush()
   tds.iterate(n)
 end
@@ -963,7 +974,7 @@ B.system = function(cmd)
   flush()
   os.execute(cmd)
 end
-B.shell = function() fail("shell: not supported (no interactive subshell); use system \"command\"") end
+B.shell = function() flush(); os.execute(os.getenv("SHELL") or "/bin/sh") end
 B.help = function() help() end
 B.N = function()
   for _, b in ipairs(E.all("body")) do if b.target then b.target = b.volume end end
@@ -1016,14 +1027,7 @@ for w in ([[t o O w l K n j J e A a b f k M p Q W y Z z s P D F H h X hessian he
   itdebug memdebug debug estimate extrapolate set_body_target quantity]]):gmatch("%S+") do UNSUPPORTED[w] = true end
 E.UNSUPPORTED = UNSUPPORTED
 
-local user = {}       -- functions defined by name := {...} (true) or procedure
--- Names defined by tds itself (the prelude and Lua's libraries): Evolver
--- text cannot redefine them as commands by accident (E.protect).
-local protected = {}
-local redefined = {}  -- single letters redefined with :::=
--- depth: how many top-level Evolver commands are running; an abort is
--- caught by the outermost one only (abort returns to the prompt).
-local depth = 0
+
 
 function E.defcmd(name, fn)
   if B[name] then fail(("'%s' is a built-in command and cannot be redefined (use a new name)"):format(name)) end
