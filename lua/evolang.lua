@@ -20,7 +20,7 @@ local OPS3 = { [":::="] = true }
 local OPS3b = { [">>>"] = true, ["::="] = true }
 local OPS2 = { [":="] = true, ["+="] = true, ["-="] = true, ["*="] = true, ["/="] = true,
                ["=="] = true, ["!="] = true, ["<="] = true, [">="] = true, ["&&"] = true,
-               ["||"] = true, ["**"] = true, [">>"] = true }
+               ["||"] = true, ["**"] = true, [">>"] = true, ["++"] = true, ["--"] = true }
 
 -- Tokens of text. A lexical error ends the list with an eof token that
 -- carries it (lexerr), so the commands before it still run.
@@ -259,8 +259,9 @@ end
 
 function P:addexpr()
   local c, k = self:mulexpr()
-  while (self:isop("+") or self:isop("-")) and self:cont() do
+  while (self:isop("+") or self:isop("-") or self:isop("++") or self:isop("--")) and self:cont() do
     local op = self:next().v
+    if op == "--" then op = "+" elseif op == "++" then op = "+" end -- a - -b, a + +b
     local r, rk = self:mulexpr()
     c, k = "E.arith(" .. q(op) .. ", " .. asnum(c, k) .. ", " .. asnum(r, rk) .. ")", "a"
   end
@@ -284,6 +285,14 @@ function P:mulexpr()
 end
 
 function P:unary()
+  if self:isop("--") then -- two minus signs
+    self:next()
+    local c, k = self:unary()
+    return "(" .. asnum(c, k) .. ")", "n"
+  elseif self:isop("++") then
+    self:next()
+    return self:unary()
+  end
   if self:isop("-") then
     self:next()
     local c, k = self:unary()
@@ -339,6 +348,7 @@ function P:elemchain(c)
       return "E.pred(" .. c .. ", " .. q(w) .. ", " .. asnum(n, nk) .. ")", "b"
     else
       if KINDS[w] then self:err("'" .. t.raw .. "' here makes a generator; use it after foreach or in an aggregate", dot) end
+      if w == "x" and self:isop("[") then w = "__x" end -- vv.x[2]: coordinate 2
       c = "E.attr(" .. c .. ", " .. q(w) .. ")"
       while self:isop("[") do
         self:next()
@@ -369,6 +379,7 @@ function P:postfix()
     self:expect(")", "closing '('")
     return "(" .. c .. ")", k
   end
+  if self:isop("{") then return self:initializer(), "a" end -- an array value {1, x, y}
   if t.t ~= "name" then self:err("expected an expression, found " .. self:desc()) end
   local w = t.s
   if w == "pi" then self:next(); return "math.pi", "n" end
@@ -671,6 +682,14 @@ function P:statement1()
   if w == "else" then self:err("'else' without 'if' (no ';' goes before else)") end
   if w == "then" then self:err("'then' without 'if'") end
 
+  -- show / show_expr GEN [where ...]: display criteria, no effect without
+  -- graphics (Evolver's default criteria are what `show` reads)
+  if (w == "show" or w == "show_expr" or w == "showq") and nxt.t == "name" and KINDS[nxt.s] then
+    self:next()
+    local g = self:generator()
+    return "do end"
+  end
+
   -- histogram(gen, expr), loghistogram(gen, expr)
   if (w == "histogram" or w == "loghistogram") and nxt.t == "op" and nxt.v == "(" then
     self:next(); self:next()
@@ -693,9 +712,20 @@ function P:statement1()
 
   -- single-letter commands with glued counts: g10
   local letter, digits = t.raw:match("^(%a)(%d+)$")
-  if letter and LETTERS[letter] then
+  if letter and LETTERS[letter] and not isassign and not self:lookup(w)
+     and not (nxt.t == "op" and (nxt.v == "[" or nxt.v == "." or nxt.v == "++" or nxt.v == "--")) then
     self:next()
     return "E.cmd(" .. q(letter) .. ", " .. numlit(tonumber(digits)) .. ")"
+  end
+
+  -- x++, x-- (statements)
+  if nxt.t == "op" and (nxt.v == "++" or nxt.v == "--") then
+    self:next(); self:next()
+    local d = nxt.v == "++" and "1.0" or "-1.0"
+    local b = self:lookup(w)
+    if b then return b.lua .. " = E.arith('+', " .. b.lua .. ", " .. d .. ")" end
+    if #t.raw == 1 and LETTERS[t.raw] then self:err("'" .. t.raw .. "' is a single-letter command", t) end
+    return "E.setv(" .. q(w) .. ", E.arith('+', E.getv(" .. q(t.raw) .. "), " .. d .. "))"
   end
 
   if isassign then
@@ -711,10 +741,20 @@ function P:statement1()
       end
       return "E.redefine(" .. q(t.raw) .. ", function() " .. self:funcbody({}, false) .. " end)"
     end
-    local a1, a2 = self:peek(1), self:peek(2)
-    if op == ":=" and self:isop("{") and (a1.t == "num" or (a1.t == "op" and a1.v == "{")
-       or (a1.t == "op" and a1.v == "-" and a2.t == "num")) then
-      return "E.setarray(" .. q(w) .. ", " .. self:initializer() .. ")"
+    -- name := {1, x, -y}: an array value when the braces hold a list of
+    -- expressions separated by commas; otherwise a command definition.
+    if op == ":=" and self:isop("{") then
+      local save, saved_depth = self.i, self.depth
+      local ok, init = pcall(self.initializer, self)
+      local a1 = self.toks[save + 1]
+      if ok and (a1.t == "num" or (a1.t == "op" and (a1.v == "{" or a1.v == "-"))
+                 or init:find(",", 1, true)) and self:atend() then
+        local b = self:lookup(w)
+        if b and not b.kind then return b.lua .. " = " .. init end
+        return "E.setarray(" .. q(w) .. ", " .. init .. ")"
+      end
+      if not ok and (type(init) ~= "table" or not init.evo) then error(init, 0) end
+      self.i, self.depth = save, saved_depth
     end
     if (op == ":=" or op == "::=") and self:isop("{") and not self:lookup(w) then
       local body = self:funcbody({}, true)
@@ -736,6 +776,7 @@ function P:statement1()
     local lv = self:lvalue()
     if lv then
       local op = self:next().v
+      if op == "++" or op == "--" then return self:assign_to(lv, "+=", op == "++" and "1.0" or "-1.0") end
       local v = asnum(self:expr())
       return self:assign_to(lv, op, v)
     end
@@ -802,7 +843,7 @@ function P:lvalue()
   end
   local op = self:peek()
   if not last or op.t ~= "op" or not (op.v == ":=" or op.v == "=" or op.v == "+=" or op.v == "-="
-     or op.v == "*=" or op.v == "/=") then return nil end
+     or op.v == "*=" or op.v == "/=" or op.v == "++" or op.v == "--") then return nil end
   if not last.base:match("^E%.getv") and last.how == "index" and not b then
     -- arrays by name: E.setindex on the array value
   end
@@ -932,11 +973,10 @@ function P:s_define()
     if nt.t ~= "name" or ty.t ~= "name" or not TYPES[ty.s] then
       self:err("define " .. t.s .. " attribute NAME real|integer expected", nt)
     end
-    local dim = "0"
-    if self:acceptop("[") then dim = asnum(self:expr()); self:expect("]") end
+    local dims = {}
+    while self:acceptop("[") do dims[#dims + 1] = asnum(self:expr()); self:expect("]") end
     self.extra[nt.s] = true
-    ATTRS[nt.s] = nil
-    return "E.defattr(" .. q(KINDS[t.s]) .. ", " .. q(nt.s) .. ", " .. q(ty.s) .. ", " .. dim .. ")"
+    return "E.defattr(" .. q(KINDS[t.s]) .. ", " .. q(nt.s) .. ", " .. q(ty.s) .. ", {" .. table.concat(dims, ", ") .. "})"
   end
   if t.t ~= "name" then self:err("expected a name after define", t) end
   local ty = self:next()
@@ -1025,6 +1065,12 @@ function P:s_set()
   local at = self:next()
   if at.t ~= "name" then self:err("expected an attribute name after the generator of set", at) end
   self:pushgen(g)
+  local idx = {}
+  while self:isop("[") do
+    self:next()
+    idx[#idx + 1] = asnum(self:expr())
+    self:expect("]")
+  end
   local v = "true"
   if at.s == "constraint" or at.s == "boundary" then
     if self:atend() then self:err("set ... " .. at.s .. " needs a number", at) end
@@ -1039,6 +1085,11 @@ function P:s_set()
   end
   self:popgen()
   g.cond = cond
+  if #idx > 0 then -- set vertex arr[2] value: one element of an array attribute
+    local base = "E.attr(" .. g.var .. ", " .. q(at.s) .. ")"
+    for i = 1, #idx - 1 do base = "E.index(" .. base .. ", " .. idx[i] .. ")" end
+    return genloop(g, "E.setindex(" .. base .. ", " .. idx[#idx] .. ", " .. v .. ")")
+  end
   return genloop(g, "E.setattr(" .. g.var .. ", " .. q(at.s) .. ", " .. v .. ", true)")
 end
 

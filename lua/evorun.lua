@@ -69,8 +69,27 @@ function E.choose(c, a, b) if c then return a else return b end end
 local function arrayop(op, a, b)
   local ta, tb = type(a) == "table", type(b) == "table"
   local out = {}
-  if ta and tb then
-    if op ~= "+" and op ~= "-" then fail("arrays can only be added or subtracted elementwise") end
+  if ta and tb and op == "*" then
+    -- vector . vector, matrix * vector, vector * matrix, matrix * matrix
+    local ma, mb = type(a[1]) == "table", type(b[1]) == "table"
+    local inner = mb and #b or #b
+    if (ma and #a[1] or #a) ~= inner then
+      fail(("array product: sizes %d and %d do not match"):format(ma and #a[1] or #a, inner))
+    end
+    local function row(r, j) -- sum_k r[k] * b[k][j] (or b[k] when b is a vector)
+      local sum = 0.0
+      for k = 1, #r do sum = sum + num(r[k]) * num(mb and b[k][j] or b[k]) end
+      return sum
+    end
+    if not ma and not mb then return row(a) end
+    if not ma then for j = 1, #b[1] do out[j] = row(a, j) end return out end
+    for i = 1, #a do
+      if mb then out[i] = {}; for j = 1, #b[1] do out[i][j] = row(a[i], j) end
+      else out[i] = row(a[i]) end
+    end
+    return out
+  elseif ta and tb then
+    if op ~= "+" and op ~= "-" then fail("arrays can only be added, subtracted or multiplied") end
     if #a ~= #b then fail(("array sizes differ: %d and %d"):format(#a, #b)) end
     for i = 1, #a do out[i] = E.arith(op, a[i], b[i]) end
   elseif ta then
@@ -324,11 +343,13 @@ function E.subelem(h, kind, i)
 end
 
 -- Extra attributes defined at run time: extra[kind][name] = { type, dim, vals }.
-local extra = { vertex = {}, edge = {}, facet = {}, body = {} }
+local extra = { vertex = {}, edge = {}, facet = {}, body = {}, facetedge = {} }
 
-function E.defattr(kind, name, ty, dim)
+function E.defattr(kind, name, ty, dims)
   if extra[kind][name] then return end
-  extra[kind][name] = { type = ty, dim = math.floor(num(dim)), vals = {} }
+  local d = {}
+  for i, n in ipairs(dims) do d[i] = math.floor(num(n)) end
+  extra[kind][name] = { type = ty, dims = d, vals = {} }
 end
 
 local function vec(x)
@@ -407,7 +428,7 @@ function E.attr(o, name)
   if x then
     local v = x.vals[h.id]
     if v == nil then
-      if x.dim > 0 then v = {}; for i = 1, x.dim do v[i] = 0.0 end; x.vals[h.id] = v
+      if #x.dims > 0 then v = E.newvalue(x.type, x.dims); x.vals[h.id] = v
       else v = 0.0 end
     end
     return v
@@ -667,7 +688,11 @@ end
 -- name := {{...}, ...}: fill an array from an initializer of its shape.
 function E.setarray(name, init)
   local a = rawget(_G, name)
-  if type(a) ~= "table" then fail(("'%s' is not an array (define it first)"):format(name)) end
+  if a == nil and not protected[name] and not E.B[name] and tds.param(name) == nil then
+    rawset(_G, name, init) -- a new array variable
+    return
+  end
+  if type(a) ~= "table" then fail(("'%s' is not an array"):format(name)) end
   local function fill(dst, src, path)
     for i = 1, #src do
       if i > #dst then fail(("%s: too many initializers at %s[%d]"):format(name, path, i)) end

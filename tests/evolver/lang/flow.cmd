@@ -31,3 +31,14 @@ mycmd 3; printf "K12 %d\n", cnt
 printf "K13 %g %g %g %g\n", 2^-2, -3^2, 2**3**2, 17 % 5
 printf "K14 %g %g %g\n", floor(-2.5), ceil(-2.5), abs(-7)
 printf "K15 %.10g %.10g %.10g\n", sinh(0.5), atan2(-1, -1), log(10)
+define mm real[2][2]
+mm := {{1,2},{3,4}}
+define vv2 real[2]
+vv2 := {1, 1}
+define pr real[2][2]
+pr := mm*mm
+define mv real[2]
+mv := vv2*mm
+printf "K16 %g %g %g %g\n", pr[2][1], vv2*vv2, mv[2], pr[1][2]
+mm := 0
+printf "K17 %g\n", mm[2][2]
