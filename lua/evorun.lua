@@ -722,12 +722,18 @@ end
 
 -- Assignment of v to a variable holding old: a number assigned to an
 -- array sets every element (Evolver's whole-array assignment).
+local function copy(a)
+  local t = {}
+  for i = 1, #a do t[i] = type(a[i]) == "table" and copy(a[i]) or a[i] end
+  return t
+end
 function E.assign(old, v)
   if type(old) == "table" and old.__quantity == nil and type(v) ~= "table" then
     local function fill(a) for i = 1, #a do if type(a[i]) == "table" then fill(a[i]) else a[i] = v end end end
     fill(old)
     return old
   end
+  if type(v) == "table" and v.__quantity == nil then return copy(v) end -- arrays are values
   return v
 end
 
