@@ -821,18 +821,23 @@ function E.eprint(v)
   if not ok then error(err, 0) end
 end
 
+-- cmd >> "file", >>> "file", | "command": what the command prints (its
+-- own output and the core's progress lines) goes there. Nested
+-- redirections restore the outer target.
+local current_target
 function E.redirect(mode, target, fn)
   if type(target) ~= "string" then fail("redirection needs a file name or command string") end
-  local f, err
-  if mode == "|" then f, err = io.popen(target, "w")
-  else f, err = io.open(target, mode == ">>" and "a" or "w") end
-  if not f then fail(("cannot open '%s': %s"):format(target, err)) end
-  local o = E.out
   io.stdout:flush()
-  E.out = function(s) f:write(s) end
+  local t, err = tds.output_open(target, mode == "|" and "|" or mode == ">>" and "a" or "w")
+  if not t then fail(err) end
+  local o, outer = E.out, current_target
+  current_target = t
+  E.out = function(s) tds.output_write(t, s) end
+  tds.output_set(t)
   local ok, e = pcall(fn)
-  E.out = o
-  f:close()
+  E.out, current_target = o, outer
+  tds.output_set(outer)
+  tds.output_close(t)
   if not ok then error(e, 0) end
 end
 
@@ -947,7 +952,14 @@ B.u = function(n) for _ = 1, times(n, "u") do flush(); tds.equiangulate(nil) end
 B.equiangulate = B.u
 B.V = function(n) for _ = 1, times(n, "V") do flush(); tds.vertex_average(nil) end end
 B.vertex_average = B.V
-B.v = function() E.out("\n"); flush(); v() end
+B.v = function()
+  tds.totals()
+  E.out("\nBody          target volume           actual volume          pressure\n")
+  for _, b in ipairs(E.all("body")) do
+    local target = b.target and ("%.15g"):format(b.target) or "-"
+    E.out(("%3d  %22s  %22.15g  %16.15g\n"):format(b.id, target, b.volume, b.pressure))
+  end
+end
 B.show_vol = B.v
 B.U = function(n)
   local on = tds.setting("conj_grad")

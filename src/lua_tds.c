@@ -135,6 +135,7 @@ tds_state *tds_lua_open(lua_State *L) {
   tds_open_model(L, st);
   tds_open_datafile(L, st);
   tds_open_pg(L, st);
+  tds_open_out(L, st);
   lua_setglobal(L, "tds");
 
   lua_getglobal(L, "package");

@@ -48,6 +48,7 @@ void tds_open_cmd(lua_State *L, tds_state *st);
 void tds_open_model(lua_State *L, tds_state *st);     /* lua_model.c */
 void tds_open_datafile(lua_State *L, tds_state *st);  /* lua_datafile.c */
 void tds_open_pg(lua_State *L, tds_state *st);        /* lua_pg.c */
+void tds_open_out(lua_State *L, tds_state *st);       /* lua_out.c */
 
 /* Push a handle for element (kind, 0-based id). */
 void tds_push_elem(lua_State *L, int kind, tds_id id);
