@@ -597,7 +597,6 @@ function P:jump(what)
   end
   local id = self.loops[#self.loops - n + 1]
   if not id then self:err(what .. (n > 1 and (" " .. n) or "") .. " outside a loop") end
-  self.usedlabels[(what == "break" and "_b" or "_c") .. id] = true
   return "goto " .. (what == "break" and "_b" or "_c") .. id
 end
 
@@ -844,9 +843,6 @@ function P:lvalue()
   local op = self:peek()
   if not last or op.t ~= "op" or not (op.v == ":=" or op.v == "=" or op.v == "+=" or op.v == "-="
      or op.v == "*=" or op.v == "/=" or op.v == "++" or op.v == "--") then return nil end
-  if not last.base:match("^E%.getv") and last.how == "index" and not b then
-    -- arrays by name: E.setindex on the array value
-  end
   local base, key, how = last.base, last.key, last.how
   return {
     get = last.get,
@@ -1046,7 +1042,7 @@ function P:s_list()
   end
   if self:atend() then self:err("list needs a generator: list vertex, list edge where ...") end
   local w = self:next()
-  return "E.cmd(" .. q("list " .. (w.s or "?")) .. ")"
+  return "E.unsupported(" .. q("list " .. (w.s or tostring(w.v))) .. ")"
 end
 
 -- set gen attr [value] [where cond]; set gen.attr value
@@ -1171,7 +1167,7 @@ function M.translate(text, line0)
   local parts
   local ok, res = pcall(function()
     local p = setmetatable({ toks = lex(text, line0), i = 1, nsym = 0, depth = 0, scopes = { {} },
-                             elems = {}, loops = {}, usedlabels = {}, extra = {} }, P)
+                             elems = {}, loops = {}, extra = {} }, P)
     -- Each input line (with its continuations) is one command for abort,
     -- as at Evolver's prompt: E.top runs it.
     local unit

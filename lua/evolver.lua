@@ -57,6 +57,12 @@ function tds.repl_classify(line)
     if evolang.STMT[word] and not LUA_KEYWORDS[word] and rawget(_G, word) == nil then
       return "evolver", line
     end
+    -- g10: a single-letter command with its count glued on
+    local letter = word:match("^(%a)%d+$")
+    if after == "" and letter and evolang.LETTERS[letter] and rawget(_G, word) == nil
+       and tds.param(word) == nil then
+      return "evolver", line
+    end
     -- a bare built-in Evolver command (with Evolver's messages: U, m, v),
     -- or one without a Lua function of that name: C, i, hessian
     if after == "" and (E.B[word] or rawget(_G, word) == nil and evolver_command(word)) then
@@ -64,6 +70,13 @@ function tds.repl_classify(line)
     end
   end
   return "auto", line
+end
+
+-- The prompt names the mode when it is not auto.
+function tds.repl_prompt()
+  if mode == "evolver" then return "evolver> " end
+  if mode == "lua" then return "lua> " end
+  return "tds> "
 end
 
 function tds.translate(text)

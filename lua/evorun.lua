@@ -62,8 +62,6 @@ function E.truth(v)
   return true
 end
 
-function E.choose(c, a, b) if c then return a else return b end end
-
 -- Whole-array arithmetic: array +- array elementwise, array */ scalar,
 -- scalar * array (syntax.htm#arrays).
 local function arrayop(op, a, b)
@@ -1134,6 +1132,7 @@ function E.cmd(name, ...)
 end
 
 function E.cmdvalue(v) E.print(v) end
+function E.unsupported(what) fail(what .. ": not supported yet") end
 
 -- 'r': the built-in single-letter command, bypassing :::= redefinitions.
 function E.orig(letter, ...)

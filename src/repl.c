@@ -231,6 +231,19 @@ static char *history_path(void) {
   return p;
 }
 
+/* The prompt: tds.repl_prompt() (it names the mode), else PROMPT1. The
+** string is copied into buf. */
+static const char *prompt1(lua_State *L, char *buf, size_t n) {
+  snprintf(buf, n, "%s", PROMPT1);
+  lua_getglobal(L, "tds");
+  lua_getfield(L, -1, "repl_prompt");
+  lua_remove(L, -2);
+  if (lua_isfunction(L, -1) && lua_pcall(L, 0, 1, 0) == LUA_OK && lua_isstring(L, -1))
+    snprintf(buf, n, "%s", lua_tostring(L, -1));
+  lua_pop(L, 1);
+  return buf;
+}
+
 int tds_repl(lua_State *L, tds_state *st) {
   int tty = isatty(0), failed = 0, code = 0;
   char *hist = tty ? history_path() : NULL;
@@ -242,7 +255,8 @@ int tds_repl(lua_State *L, tds_state *st) {
     printf("tds %s: Lua with soap films. `help()` lists commands, q quits.\n",
            TDS_VERSION);
   char *buf;
-  while ((buf = read_line(tty, PROMPT1)) != NULL) {
+  char prompt[64];
+  while ((buf = read_line(tty, prompt1(L, prompt, sizeof prompt))) != NULL) {
     const char *p = buf;
     while (isspace((unsigned char)*p)) p++;
     if (!*p) {

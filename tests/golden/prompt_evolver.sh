@@ -27,6 +27,8 @@ printf '%s\n' \
   '.evolver print 7 idiv 2' \
   '.lua print(7 // 2)' \
   'g 1 // comment' \
+  'g2' \
+  'print iteration_counter' \
   'print "still here"' | "$TDS" -q -i ../../scripts/cube.tds 2>&1
 echo "exit $?"
 # The tutorial's first commands on the datafiles themselves.
