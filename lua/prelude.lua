@@ -210,7 +210,8 @@ Reporting     v()  total_energy  total_area  vertex_count ... body_count
               quality()  curvature{}  check()
 Files         tds file.fe (load a datafile)  dump("out.fe")
 Leaving       q()  (at the prompt: q, or Ctrl-D)
-At the prompt Evolver habits work: g 5; r; u   angle := 45   print total_area
+Evolver text  at the prompt (g 5; r; u   angle := 45   print total_area),
+              tds file.fe -f cmds, evolver(text) in Lua (doc/command-language.md)
 The manual: doc/language.md, doc/commands.md, doc/expressions.md, doc/repl.md,
 doc/evolver.md (coming from Surface Evolver), doc/method.md.]]
 function help() print(HELP) end
