@@ -168,6 +168,54 @@ local function ellipticE(m)
   return math.pi / (2 * a) * (1 - sum)
 end
 
+-- Carlson's symmetric integrals RF and RD (duplication until the
+-- arguments agree to 1e-10 relative, then the series to fifth order).
+local function carlson_rf(x, y, z)
+  for _ = 1, 100 do
+    local lam = math.sqrt(x * y) + math.sqrt(y * z) + math.sqrt(z * x)
+    x, y, z = (x + lam) / 4, (y + lam) / 4, (z + lam) / 4
+    local mu = (x + y + z) / 3
+    if math.max(math.abs(x - mu), math.abs(y - mu), math.abs(z - mu)) < 1e-10 * mu then break end
+  end
+  local mu = (x + y + z) / 3
+  local dx, dy, dz = 1 - x / mu, 1 - y / mu, 1 - z / mu
+  local e2, e3 = dx * dy - dz * dz, dx * dy * dz
+  return (1 - e2 / 10 + e3 / 14 + e2 * e2 / 24 - 3 * e2 * e3 / 44) / math.sqrt(mu)
+end
+local function carlson_rd(x, y, z)
+  local sum, fac = 0.0, 1.0
+  for _ = 1, 100 do
+    local lam = math.sqrt(x * y) + math.sqrt(y * z) + math.sqrt(z * x)
+    sum = sum + fac / (math.sqrt(z) * (z + lam))
+    fac = fac / 4
+    x, y, z = (x + lam) / 4, (y + lam) / 4, (z + lam) / 4
+    local mu = (x + y + 3 * z) / 5
+    if math.max(math.abs(x - mu), math.abs(y - mu), math.abs(z - mu)) < 1e-10 * mu then break end
+  end
+  local mu = (x + y + 3 * z) / 5
+  local dx, dy, dz = (mu - x) / mu, (mu - y) / mu, (mu - z) / mu
+  local ea, eb = dx * dy, dz * dz
+  local ec, ed, ee = ea - eb, ea - 6 * eb, ea - 6 * eb + 2 * (ea - eb)
+  return 3 * sum + fac * (1 + ed * (-3 / 14 + 9 / 88 * ed - 9 / 52 * dz * ee)
+    + dz * (ee / 6 + dz * (-9 / 22 * ec + dz * 3 / 26 * ea))) / (mu * math.sqrt(mu))
+end
+-- Incomplete elliptic integrals F(phi|m), E(phi|m) (Mathematica's
+-- convention, as Evolver), by symmetry and periodicity in phi.
+local function incomplete(phi, m, second)
+  local function part(p) -- |p| <= pi/2
+    local s, c = math.sin(p), math.cos(p)
+    local q = 1 - m * s * s
+    if q <= 0 then fail("incompleteElliptic: m*sin(phi)^2 must be below 1") end
+    local v = s * carlson_rf(c * c, q, 1)
+    if second then v = v - m / 3 * s * s * s * carlson_rd(c * c, q, 1) end
+    return v
+  end
+  local k = math.floor(phi / math.pi + 0.5)
+  local rest = phi - k * math.pi
+  if k == 0 then return part(rest) end
+  return 2 * k * part(math.pi / 2) + part(rest)
+end
+
 E.fn = {
   abs = checked("abs", math.abs), sqr = checked("sqr", function(x) return x * x end),
   sqrt = checked("sqrt", math.sqrt, function(x) return x >= 0 end),
@@ -186,8 +234,8 @@ E.fn = {
   pow = checked("pow", function(a, b) return a ^ b end),
   minimum = checked("minimum", math.min), maximum = checked("maximum", math.max),
   elliptick = checked("ellipticK", agm_ellipticK), elliptice = checked("ellipticE", ellipticE),
-  incompleteelliptice = function() fail("incompleteEllipticE: not supported yet") end,
-  incompleteellipticf = function() fail("incompleteEllipticF: not supported yet") end,
+  incompleteelliptice = checked("incompleteEllipticE", function(p, m) return incomplete(p, m, true) end),
+  incompleteellipticf = checked("incompleteEllipticF", function(p, m) return incomplete(p, m, false) end),
   is_defined = function(name)
     if type(name) ~= "string" then fail("is_defined(\"name\") needs a string") end
     local ok = pcall(E.getv, name)

@@ -42,3 +42,4 @@ mv := vv2*mm
 printf "K16 %g %g %g %g\n", pr[2][1], vv2*vv2, mv[2], pr[1][2]
 mm := 0
 printf "K17 %g\n", mm[2][2]
+printf "K18 %.12g %.12g %.12g %.12g\n", incompleteEllipticE(4, 0.3), incompleteEllipticF(-2.5, 0.9), incompleteEllipticE(0.3, -2), ellipticK(0.5)
