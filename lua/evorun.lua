@@ -246,10 +246,7 @@ E.fn = {
     if type(v) == "table" then return #v end
     fail("sizeof: expected an array or a string")
   end,
-  valid_constraint = function(n)
-    local ok, info = pcall(tds.constraint_info, math.floor(num(n)))
-    return ok and info and 1 or 0
-  end,
+  valid_constraint = function() fail("valid_constraint: not supported yet") end,
   valid_boundary = function() fail("valid_boundary: not supported yet") end,
 }
 
