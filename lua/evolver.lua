@@ -65,7 +65,9 @@ function tds.repl_classify(line)
     end
     -- a bare built-in Evolver command (with Evolver's messages: U, m, v),
     -- or one without a Lua function of that name: C, i, hessian
-    if after == "" and (E.B[word] or rawget(_G, word) == nil and evolver_command(word)) then
+    local gv = rawget(_G, word)
+    if after == "" and (gv == nil or type(gv) == "function") and tds.param(word) == nil
+       and (E.B[word] or gv == nil and evolver_command(word)) then
       return "evolver", line
     end
   end

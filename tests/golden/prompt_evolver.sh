@@ -29,6 +29,8 @@ printf '%s\n' \
   'g 1 // comment' \
   'g2' \
   'print iteration_counter' \
+  'x = 5' \
+  'x' \
   'print "still here"' | "$TDS" -q -i ../../scripts/cube.tds 2>&1
 echo "exit $?"
 # The tutorial's first commands on the datafiles themselves.
