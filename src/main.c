@@ -15,7 +15,8 @@ static const char usage[] =
     "  -i          open the interactive prompt after FILE (tds alone opens it)\n"
     "  -e CODE     run Lua CODE after FILE; may be repeated\n"
     "  -f CMDS     run the Evolver command file CMDS after FILE; may be\n"
-    "              repeated and mixed with -e (they run in the given order)\n"
+    "              repeated and mixed with -e (they run in the given order);\n"
+    "              an error abandons the rest of that file only\n"
     "  -q          quiet: no per-iteration lines\n"
     "  --help      show this help\n"
     "  --version   show the version\n"
@@ -131,6 +132,7 @@ int main(int argc, char **argv) {
       rc = tds_run_chunk(L, st, &quit_code);
     }
   }
+  int cmdfile_failed = 0;
   for (int i = 0; i < ncode && rc == 0; i++) {
     if (is_cmdfile[i]) { /* tds.E.run_file(path): Evolver commands */
       lua_getglobal(L, "tds");
@@ -141,6 +143,12 @@ int main(int argc, char **argv) {
       lua_pushstring(L, code[i]);
       lua_pushcclosure(L, run_with_arg, 2);
       rc = tds_run_chunk(L, st, &quit_code);
+      /* As in Evolver, an error abandons the rest of that file only: what
+      ** follows still runs, and the exit status is 1 at the end. */
+      if (rc == 1) {
+        cmdfile_failed = 1;
+        rc = 0;
+      }
     } else if (luaL_loadbuffer(L, code[i], strlen(code[i]), "=(command line)") != LUA_OK) {
       fprintf(stderr, "%s\n", lua_tostring(L, -1));
       lua_pop(L, 1);
@@ -153,9 +161,9 @@ int main(int argc, char **argv) {
     status = quit_code;
   } else if (interactive || (!file && ncode == 0)) {
     int r = tds_repl(L, st);
-    status = rc ? 1 : r;
+    status = rc || cmdfile_failed ? 1 : r;
   } else {
-    status = rc;
+    status = rc || cmdfile_failed ? 1 : 0;
   }
   lua_close(L);
   free(code);
