@@ -1,55 +1,90 @@
--- evolver.lua: read a REPL line written with Surface Evolver habits as Lua.
--- Used only when the line does not compile as Lua. Returns Lua source, or
--- nil if the line is not recognisable Evolver command syntax either.
+-- evolver.lua: the prompt's rule for Lua lines and Evolver lines.
 --
---   g 5            -> g(5)
---   r; u; g 5      -> r() u() g(5)
---   angle := 45    -> angle = 45
---   print total_area -> print(total_area)
---   gogo           -> gogo()
+-- tds.repl_classify(line) -> how, text
+--   "lua", code      run code as Lua only (`.lua CODE`, or Lua mode)
+--   "evolver", code  run code as Evolver text (`.evolver CODE`, Evolver
+--                    mode, or a line that starts with an Evolver command
+--                    and an argument: `g 5`, `G -5`, `gogo 2`, or with an
+--                    Evolver statement word that is not Lua: `printf`,
+--                    `foreach`, `set`, or is a bare built-in Evolver
+--                    command (`U`, `v`, `r`) or one tds has no Lua global
+--                    for: `C`, `i`, `hessian`)
+--   "auto", line     Lua if it compiles as Lua, else Evolver
+--   "mode", message  a mode switch (`.lua`, `.evolver`, `.auto` alone)
+-- tds.translate(text) -> Lua source | nil, message, incomplete
+--   Evolver text to a Lua chunk for the prompt ("stdin" line numbers).
+
+local evolang = require("evolang")
+local E = require("evorun")
+
+local mode = "auto"
+local LUA_KEYWORDS = { ["if"] = true, ["while"] = true, ["for"] = true, ["do"] = true,
+                       ["return"] = true, ["break"] = true, ["local"] = true, ["function"] = true }
 
 local function trim(s) return (s:gsub("^%s+", ""):gsub("%s+$", "")) end
 
--- Split at semicolons outside strings, parentheses and braces.
-local function split(line)
-  local parts, depth, quote, start = {}, 0, nil, 1
-  for i = 1, #line do
-    local c = line:sub(i, i)
-    if quote then
-      if c == quote and line:sub(i - 1, i - 1) ~= "\\" then quote = nil end
-    elseif c == '"' or c == "'" then quote = c
-    elseif c == "(" or c == "{" or c == "[" then depth = depth + 1
-    elseif c == ")" or c == "}" or c == "]" then depth = depth - 1
-    elseif c == ";" and depth == 0 then
-      parts[#parts + 1] = line:sub(start, i - 1)
-      start = i + 1
+local function evolver_command(word)
+  if E.B[word] or E.UNSUPPORTED[word] or E.UNSUPPORTED[word:lower()] then return true end
+  if #word == 1 and evolang.LETTERS[word] then return true end
+  local f = rawget(_G, word)
+  return type(f) == "function"
+end
+
+function tds.repl_classify(line)
+  local t = trim(line)
+  local pre, rest = t:match("^%.(%a+)%s*(.*)$")
+  if pre == "lua" or pre == "evolver" or pre == "auto" then
+    if rest == "" then
+      mode = pre
+      return "mode", ({ lua = "Lua mode: lines run as Lua (.auto to go back).",
+                        evolver = "Evolver mode: lines run as Evolver commands (.auto to go back).",
+                        auto = "Auto mode: Lua lines run as Lua, other lines as Evolver commands." })[pre]
+    end
+    if pre == "auto" then return "auto", rest end
+    return pre, rest
+  end
+  if mode ~= "auto" then return mode, line end
+  local word, after = t:match("^([%a_][%w_]*)(.*)$")
+  if word then
+    -- `g 5`, `G -5`, `m 0.1`, `gogo 3`: a command and an argument.
+    local g = rawget(_G, word)
+    local arg = after:match("^%s+[%w_.\"]") or after:match("^%s+[-+][%d.]")
+    if arg and evolver_command(word) and (g == nil or type(g) == "function")
+       and not after:match("^%s+[%a_][%w_]*%s*=[^=]") then
+      return "evolver", line
+    end
+    -- an Evolver statement word that is not Lua: printf, foreach, set, define
+    if evolang.STMT[word] and not LUA_KEYWORDS[word] and rawget(_G, word) == nil then
+      return "evolver", line
+    end
+    -- g10: a single-letter command with its count glued on
+    local letter = word:match("^(%a)%d+$")
+    if after == "" and letter and evolang.LETTERS[letter] and rawget(_G, word) == nil
+       and tds.param(word) == nil then
+      return "evolver", line
+    end
+    -- a bare built-in Evolver command (with Evolver's messages: U, m, v),
+    -- or one without a Lua function of that name: C, i, hessian
+    local gv = rawget(_G, word)
+    if after == "" and (gv == nil or type(gv) == "function") and tds.param(word) == nil
+       and (E.B[word] or gv == nil and evolver_command(word)) then
+      return "evolver", line
     end
   end
-  parts[#parts + 1] = line:sub(start)
-  return parts
+  return "auto", line
 end
 
-local function one(cmd)
-  cmd = trim(cmd)
-  if cmd == "" then return "" end
-  local name, rest = cmd:match("^([%a_][%w_]*)%s*:=%s*(.+)$")
-  if name then return name .. " = " .. rest end
-  rest = cmd:match("^print%s+(.+)$")
-  if rest then return "print(" .. rest .. ")" end
-  name, rest = cmd:match("^([%a_][%w_]*)%s+([-+]?[%d.][%w.+-]*)$")
-  if name and tonumber(rest) then return name .. "(" .. rest .. ")" end
-  name = cmd:match("^([%a_][%w_]*)$")
-  if name and type(_G[name]) == "function" then return name .. "()" end
-  if load(cmd) then return cmd end -- a Lua statement among Evolver ones
-  return nil
+-- The prompt names the mode when it is not auto.
+function tds.repl_prompt()
+  if mode == "evolver" then return "evolver> " end
+  if mode == "lua" then return "lua> " end
+  return "tds> "
 end
 
-return function(line)
-  local out = {}
-  for _, part in ipairs(split(line)) do
-    local code = one(part)
-    if not code then return nil end
-    out[#out + 1] = code
-  end
-  return table.concat(out, "\n")
+function tds.translate(text)
+  local src, err = evolang.translate(text, 1)
+  if src then return src end
+  return nil, "stdin:" .. err, err:match("end of input") ~= nil or err:match("not closed") ~= nil
 end
+
+return tds.translate

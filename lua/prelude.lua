@@ -224,7 +224,8 @@ Files         tds file.fe (load a datafile)  dump("out.fe")
 Pictures      snapshot("s.png", {color=, view=})  plot("c.png")  quality{png=}
               verbose(on)  (doc/output.md)
 Leaving       q()  (at the prompt: q, or Ctrl-D)
-At the prompt Evolver habits work: g 5; r; u   angle := 45   print total_area
+Evolver text  at the prompt (g 5; r; u   angle := 45   print total_area),
+              tds file.fe -f cmds, evolver(text) in Lua (doc/command-language.md)
 The manual: doc/language.md, doc/commands.md, doc/expressions.md, doc/repl.md,
 doc/evolver.md (coming from Surface Evolver), doc/method.md, doc/output.md.]]
 function help() print(HELP) end
@@ -271,8 +272,11 @@ setmetatable(_G, {
 export, mark = tds.export, tds.mark
 tds.props.vertex.gauss_curvature = function(h) return tds.vertex_gauss_curvature(h) end
 
--- The REPL's reader of Evolver-style lines (g 5; r; u).
-tds.translate = require("evolver")
+-- Evolver's command language: the runtime (tds.E, evolver [[...]]), read
+-- sections run at load, and the prompt's Lua/Evolver rule.
+require("evorun")
+tds.on_load = function(path) tds.E.run_read(path) end
+require("evolver")
 
 -- The projected-gradient method and mesh metrics (lua/pg.lua).
 require("pg")
@@ -281,5 +285,8 @@ require("pictures")
 
 -- The check mode: every command verified (lua/check.lua, doc/reliability.md).
 if os.getenv("TDS_CHECK") == "1" then require("check") end
+
+-- Evolver text cannot redefine the names above (lua/evorun.lua).
+tds.E.protect()
 
 return true

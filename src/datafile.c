@@ -172,8 +172,6 @@ static int finish(df *d) {
       if (!s->read_text) return tds_seterr(d->ctx, TDS_ENOMEM, "out of memory");
       memcpy(s->read_text, r, n);
       s->read_text[n] = 0;
-      tds_warnf(d->ctx, "%s: read section kept, not run (Evolver command language "
-                "is not translated yet)\n", d->name);
     }
   }
   m->topo_gen++;

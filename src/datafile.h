@@ -5,7 +5,8 @@
 ** a top section of declarations (PARAMETER, CONSTRAINT, BOUNDARY,
 ** QUANTITY, GRAVITY_CONSTANT, ...), then the VERTICES, EDGES, FACES and
 ** BODIES sections, then an optional READ section of commands, which is
-** kept verbatim in s->read_text and not run. Lexical rules: keywords are
+** kept verbatim in s->read_text (the Lua layer runs it after loading,
+** lua/evorun.lua). Lexical rules: keywords are
 ** case-insensitive, // and C comments, backslash-newline joins lines,
 ** ',' ':' ';' are whitespace, `#define NAME text` macros (names are case
 ** sensitive, plain text substitution, rescanned), constant expressions

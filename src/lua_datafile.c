@@ -16,6 +16,13 @@
 **                                and parameters, or nil and the message.
 **                                For tests and diagnostics.
 **   tds.write_text(path, text)   write a file all or nothing (wfile.h)
+**   tds.load_replace(path)       Evolver's load: path's surface replaces the
+**                                current one (unchanged if path is bad)
+**   tds.read_text()              the loaded datafile's read section (or nil)
+**   tds.datafile_name()          the loaded datafile's path (or nil)
+**   After a load, tds.on_load(path) is called if set: it runs the read
+**   section (lua/evorun.lua); its errors are the load's errors.
+**   dump(path)                   global alias of tds.dump
 */
 #include <stdlib.h>
 #include <string.h>
@@ -51,6 +58,49 @@ static void load(lua_State *L, tds_state *st, const char *path) {
     free(st->datafile);
     st->datafile = copy;
   }
+  /* The read section runs now, as in Evolver (tds.on_load, lua/evorun.lua). */
+  lua_getglobal(L, "tds");
+  lua_getfield(L, -1, "on_load");
+  lua_remove(L, -2);
+  if (lua_isfunction(L, -1)) {
+    lua_pushstring(L, path);
+    lua_call(L, 1, 0);
+  } else {
+    lua_pop(L, 1);
+  }
+}
+
+/* tds.read_text() -> the loaded datafile's read section, or nil */
+static int l_read_text(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  if (!st->s.read_text) return 0;
+  lua_pushstring(L, st->s.read_text);
+  return 1;
+}
+
+/* tds.datafile_name() -> the loaded datafile's path, or nil */
+static int l_datafile_name(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  if (!st->datafile) return 0;
+  lua_pushstring(L, st->datafile);
+  return 1;
+}
+
+/* tds.load_replace(path): Evolver's `load`: a new surface from path in
+** place of the current one. The file is parsed into a scratch surface
+** first, so a bad file leaves the current surface as it was. */
+static int l_load_replace(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  const char *path = luaL_checkstring(L, 1);
+  tds_surf *tmp = lua_newuserdatauv(L, sizeof *tmp, 0);
+  tds_surf_init(tmp);
+  int rc = tds_datafile_load(&st->ctx, tmp, path);
+  tds_surf_free(tmp);
+  if (rc != TDS_OK) return raise_msg(L, st->ctx.errmsg);
+  tds_surf_free(&st->s);
+  tds_surf_init(&st->s);
+  load(L, st, path);
+  return 0;
 }
 
 /* tds.load_datafile(path) */
@@ -225,6 +275,9 @@ void tds_open_datafile(lua_State *L, tds_state *st) {
                                  {"load_chunk", l_load_chunk},
                                  {"datafile_info", l_datafile_info},
                                  {"write_text", l_write_text},
+                                 {"read_text", l_read_text},
+                                 {"load_replace", l_load_replace},
+                                 {"datafile_name", l_datafile_name},
                                  {NULL, NULL}};
   tds_lua_register(L, st, fns);
   lua_pushlightuserdata(L, st);

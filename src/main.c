@@ -11,9 +11,14 @@
 static const char usage[] =
     "usage: tds [options] [FILE]\n"
     "Run a .tds script (Lua) or load a Surface Evolver datafile, then exit.\n"
+    "FILE '-' (or a script piped in without other arguments) is a Lua\n"
+    "script read from standard input as one chunk.\n"
     "\n"
     "  -i          open the interactive prompt after FILE (tds alone opens it)\n"
     "  -e CODE     run Lua CODE after FILE; may be repeated\n"
+    "  -f CMDS     run the Evolver command file CMDS after FILE; may be\n"
+    "              repeated and mixed with -e (they run in the given order);\n"
+    "              an error abandons the rest of that file only\n"
     "  -q          quiet: no per-iteration lines\n"
     "  --safe      safe mode for files from others: no processes, no native\n"
     "              libraries, no bytecode, no file written outside the output\n"
@@ -27,8 +32,10 @@ static const char usage[] =
     "\n"
     "Exit status is 0 on success, 1 after an error, or the code given to q().\n";
 
-/* Load FILE as a chunk: a .tds script, or a datafile through tds.load. */
+/* Load FILE as a chunk: a .tds script, or a datafile through tds.load;
+** "-" is a Lua script on standard input, read as one chunk. */
 static int load_file(lua_State *L, const char *path) {
+  if (!strcmp(path, "-")) return luaL_loadfile(L, NULL);
   lua_getglobal(L, "tds");
   lua_getfield(L, -1, "load_chunk");
   lua_remove(L, -2);
@@ -62,22 +69,37 @@ static void dump_on_interrupt(tds_state *st, const char *path, const char *file)
   free(name);
 }
 
+/* A chunk that calls upvalue 1 with upvalue 2. */
+static int run_with_arg(lua_State *L) {
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_pushvalue(L, lua_upvalueindex(2));
+  lua_call(L, 1, 0);
+  return 0;
+}
+
 int main(int argc, char **argv) {
   int interactive = 0, quiet = 0, status = 0, quit_code = 0, safe = 0;
   int on_interrupt_dump = 0;
   const char *file = NULL, *outdir = NULL, *interrupt_path = NULL;
   const char **code = calloc((size_t)argc + 1, sizeof *code);
+  char *is_cmdfile = calloc((size_t)argc + 1, 1); /* code[i] is a -f file */
   int ncode = 0;
-  if (!code) return 1;
+  if (!code || !is_cmdfile) {
+    free(code);
+    free(is_cmdfile);
+    return 1;
+  }
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
     if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
       fputs(usage, stdout);
       free(code);
+      free(is_cmdfile);
       return 0;
     } else if (!strcmp(a, "--version")) {
       printf("tds %s (%s)\n", TDS_VERSION, LUA_RELEASE);
       free(code);
+      free(is_cmdfile);
       return 0;
     } else if (!strcmp(a, "-i")) {
       interactive = 1;
@@ -105,25 +127,40 @@ int main(int argc, char **argv) {
       if (++i == argc) {
         fprintf(stderr, "tds: -e needs an argument\n%s", usage);
         free(code);
+        free(is_cmdfile);
         return 1;
       }
+      code[ncode++] = argv[i];
+    } else if (!strcmp(a, "-f")) {
+      if (++i == argc) {
+        fprintf(stderr, "tds: -f needs a command file\n%s", usage);
+        free(code);
+        free(is_cmdfile);
+        return 1;
+      }
+      is_cmdfile[ncode] = 1;
       code[ncode++] = argv[i];
     } else if (a[0] == '-' && a[1]) {
       fprintf(stderr, "tds: unknown option '%s'\n%s", a, usage);
       free(code);
+      free(is_cmdfile);
       return 1;
     } else if (!file) {
       file = a;
     } else {
       fprintf(stderr, "tds: only one FILE may be given ('%s')\n", a);
       free(code);
+      free(is_cmdfile);
       return 1;
     }
   }
+  /* A script piped in with nothing else to do runs as one chunk. */
+  if (!file && ncode == 0 && !interactive && !isatty(0)) file = "-";
   lua_State *L = luaL_newstate();
   if (!L) {
     fprintf(stderr, "tds: cannot create Lua state\n");
     free(code);
+    free(is_cmdfile);
     return 1;
   }
   tds_state *st = tds_lua_open(L);
@@ -131,6 +168,7 @@ int main(int argc, char **argv) {
     fprintf(stderr, "tds: %s\n", lua_tostring(L, -1));
     lua_close(L);
     free(code);
+    free(is_cmdfile);
     return 1;
   }
   st->ctx.quiet = quiet;
@@ -160,8 +198,24 @@ int main(int argc, char **argv) {
       stopped |= rc == 1 && tds_lua_interrupted();
     }
   }
+  int cmdfile_failed = 0;
   for (int i = 0; i < ncode && rc == 0; i++) {
-    if (luaL_loadbuffer(L, code[i], strlen(code[i]), "=(command line)") != LUA_OK) {
+    if (is_cmdfile[i]) { /* tds.E.run_file(path): Evolver commands */
+      lua_getglobal(L, "tds");
+      lua_getfield(L, -1, "E");
+      lua_getfield(L, -1, "run_file");
+      lua_remove(L, -2);
+      lua_remove(L, -2);
+      lua_pushstring(L, code[i]);
+      lua_pushcclosure(L, run_with_arg, 2);
+      rc = tds_run_chunk(L, st, &quit_code);
+      /* As in Evolver, an error abandons the rest of that file only: what
+      ** follows still runs, and the exit status is 1 at the end. */
+      if (rc == 1) {
+        cmdfile_failed = 1;
+        rc = 0;
+      }
+    } else if (luaL_loadbuffer(L, code[i], strlen(code[i]), "=(command line)") != LUA_OK) {
       fprintf(stderr, "%s\n", lua_tostring(L, -1));
       lua_pop(L, 1);
       rc = 1;
@@ -175,11 +229,12 @@ int main(int argc, char **argv) {
     status = quit_code;
   } else if (interactive || (!file && ncode == 0)) {
     int r = tds_repl(L, st);
-    status = rc ? 1 : r;
+    status = rc || cmdfile_failed ? 1 : r;
   } else {
-    status = rc;
+    status = rc || cmdfile_failed ? 1 : 0;
   }
   lua_close(L);
   free(code);
+  free(is_cmdfile);
   return status;
 }

@@ -1,4 +1,4 @@
-/* repl.c: the read-eval-print loop (Lua first, Evolver habits second). */
+/* repl.c: the read-eval-print loop (Lua and Evolver lines, lua/evolver.lua). */
 #include "repl.h"
 
 #include <ctype.h>
@@ -102,11 +102,97 @@ static int bare_function(lua_State *L, const char *line) {
   return 0;
 }
 
+/* Append a continuation line to *buf (returns 0 at end of input). */
+static int more_input(int tty, char **buf) {
+  char *more = read_line(tty, PROMPT2);
+  if (!more) return 0;
+  size_t n = strlen(*buf) + strlen(more) + 2;
+  char *joined = malloc(n);
+  if (!joined) {
+    free(more);
+    return 0;
+  }
+  snprintf(joined, n, "%s\n%s", *buf, more);
+  free(more);
+  free(*buf);
+  *buf = joined;
+  return 1;
+}
+
+/* Translate Evolver text (reading more lines while it is incomplete) and
+** compile it. Leaves a function and returns 1, or prints the Evolver
+** message (after lua_err, Lua's message, when the line was tried as Lua
+** first) and returns 0. */
+static int compile_evolver(lua_State *L, int tty, char **text, const char *lua_err) {
+  for (;;) {
+    lua_getglobal(L, "tds");
+    lua_getfield(L, -1, "translate");
+    lua_remove(L, -2);
+    lua_pushstring(L, *text);
+    if (lua_pcall(L, 1, 3, 0) != LUA_OK) {
+      print_error(L);
+      lua_pop(L, 1);
+      return 0;
+    }
+    if (lua_isstring(L, -3)) {
+      const char *code = lua_tostring(L, -3);
+      int st = luaL_loadbuffer(L, code, strlen(code), "=stdin");
+      lua_replace(L, -4);
+      lua_pop(L, 2);
+      if (st == LUA_OK) return 1;
+      print_error(L);
+      lua_pop(L, 1);
+      return 0;
+    }
+    int incomplete_ev = lua_toboolean(L, -1);
+    if (incomplete_ev && more_input(tty, text)) {
+      lua_pop(L, 3);
+      continue;
+    }
+    lua_pop(L, 1);
+    if (lua_err) {
+      fprintf(stderr, "%s\n", lua_err);
+      lua_pushfstring(L, "  (as an Evolver command: %s)", lua_tostring(L, -1));
+      lua_replace(L, -2);
+    }
+    print_error(L);
+    lua_pop(L, 2);
+    return 0;
+  }
+}
+
 /* Compile the chunk in *buf (may read continuation lines, growing *buf).
-** Leaves a function on the stack and returns 1, or prints the error and
-** returns 0. */
+** Leaves a function on the stack and returns 1, returns -1 when the line
+** was a mode switch (nothing to run), or prints the error and returns 0.
+** The rule for Lua versus Evolver lines is tds.repl_classify
+** (lua/evolver.lua). */
 static int compile(lua_State *L, int tty, char **buf) {
-  if (bare_function(L, *buf)) return 1;
+  const char *how = "auto";
+  lua_getglobal(L, "tds");
+  lua_getfield(L, -1, "repl_classify");
+  lua_remove(L, -2);
+  lua_pushstring(L, *buf);
+  if (lua_pcall(L, 1, 2, 0) == LUA_OK && lua_isstring(L, -2) && lua_isstring(L, -1)) {
+    how = lua_tostring(L, -2);
+    if (!strcmp(how, "mode")) {
+      printf("%s\n", lua_tostring(L, -1));
+      lua_pop(L, 2);
+      return -1;
+    }
+    char *text = strdup(lua_tostring(L, -1));
+    int lua_only = !strcmp(how, "lua"), evolver_only = !strcmp(how, "evolver");
+    lua_pop(L, 2);
+    if (!text) return 0;
+    free(*buf);
+    *buf = text;
+    if (evolver_only) return compile_evolver(L, tty, buf, NULL);
+    if (lua_only) how = "lua";
+    else how = "auto";
+  } else {
+    lua_pop(L, 2);
+  }
+  int auto_mode = !strcmp(how, "auto");
+  if (auto_mode && bare_function(L, *buf)) return 1;
   lua_pushfstring(L, "return %s;", *buf);
   int status = luaL_loadbuffer(L, lua_tostring(L, -1), lua_rawlen(L, -1), "=stdin");
   lua_remove(L, -2);
@@ -116,43 +202,23 @@ static int compile(lua_State *L, int tty, char **buf) {
     status = luaL_loadbuffer(L, *buf, strlen(*buf), "=stdin");
     if (!incomplete(L, status)) break;
     lua_pop(L, 1);
-    char *more = read_line(tty, PROMPT2);
-    if (!more) {
+    if (!more_input(tty, buf)) {
       luaL_loadbuffer(L, *buf, strlen(*buf), "=stdin"); /* the error again */
       break;
     }
-    size_t n = strlen(*buf) + strlen(more) + 2;
-    char *joined = malloc(n);
-    if (!joined) {
-      free(more);
-      lua_pushliteral(L, "out of memory");
-      status = LUA_ERRMEM;
-      break;
-    }
-    snprintf(joined, n, "%s\n%s", *buf, more);
-    free(more);
-    free(*buf);
-    *buf = joined;
   }
   if (status == LUA_OK) return 1;
-  /* Not Lua: maybe Evolver command syntax. */
-  lua_getglobal(L, "tds");
-  lua_getfield(L, -1, "translate");
-  lua_remove(L, -2);
-  lua_pushstring(L, *buf);
-  if (lua_pcall(L, 1, 1, 0) == LUA_OK && lua_isstring(L, -1)) {
-    const char *code = lua_tostring(L, -1);
-    if (luaL_loadbuffer(L, code, strlen(code), "=stdin") == LUA_OK) {
-      lua_remove(L, -2); /* translation */
-      lua_remove(L, -2); /* original error */
-      return 1;
-    }
+  if (!auto_mode) {
+    print_error(L);
     lua_pop(L, 1);
+    return 0;
   }
+  /* Not Lua: Evolver command text. */
+  char *lua_err = strdup(lua_tostring(L, -1) ? lua_tostring(L, -1) : "");
   lua_pop(L, 1);
-  print_error(L); /* the original Lua message */
-  lua_pop(L, 1);
-  return 0;
+  int ok = compile_evolver(L, tty, buf, lua_err);
+  free(lua_err);
+  return ok;
 }
 
 static char *history_path(void) {
@@ -166,6 +232,19 @@ static char *history_path(void) {
   return p;
 }
 
+/* The prompt: tds.repl_prompt() (it names the mode), else PROMPT1. The
+** string is copied into buf. */
+static const char *prompt1(lua_State *L, char *buf, size_t n) {
+  snprintf(buf, n, "%s", PROMPT1);
+  lua_getglobal(L, "tds");
+  lua_getfield(L, -1, "repl_prompt");
+  lua_remove(L, -2);
+  if (lua_isfunction(L, -1) && lua_pcall(L, 0, 1, 0) == LUA_OK && lua_isstring(L, -1))
+    snprintf(buf, n, "%s", lua_tostring(L, -1));
+  lua_pop(L, 1);
+  return buf;
+}
+
 int tds_repl(lua_State *L, tds_state *st) {
   int tty = isatty(0), failed = 0, code = 0;
   char *hist = tty ? history_path() : NULL;
@@ -177,7 +256,8 @@ int tds_repl(lua_State *L, tds_state *st) {
     printf("tds %s: Lua with soap films. `help()` lists commands, q quits.\n",
            TDS_VERSION);
   char *buf;
-  while ((buf = read_line(tty, PROMPT1)) != NULL) {
+  char prompt[64];
+  while ((buf = read_line(tty, prompt1(L, prompt, sizeof prompt))) != NULL) {
     const char *p = buf;
     while (isspace((unsigned char)*p)) p++;
     if (!*p) {
@@ -185,7 +265,12 @@ int tds_repl(lua_State *L, tds_state *st) {
       continue;
     }
     int base = lua_gettop(L);
-    if (compile(L, tty, &buf)) {
+    int compiled = compile(L, tty, &buf);
+    if (compiled < 0) {
+      free(buf);
+      continue;
+    }
+    if (compiled) {
       if (hist) {
         add_history(buf);
         append_history(1, hist);

@@ -1,0 +1,396 @@
+-- evoelem.lua: elements for Evolver command text, part of the runtime
+-- tds.E (lua/evorun.lua): element handles by id (negative ids reverse
+-- edges), oriented sub-elements (a facet's edges, a vertex's edges, an
+-- edge's facets ...), attributes with Evolver's meaning (x of an edge is
+-- its vector, of a facet its area vector), run-time attributes (define
+-- ... attribute), set/unset, aggregates, histograms and list.
+
+local tds = tds
+local E = tds.E
+local fail, num = E.fail, E.num
+local KINDNUM = { vertex = tds.vertex, edge = tds.edge, facet = tds.facet, body = tds.body }
+
+
+-- An oriented element: a handle, or a reversed edge { h = handle } (as a
+-- facet or a vertex sees it; Evolver's negative ids).
+local REV = {}
+local function reversed(h) return setmetatable({ h = h }, REV) end
+local function unwrap(x)
+  if getmetatable(x) == REV then return x.h, true end
+  return x, false
+end
+local function ishandle(v) return type(v) == "userdata" and getmetatable(v) and getmetatable(v).__tds_kind ~= nil end
+local function isel(v) return ishandle(v) or getmetatable(v) == REV end
+E.isel = isel
+local KINDNAME = { [tds.vertex] = "vertex", [tds.edge] = "edge", [tds.facet] = "facet", [tds.body] = "body" }
+local function kindof(x) return KINDNAME[getmetatable((unwrap(x))).__tds_kind] end
+E.unwrap = unwrap
+
+function E.getelem(kind, i, soft)
+  local id = num(i, kind .. "[]")
+  if id % 1 ~= 0 then fail(("%s[%g]: the index must be a whole number"):format(kind, id)) end
+  local h = tds.get(KINDNUM[kind], math.floor(math.abs(id)))
+  if not h and not soft then fail(("%s[%d] does not exist"):format(kind, math.floor(id))) end
+  if h and id < 0 and kind == "edge" then return reversed(h) end
+  return h
+end
+
+function E.all(kind)
+  local list, i, k = {}, 0, KINDNUM[kind]
+  while true do
+    local id, h = tds.next(k, i)
+    if not id then break end
+    list[#list + 1] = h
+    i = id
+  end
+  return list
+end
+
+function E.live(h) return true end
+
+-- Adjacency of the current mesh, built in one pass when a generator
+-- needs it and dropped whenever the topology may have changed (E.touch:
+-- around every top-level command, after commands and Lua calls).
+local adj
+local function adjacency()
+  if adj then return adj end
+  local a = { efacets = {}, vedges = {}, vfacets = {}, bfacets = {} }
+  local function push(t, k, v) local l = t[k]; if not l then l = {}; t[k] = l end; l[#l + 1] = v end
+  for _, e in ipairs(E.all("edge")) do
+    push(a.vedges, e.tail.id, { e, false })
+    push(a.vedges, e.head.id, { e, true })
+  end
+  for _, f in ipairs(E.all("facet")) do
+    for _, id in ipairs(f.edges) do push(a.efacets, math.abs(id), { f, id }) end
+    for _, v in ipairs(f.vertices) do push(a.vfacets, v.id, f) end
+    local fb, bb = f.frontbody, f.backbody
+    if fb then push(a.bfacets, fb.id, f) end
+    if bb and bb ~= fb then push(a.bfacets, bb.id, f) end
+  end
+  adj = a
+  return a
+end
+function E.touch() adj = nil end
+
+-- Elements around an element (sub-element generators).
+local function around(x, kind)
+  local from = kindof(x)
+  local h, rev = unwrap(x)
+  if from == "facet" and kind == "edge" then
+    local out = {}
+    for _, id in ipairs(h.edges) do
+      local e = tds.get(tds.edge, math.abs(id))
+      out[#out + 1] = id < 0 and reversed(e) or e
+    end
+    return out
+  elseif from == "facet" and kind == "vertex" then return h.vertices
+  elseif from == "facet" and kind == "body" then
+    local out = {}
+    if h.frontbody then out[#out + 1] = h.frontbody end
+    if h.backbody then out[#out + 1] = h.backbody end
+    return out
+  elseif from == "edge" and kind == "vertex" then
+    if rev then return { h.head, h.tail } end
+    return { h.tail, h.head }
+  elseif from == "edge" and kind == "facet" then
+    -- oriented like the edge: a facet that traverses it backwards is
+    -- seen reversed (negative oid, opposite normal)
+    local out = {}
+    for _, fs in ipairs(adjacency().efacets[h.id] or {}) do
+      out[#out + 1] = ((fs[2] < 0) ~= rev) and reversed(fs[1]) or fs[1]
+    end
+    return out
+  elseif from == "vertex" and kind == "edge" then
+    local out = {}
+    for _, es in ipairs(adjacency().vedges[h.id] or {}) do -- oriented away from the vertex
+      out[#out + 1] = es[2] and reversed(es[1]) or es[1]
+    end
+    return out
+  elseif from == "vertex" and kind == "facet" then
+    return { table.unpack(adjacency().vfacets[h.id] or {}) }
+  elseif from == "body" and kind == "facet" then
+    return { table.unpack(adjacency().bfacets[h.id] or {}) }
+  elseif from == "vertex" and kind == "body" or from == "edge" and kind == "body" then
+    local seen, out = {}, {}
+    for _, f in ipairs(around(h, "facet")) do
+      for _, b in ipairs(around(f, "body")) do
+        if not seen[b.id] then seen[b.id] = true; out[#out + 1] = b end
+      end
+    end
+    return out
+  elseif from == "body" and (kind == "vertex" or kind == "edge") then
+    local seen, out = {}, {}
+    for _, f in ipairs(around(h, "facet")) do
+      for _, x in ipairs(around(f, kind)) do
+        if not seen[x.id] then seen[x.id] = true; out[#out + 1] = x end
+      end
+    end
+    return out
+  end
+  fail(("%s.%s: not supported yet"):format(from, kind))
+end
+
+function E.subs(h, kind)
+  if not isel(h) then fail("." .. kind .. " needs an element") end
+  return around(h, kind)
+end
+
+function E.subelem(h, kind, i)
+  if not isel(h) then fail("." .. kind .. "[] needs an element") end
+  local list = around(h, kind)
+  local k = math.floor(math.abs(num(i)))
+  local x = list[k]
+  if not x then fail(("%s %d has no %s[%d]"):format(kindof(h), unwrap(h).id, kind, k)) end
+  return x
+end
+
+-- Extra attributes defined at run time: extra[kind][name] = { type, dim, vals }.
+local extra = { vertex = {}, edge = {}, facet = {}, body = {}, facetedge = {} }
+
+function E.defattr(kind, name, ty, dims)
+  if extra[kind][name] then return end
+  local d = {}
+  for i, n in ipairs(dims) do d[i] = math.floor(num(n)) end
+  extra[kind][name] = { type = ty, dims = d, vals = {} }
+end
+
+local function vec(x)
+  local k = kindof(x)
+  local h, rev = unwrap(x)
+  if k == "edge" then
+    local a, b = h.tail, h.head
+    if rev then a, b = b, a end
+    return b.x - a.x, b.y - a.y, b.z - a.z
+  elseif k == "facet" then
+    local v = h.vertices
+    -- the cross product of the first two edges as the facet traverses them
+    local ax, ay, az = v[2].x - v[1].x, v[2].y - v[1].y, v[2].z - v[1].z
+    local bx, by, bz = v[3].x - v[2].x, v[3].y - v[2].y, v[3].z - v[2].z
+    local sg = rev and -0.5 or 0.5
+    return (ay * bz - az * by) * sg, (az * bx - ax * bz) * sg, (ax * by - ay * bx) * sg
+  end
+end
+
+local ATTR = {
+  id = function(h) return h.id + 0.0 end,
+  oid = function(h, rev) return (rev and -h.id or h.id) + 0.0 end,
+  fixed = function(h) return h.fixed and 1.0 or 0.0 end,
+  no_refine = function(h) return h.no_refine and 1.0 or 0.0 end,
+  bare = function(h) return h.bare and 1.0 or 0.0 end,
+  frontbody = function(h) local b = h.frontbody; return b and b.id + 0.0 or 0.0 end,
+  backbody = function(h) local b = h.backbody; return b and b.id + 0.0 or 0.0 end,
+  target = function(h) return (h.target or 0) + 0.0 end,
+  -- tds keeps one colour per facet: front and back are the same
+  frontcolor = function(h) return h.color + 0.0 end,
+  backcolor = function(h) return h.color + 0.0 end,
+  valence = function(h)
+    local k = kindof(h)
+    if k == "facet" then return 3.0 end
+    if k == "body" then return #around(h, "facet") + 0.0 end
+    return h.valence + 0.0
+  end,
+  on_boundary = function(h) return h.boundary and 1.0 or 0.0 end,
+  -- Evolver's default display criteria: facets unless nodisplay; edges
+  -- that are fixed or not between exactly two facets.
+  show = function(h)
+    local k = kindof(h)
+    if k == "facet" then return h.nodisplay and 0.0 or 1.0 end
+    if k == "edge" then return (h.fixed or h.valence ~= 2) and 1.0 or 0.0 end
+    return 1.0
+  end,
+}
+ATTR.facet_normal = function(h, rev)
+  if kindof(h) ~= "facet" then fail("facet_normal is a facet attribute") end
+  local x, y, z = vec(rev and reversed(h) or h)
+  return { x, y, z } -- the normal scaled by the area, as facet.x, .y, .z
+end
+ATTR.edge_vector = function(h, rev)
+  if kindof(h) ~= "edge" then fail("edge_vector is an edge attribute") end
+  return { vec(rev and reversed(h) or h) }
+end
+ATTR.__x = function(h)
+  if kindof(h) ~= "vertex" then fail("__x is a vertex attribute") end
+  return { h.x, h.y, h.z }
+end
+for i, c in ipairs { "x", "y", "z" } do
+  ATTR[c] = function(h)
+    local k = kindof(h)
+    if k == "vertex" then return unwrap(h)[c] end
+    if k == "edge" or k == "facet" then return (select(i, vec(h))) end
+    fail("body has no attribute " .. c)
+  end
+end
+
+function E.attr(o, name)
+  if type(o) == "table" and o.__quantity then return E.qattr(o, name) end
+  if not isel(o) then fail(("'.%s' needs an element, got %s"):format(name, type(o))) end
+  if name == "x" or name == "y" or name == "z" then return ATTR[name](o) end
+  local h, rev = unwrap(o)
+  local x = extra[kindof(h)][name]
+  if x then
+    local v = x.vals[h.id]
+    if v == nil then
+      if #x.dims > 0 then v = E.newvalue(x.type, x.dims); x.vals[h.id] = v
+      else v = 0.0 end
+    end
+    return v
+  end
+  local f = ATTR[name]
+  if f then return f(h, rev) end
+  local ok, v = pcall(function() return h[name] end)
+  if not ok then fail(v) end
+  if v == nil then
+    if name == "pressure" or name == "volume" or name == "density" or name == "tension" then return 0.0 end
+    fail(("%s %d has no attribute '%s'"):format(kindof(h), h.id, name))
+  end
+  if type(v) == "boolean" then return v and 1.0 or 0.0 end
+  if type(v) == "function" then fail(("%s.%s is not an attribute"):format(kindof(h), name)) end
+  return v
+end
+
+function E.pred(h, what, n)
+  if not isel(h) then fail(what .. " needs an element") end
+  h = unwrap(h)
+  n = math.floor(num(n))
+  if what == "on_constraint" or what == "hit_constraint" then
+    local cs = h.constraints or {}
+    for _, c in ipairs(cs) do if c == n then return true end end
+    return false
+  end
+  return h.boundary == n
+end
+
+local function has_con(h, n)
+  for _, c in ipairs(h.constraints or {}) do if c == n then return true end end
+end
+
+-- set/unset of attributes; `fromset` marks Evolver's set command (no value
+-- means a flag is switched on).
+function E.setattr(h, name, v, fromset)
+  if type(h) == "table" and h.__quantity then return E.setqattr(h, name, v) end
+  if not isel(h) then fail(("cannot set '%s' of a %s"):format(name, type(h))) end
+  h = unwrap(h)
+  local k = kindof(h)
+  local x = extra[k][name]
+  if x then x.vals[h.id] = v; return end
+  if name == "fixed" or name == "no_refine" or name == "bare" or name == "nodisplay" or name == "no_display" then
+    if name == "no_display" then name = "nodisplay" end
+    h[name] = E.truth(v == true and 1 or v)
+  elseif name == "constraint" then
+    local n = math.floor(num(v))
+    if not has_con(h, n) then
+      local cs = h.constraints or {}
+      cs[#cs + 1] = n
+      local ok, err = pcall(function() h.constraints = cs end)
+      if not ok then fail(err) end
+    end
+  elseif (name == "frontcolor" or name == "backcolor") and k == "facet" then
+    fail(("set facet %s: tds has one colour per facet; set color"):format(name))
+  elseif name == "target" or name == "volume" then
+    if k ~= "body" then fail(k .. " has no " .. name) end
+    h.target = num(v)
+  else
+    if v == true then fail(("set %s %s needs a value"):format(k, name)) end
+    local ok, err = pcall(function() h[name] = v end)
+    if not ok then fail(tostring(err):gsub("^.-:%d+: ", "")) end
+  end
+end
+
+function E.unsetattr(h, name, v)
+  h = unwrap(h)
+  local k = kindof(h)
+  if name == "fixed" or name == "no_refine" or name == "bare" then h[name] = false
+  elseif name == "constraint" then
+    local cs, out = h.constraints or {}, {}
+    local n = v and math.floor(num(v))
+    for _, c in ipairs(cs) do if n and c ~= n then out[#out + 1] = c end end
+    h.constraints = out
+  elseif (name == "target" or name == "volume") and k == "body" then h.target = nil
+  elseif name == "pressure" and k == "body" then h.pressure = nil
+  elseif extra[k][name] then extra[k][name].vals[h.id] = nil
+  else fail(("unset %s %s: not supported"):format(k, name)) end
+end
+
+function E.agg(kind, list, f)
+  local acc, n
+  if kind == "sum" or kind == "count" or kind == "avg" then acc = 0.0 end
+  n = 0
+  for _, h in ipairs(list) do
+    local v = f(h)
+    if v ~= nil then
+      v = num(v)
+      n = n + 1
+      if kind == "sum" or kind == "avg" then acc = acc + v
+      elseif kind == "count" then acc = acc + 1
+      elseif kind == "max" then acc = (acc == nil or v > acc) and v or acc
+      else acc = (acc == nil or v < acc) and v or acc end
+    end
+  end
+  if kind == "avg" then return n > 0 and acc / n or 0.0 end
+  return acc or 0.0
+end
+
+-- histogram: 21 equal bins from the least to the greatest value;
+-- loghistogram: 20 bins of equal ratio (positive values), as Evolver.
+function E.histogram(log, list, f)
+  local vals = {}
+  for _, h in ipairs(list) do
+    local v = f(h)
+    if v ~= nil then vals[#vals + 1] = num(v) end
+  end
+  if log then
+    for _, v in ipairs(vals) do
+      if v <= 0 then fail(("loghistogram: value %g is not positive"):format(v)) end
+    end
+  end
+  if #vals == 0 then E.out("No qualifying values.\n"); return end
+  local lo, hi = math.huge, -math.huge
+  for _, v in ipairs(vals) do lo = math.min(lo, v); hi = math.max(hi, v) end
+  if lo == hi then
+    E.out(("%10.5g - %10.5g     %d\n"):format(lo, hi, #vals))
+    return
+  end
+  local nb = log and 20 or 21
+  local counts = {}
+  for i = 1, nb do counts[i] = 0 end
+  for _, v in ipairs(vals) do
+    local t = log and (math.log(v / lo) / math.log(hi / lo)) or ((v - lo) / (hi - lo))
+    local b = math.min(nb, math.floor(t * nb) + 1)
+    counts[b] = counts[b] + 1
+  end
+  for i = 1, nb do
+    local a, b
+    if log then a, b = lo * (hi / lo) ^ ((i - 1) / nb), lo * (hi / lo) ^ (i / nb)
+    else a, b = lo + (hi - lo) * (i - 1) / nb, lo + (hi - lo) * i / nb end
+    if i == nb then b = hi end
+    E.out(("%10.5g - %10.5g     %d\n"):format(a, b, counts[i]))
+  end
+end
+
+
+function E.has_extra(h, name) return E.isel(h) and extra[kindof(h)][name] ~= nil end
+
+-- list GEN in Evolver's layout.
+function E.list(h, kind, first)
+  h = unwrap(h)
+  if kind == "vertex" then
+    if first then E.out("// Id               X                Y               Z\n") end
+    E.out(("%3d  %17.15g %17.15g %17.15g\n"):format(h.id, h.x, h.y, h.z))
+  elseif kind == "edge" then
+    if first then E.out("// Id    endpoints\n") end
+    E.out(("%3d    %4d %4d     /*length %.15g*/ \n"):format(h.id, h.tail.id, h.head.id, h.length))
+  elseif kind == "facet" then
+    if first then E.out("// Id    edges\n") end
+    local ids = {}
+    for i, e in ipairs(h.edges) do ids[i] = tostring(e) end
+    E.out(("%3d   %s /*area %.15g*/\n"):format(h.id, table.concat(ids, " "), h.area))
+  elseif kind == "body" then
+    if first then E.out("// Id    facets\n") end
+    local ids = {}
+    for _, f in ipairs(around(h, "facet")) do ids[#ids + 1] = tostring(f.backbody == h and -f.id or f.id) end
+    E.out(("%3d    %s  volume %.15g\n"):format(h.id, table.concat(ids, " "), h.volume))
+  end
+end
+
+
+return true

@@ -1,0 +1,112 @@
+/* lua_out.c: output targets for redirection (Evolver's >> "file",
+** >>> "file" and | "command"), so that the core's progress lines and the
+** command language's own output go to the same place in order.
+**
+**   tds.output_open(target, mode)  mode "a" (append), "w" (overwrite) or
+**                                  "|" (a shell command reading it);
+**                                  returns a handle, or nil and a message
+**   tds.output_set([handle])       the core's output goes to handle; no
+**                                  argument: back to standard output
+**   tds.output_write(handle, text) write text to handle
+**   tds.output_close(handle)       close it (also done by the collector);
+**                                  for a pipe, waits for the command
+*/
+#include <stdio.h>
+#include <string.h>
+
+#include "lua_tds.h"
+
+#define OUT_META "tds.output"
+
+typedef struct target {
+  FILE *f;
+  int pipe;
+} target;
+
+static target *check_target(lua_State *L, int i) {
+  target *t = luaL_checkudata(L, i, OUT_META);
+  if (!t->f) luaL_error(L, "output target is closed");
+  return t;
+}
+
+static void close_target(target *t) {
+  if (!t->f) return;
+  if (t->pipe) pclose(t->f);
+  else fclose(t->f);
+  t->f = NULL;
+}
+
+static void to_file(void *ud, const char *text) {
+  FILE *f = ud;
+  fputs(text, f);
+  fflush(f);
+}
+
+static int l_output_open(lua_State *L) {
+  const char *path = luaL_checkstring(L, 1);
+  const char *mode = luaL_checkstring(L, 2);
+  int pipe = !strcmp(mode, "|");
+  if (!pipe && strcmp(mode, "a") && strcmp(mode, "w"))
+    return luaL_argerror(L, 2, "expected \"a\", \"w\" or \"|\"");
+  target *t = lua_newuserdatauv(L, sizeof *t, 0);
+  t->f = NULL;
+  t->pipe = pipe;
+  luaL_setmetatable(L, OUT_META);
+  fflush(stdout);
+  t->f = pipe ? popen(path, "w") : fopen(path, mode);
+  if (!t->f)
+    return tds_lua_nilmsg(L, "cannot open '%s'%s", path, pipe ? " as a command" : "");
+  return 1;
+}
+
+static int l_output_set(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  fflush(stdout);
+  if (lua_isnoneornil(L, 1)) {
+    st->ctx.out = NULL;
+    st->ctx.out_ud = NULL;
+  } else {
+    target *t = check_target(L, 1);
+    st->ctx.out = to_file;
+    st->ctx.out_ud = t->f;
+  }
+  return 0;
+}
+
+static int l_output_write(lua_State *L) {
+  target *t = check_target(L, 1);
+  size_t n;
+  const char *s = luaL_checklstring(L, 2, &n);
+  fwrite(s, 1, n, t->f);
+  fflush(t->f);
+  return 0;
+}
+
+static int l_output_close(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  target *t = luaL_checkudata(L, 1, OUT_META);
+  if (t->f && st->ctx.out_ud == t->f) { /* never leave the core writing to it */
+    st->ctx.out = NULL;
+    st->ctx.out_ud = NULL;
+  }
+  close_target(t);
+  return 0;
+}
+
+static int target_gc(lua_State *L) {
+  return l_output_close(L);
+}
+
+void tds_open_out(lua_State *L, tds_state *st) {
+  luaL_newmetatable(L, OUT_META);
+  lua_pushlightuserdata(L, st);
+  lua_pushcclosure(L, target_gc, 1);
+  lua_setfield(L, -2, "__gc");
+  lua_pop(L, 1);
+  static const luaL_Reg fns[] = {{"output_open", l_output_open},
+                                 {"output_set", l_output_set},
+                                 {"output_write", l_output_write},
+                                 {"output_close", l_output_close},
+                                 {NULL, NULL}};
+  tds_lua_register(L, st, fns);
+}

@@ -1,0 +1,35 @@
+#!/bin/sh
+# language.sh: the command language test suite, each file in lang/ run
+# unchanged in tds and in Surface Evolver; the lines starting with K must
+# agree (numbers to 1e-10 relative: they are printed with %.12g or less
+# and involve no iteration, so only the last printed digit may differ).
+# errors.cmd stops at a run-time error in both programs (tds: exit 1);
+# histogram.cmd's lines are the histograms' (bins and counts).
+. "$(dirname "$0")/lib.sh"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+for run in flow:cube elements:cube elements:catbody errors:cube histogram:cube; do
+  c=${run%%:*} fe=${run#*:}
+  evolver_run "$EXAMPLES/$fe.fe" "$(cat "$ROOT/tests/evolver/lang/$c.cmd")" > "$tmp/ev.out"
+  cp "$EXAMPLES/$fe.fe" "$tmp/in.fe"
+  cp "$ROOT/tests/evolver/lang/$c.cmd" "$tmp/c.cmd"
+  (cd "$tmp" && "$TDS" -q in.fe -f c.cmd) > "$tmp/tds.out" 2> "$tmp/tds.err"
+  rc=$?
+  want=0
+  [ "$c" = errors ] && want=1
+  if [ $rc -ne $want ]; then
+    echo "FAIL language/$c-$fe: exit status $rc, expected $want: $(head -n 2 "$tmp/tds.err" | tr '\n' ' ')"
+    continue
+  fi
+  if [ "$c" = errors ] && ! grep -q '^c.cmd:4: division by zero' "$tmp/tds.err"; then
+    echo "FAIL language/$c-$fe: expected 'c.cmd:4: division by zero', got: $(cat "$tmp/tds.err")"
+    continue
+  fi
+  pat='^K'
+  [ "$c" = histogram ] && pat='^ *[-.0-9e]+ %- +[-.0-9e]+ +%d+$|^No qualifying'
+  "$TDS" -q -e "
+dofile('$ROOT/tests/evolver/numcmp.lua')
+local function grab(p) local t = {} for l in io.lines(p) do
+  for alt in ('$pat'):gmatch('[^|]+') do if l:find(alt) then t[#t + 1] = l; break end end end return t end
+numcmp('language/$c-$fe', grab('$tmp/ev.out'), grab('$tmp/tds.out'), 1e-10)"
+done

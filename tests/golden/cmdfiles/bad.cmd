@@ -1,0 +1,4 @@
+print "first"
+print 1 +
+   nosuch
+print "never printed"

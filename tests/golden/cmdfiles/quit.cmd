@@ -1,0 +1,3 @@
+print "before"
+quit 3
+print "after"
