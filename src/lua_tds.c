@@ -118,12 +118,13 @@ static volatile sig_atomic_t sig_seen; /* an interruption since the chunk began 
 static int sig_also_term;              /* --on-interrupt: SIGTERM stops too */
 
 static void stop_hook(lua_State *L, lua_Debug *ar) {
-  /* Raise only in Lua code outside the check mode's wrapper (which
-  ** finishes its verification and re-raises the command's own message);
+  /* Raise only in the user's Lua code, not in tds's embedded modules (the
+  ** check mode's wrapper, the Evolver runtime), which finish and re-raise
+  ** the command's own message ("interrupted: 3 of 10 iterations done");
   ** the hook stays armed and fires again at the next instruction. A C
   ** function polls ctx.interrupt itself. */
   if (lua_getinfo(L, "S", ar) &&
-      (ar->what[0] == 'C' || strcmp(ar->source, "=[tds check]") == 0))
+      (ar->what[0] == 'C' || strncmp(ar->source, "=[tds ", 6) == 0))
     return;
   if (sig_st) sig_st->ctx.interrupt = 0;
   where_user_from(L, 0); /* the user's line, not the prelude's */
