@@ -371,19 +371,32 @@ end
 function E.has_extra(h, name) return E.isel(h) and extra[kindof(h)][name] ~= nil end
 
 -- list GEN in Evolver's layout.
+local COLOR_NAME = { [-1] = "clear", [0] = "black", "blue", "green", "cyan", "red", "magenta",
+  "brown", "lightgray", "darkgray", "lightblue", "lightgreen", "lightcyan", "lightred",
+  "lightmagenta", "yellow", "white" }
+
+-- list GEN in Evolver's layout: coordinates or ids, then the element's
+-- constraints and flags, then its length or area (%g) in a comment.
 function E.list(h, kind, first)
   h = unwrap(h)
+  local cons = h.constraints and #h.constraints > 0 and table.concat(h.constraints, " ")
   if kind == "vertex" then
     if first then E.out("// Id               X                Y               Z\n") end
-    E.out(("%3d  %17.15g %17.15g %17.15g\n"):format(h.id, h.x, h.y, h.z))
+    E.out(("%3d  %17.15g %17.15g %17.15g%s%s\n"):format(h.id, h.x, h.y, h.z,
+      cons and ("  constraints " .. cons .. " ") or "", h.fixed and " fixed " or ""))
   elseif kind == "edge" then
     if first then E.out("// Id    endpoints\n") end
-    E.out(("%3d    %4d %4d     /*length %.15g*/ \n"):format(h.id, h.tail.id, h.head.id, h.length))
+    E.out(("%3d    %4d %4d   %s%s%s  /*length %g*/ \n"):format(h.id, h.tail.id, h.head.id,
+      cons and ("   constraints " .. cons) or "", h.fixed and " fixed" or "",
+      h.no_refine and "  no_refine" or "", h.length))
   elseif kind == "facet" then
     if first then E.out("// Id    edges\n") end
     local ids = {}
     for i, e in ipairs(h.edges) do ids[i] = tostring(e) end
-    E.out(("%3d   %s /*area %.15g*/\n"):format(h.id, table.concat(ids, " "), h.area))
+    local flags = (h.fixed and " fixed " or "") .. (h.tension ~= 1 and ("  density %g "):format(h.tension) or "")
+      .. (h.color ~= 0 and (" color " .. (COLOR_NAME[h.color] or tostring(h.color)) .. " ") or "")
+      .. (h.no_refine and " no_refine " or "")
+    E.out(("%3d   %s%s /*area %g*/\n"):format(h.id, table.concat(ids, " "), flags, h.area))
   elseif kind == "body" then
     if first then E.out("// Id    facets\n") end
     local ids = {}
@@ -391,6 +404,5 @@ function E.list(h, kind, first)
     E.out(("%3d    %s  volume %.15g\n"):format(h.id, table.concat(ids, " "), h.volume))
   end
 end
-
 
 return true

@@ -174,3 +174,18 @@ for spec in "cube|g 5; r; g 5" "mound|re; g 5; r; g 5; r; g 5" "qmound|re; g 5; 
 dofile('$ROOT/tests/evolver/numcmp.lua')
 numcmp('commands/gogo-until-unsupported/$f', lines_of('$tmp/ev.k', '^K'), lines_of('$tmp/tds.k', '^K'), 2e-3)"
 done
+# list with constraints and flags (mound.fe, after setting some).
+cat > "$tmp/l2.cmd" <<'CMDS'
+set vertex[1] fixed; set edge[1] fixed; set edge[2] no_refine; set edge[5] constraint 1; set edge[6] fixed; set edge[6] constraint 1; set edge[6] no_refine
+list vertex where id < 4 or id > 14
+list edge where id < 7 or id > 36
+set facet[2] fixed; set facet[3] tension 2; set facet[4] color red; set facet[5] no_refine
+list facet where id < 6
+CMDS
+cp "$EXAMPLES/mound.fe" "$tmp/mound.fe"
+evolver_run "$EXAMPLES/mound.fe" "$(cat "$tmp/l2.cmd")" > "$tmp/ev.out"
+(cd "$tmp" && "$TDS" -q mound.fe -f l2.cmd) > "$tmp/tds.out" 2>&1
+"$TDS" -q -e "
+dofile('$ROOT/tests/evolver/numcmp.lua')
+local pat = '^ *//? *[%dI]'
+numcmp('commands/list-mound', lines_of('$tmp/ev.out', pat), lines_of('$tmp/tds.out', pat), 0)"
