@@ -35,7 +35,7 @@ FUZZ_NAMES := $(patsubst tests/fuzz/fuzz_%.c,%,$(wildcard tests/fuzz/fuzz_*.c))
 FUZZ_REPLAY := $(FUZZ_NAMES:%=$(BUILD)/test_fuzz_%)
 TDS_BIN ?= tds
 
-.PHONY: all deps deps-test web demo test test-asan unit bench bench-paper clean fuzz fuzz-bins fuzz-smoke fuzz-cov
+.PHONY: all deps deps-test web demo test plan test-asan unit bench bench-paper clean fuzz fuzz-bins fuzz-smoke fuzz-cov
 
 all: $(TDS_BIN) web
 
@@ -77,8 +77,13 @@ $(BUILD)/png2ppm: tests/pictures/png2ppm.c | deps $(BUILD)
 
 unit: $(UNIT_BIN) $(FUZZ_REPLAY) $(BUILD)/png2ppm
 
+# T='script/declare evolver/dump' runs only those tests (doc: tests/run.sh).
 test: $(TDS_BIN) unit web | deps-test
-	@sh tests/run.sh $(abspath $(TDS_BIN)) $(abspath $(BUILD))
+	@sh tests/run.sh $(abspath $(TDS_BIN)) $(abspath $(BUILD)) $(T)
+
+# Rewrite tests/plan.txt, the names a full run must print, from a run.
+plan: $(TDS_BIN) unit web | deps-test
+	@PLAN_WRITE=1 sh tests/run.sh $(abspath $(TDS_BIN)) $(abspath $(BUILD))
 
 # The whole suite under AddressSanitizer and UndefinedBehaviorSanitizer.
 test-asan:
