@@ -107,6 +107,7 @@ static const char sandbox[] =
     "wrap('dump', function() return SCRATCH end)\n"
     "wrap('load_datafile', function() return SCRATCH end)\n"
     "wrap('load_chunk', function() return SCRATCH end)\n"
+    "if tds.load_replace then wrap('load_replace', function() return SCRATCH end) end\n"
     "dump = tds.dump\n"
     "io = { open = function(path, mode)\n"
     "  if mode ~= 'w' then return nil, 'fuzz: reading files is disabled' end\n"
@@ -131,6 +132,20 @@ static const char evolver_lines[] =
     "    if f then pcall(f) end\n"
     "  end\n"
     "end\n";
+
+#ifdef FUZZ_EVOLVER
+/* fuzz_evo: the input is Evolver command text, run on the cube by the
+** command-language runtime (lua/evorun.lua). */
+static const char evolver_text[] =
+    "local text = ...\n"
+    "vertices { {0,0,0}, {1,0,0}, {1,1,0}, {0,1,0}, {0,0,1}, {1,0,1}, {1,1,1}, {0,1,1} }\n"
+    "edges { {1,2}, {2,3}, {3,4}, {4,1}, {5,6}, {6,7}, {7,8}, {8,5},\n"
+    "        {1,5}, {2,6}, {3,7}, {4,8} }\n"
+    "faces { {1,10,-5,-9}, {2,11,-6,-10}, {3,12,-7,-11}, {4,9,-8,-12},\n"
+    "        {5,6,7,8}, {-4,-3,-2,-1} }\n"
+    "bodies { {1,2,3,4,5,6, volume = 1} }\n"
+    "evolver(text)\n";
+#endif
 
 int LLVMFuzzerInitialize(int *argc, char ***argv) {
   (void)argc;
@@ -161,7 +176,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
 
   steps = 0;
   lua_sethook(L, budget_hook, LUA_MASKCOUNT, HOOK_EVERY);
+#ifdef FUZZ_EVOLVER
+  if (luaL_loadbuffer(L, evolver_text, sizeof evolver_text - 1, "=evolver") == LUA_OK) {
+    lua_pushlstring(L, (const char *)data, size);
+    lua_pcall(L, 1, 0, 0);
+  }
+  if (0) {
+#else
   if (luaL_loadbufferx(L, (const char *)data, size, "=fuzz", "t") == LUA_OK) {
+#endif
     lua_pcall(L, 0, 0, 0);
   } else {
     lua_pop(L, 1);
