@@ -81,25 +81,21 @@ int main(int argc, char **argv) {
   int interactive = 0, quiet = 0, status = 0, quit_code = 0, safe = 0;
   int on_interrupt_dump = 0;
   const char *file = NULL, *outdir = NULL, *interrupt_path = NULL;
-  const char **code = calloc((size_t)argc + 1, sizeof *code);
-  char *is_cmdfile = calloc((size_t)argc + 1, 1); /* code[i] is a -f file */
+  /* code[i]: -e text or -f file; is_cmdfile[i]: it is a -f file. One
+  ** block, so each early return frees both with free(code). */
+  const char **code = calloc((size_t)argc + 1, sizeof *code + 1);
+  if (!code) return 1;
+  char *is_cmdfile = (char *)(code + argc + 1);
   int ncode = 0;
-  if (!code || !is_cmdfile) {
-    free(code);
-    free(is_cmdfile);
-    return 1;
-  }
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
     if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
       fputs(usage, stdout);
       free(code);
-      free(is_cmdfile);
       return 0;
     } else if (!strcmp(a, "--version")) {
       printf("tds %s (%s)\n", TDS_VERSION, LUA_RELEASE);
       free(code);
-      free(is_cmdfile);
       return 0;
     } else if (!strcmp(a, "-i")) {
       interactive = 1;
@@ -127,7 +123,6 @@ int main(int argc, char **argv) {
       if (++i == argc) {
         fprintf(stderr, "tds: -e needs an argument\n%s", usage);
         free(code);
-        free(is_cmdfile);
         return 1;
       }
       code[ncode++] = argv[i];
@@ -135,7 +130,6 @@ int main(int argc, char **argv) {
       if (++i == argc) {
         fprintf(stderr, "tds: -f needs a command file\n%s", usage);
         free(code);
-        free(is_cmdfile);
         return 1;
       }
       is_cmdfile[ncode] = 1;
@@ -143,14 +137,12 @@ int main(int argc, char **argv) {
     } else if (a[0] == '-' && a[1]) {
       fprintf(stderr, "tds: unknown option '%s'\n%s", a, usage);
       free(code);
-      free(is_cmdfile);
       return 1;
     } else if (!file) {
       file = a;
     } else {
       fprintf(stderr, "tds: only one FILE may be given ('%s')\n", a);
       free(code);
-      free(is_cmdfile);
       return 1;
     }
   }
@@ -160,7 +152,6 @@ int main(int argc, char **argv) {
   if (!L) {
     fprintf(stderr, "tds: cannot create Lua state\n");
     free(code);
-    free(is_cmdfile);
     return 1;
   }
   tds_state *st = tds_lua_open(L);
@@ -168,7 +159,6 @@ int main(int argc, char **argv) {
     fprintf(stderr, "tds: %s\n", lua_tostring(L, -1));
     lua_close(L);
     free(code);
-    free(is_cmdfile);
     return 1;
   }
   st->ctx.quiet = quiet;
@@ -235,6 +225,5 @@ int main(int argc, char **argv) {
   }
   lua_close(L);
   free(code);
-  free(is_cmdfile);
   return status;
 }
