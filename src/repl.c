@@ -14,23 +14,33 @@
 #define PROMPT2 "...> "
 #define HISTORY_MAX 1000
 
+/* Message handler of every chunk (as lua.c's): an error object that is not
+** a string becomes one through its __tostring, inside the protected call, so
+** a __tostring that raises cannot escape (it gives LUA_ERRERR instead of a
+** PANIC). q()'s quit table passes through. */
+static int message_handler(lua_State *L) {
+  if (lua_type(L, 1) == LUA_TSTRING || tds_lua_is_quit(L, 1, NULL)) return 1;
+  if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING) return 1;
+  lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
+  return 1;
+}
+
 static void print_error(lua_State *L) {
   const char *msg = lua_tostring(L, -1);
-  if (!msg) {
-    if (luaL_callmeta(L, -1, "__tostring") && lua_type(L, -1) == LUA_TSTRING)
-      msg = lua_tostring(L, -1);
-    else
-      msg = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, -1));
-  }
+  if (!msg) msg = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, -1));
   fprintf(stderr, "%s\n", msg);
   fflush(stderr);
 }
 
 int tds_run_chunk(lua_State *L, tds_state *st, int *quit_code) {
   fflush(stdout);
+  int base = lua_gettop(L); /* the chunk */
+  lua_pushcfunction(L, message_handler);
+  lua_insert(L, base);
   tds_lua_sigint(L, st, 1);
-  int status = lua_pcall(L, 0, LUA_MULTRET, 0);
+  int status = lua_pcall(L, 0, LUA_MULTRET, base);
   tds_lua_sigint(L, st, 0);
+  lua_remove(L, base);
   if (st->after_chunk) st->after_chunk(st->after_ud);
   fflush(stdout);
   if (status == LUA_OK) return 0;

@@ -11,3 +11,7 @@ run -e 'error("boom")'
 run -e 'q(3)'
 run ../../scripts/cube.tds -e 'print(vertex_count, edge_count, facet_count, body_count)'
 "$TDS" --help | head -n 1
+# An error object whose __tostring raises: an error message, not a PANIC.
+run -e 'error(setmetatable({}, {__tostring = function() error("x") end}))'
+run -e 'error(setmetatable({}, {__tostring = function() return "custom" end}))'
+run -e 'error({})'
