@@ -28,7 +28,7 @@ local function sorted_ids(kind, t, level)
 end
 
 local function declare(kind, t)
-  local level = 3 -- declare <- generator function <- user's line
+  local level = 4 -- declare <- pcall <- generator function <- user's line
   local ids = sorted_ids(kind, t, level)
   if kind == tds.facet and #ids > 0 then
     -- Facets split off polygons are appended after every declared id.
@@ -50,7 +50,14 @@ end
 local function generator(kind)
   return function(arg)
     if type(arg) == "table" then
-      declare(kind, arg) -- not a tail call: error levels count this frame
+      -- All or nothing: a failing entry takes back the ones before it.
+      local snap = tds.check_snapshot()
+      local ok, err = pcall(declare, kind, arg)
+      if not ok then
+        tds.check_restore(snap)
+        error(err, 0)
+      end
+      tds.check_release(snap)
       if kind == tds.body then tds.body_warnings() end
       return
     end

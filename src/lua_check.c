@@ -9,8 +9,10 @@
 **                                  every coordinate, parameter, pressure
 **                                  (with derived: energy, area, volume,
 **                                  quantity value) is finite (snap.h)
+**   tds.check_restore(snap)        put the surface back as in the snapshot
+**                                  (atomic declarations, lua/prelude.lua)
 ** The snapshot is freed by the garbage collector (or at once by
-** tds.check_release(snap)).
+** tds.check_release(snap) or tds.check_restore(snap)).
 */
 #include <string.h>
 
@@ -60,11 +62,19 @@ static int l_check_release(lua_State *L) {
   return 0;
 }
 
+static int l_check_restore(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  tds_snap *sn = luaL_checkudata(L, 1, SNAP_META);
+  if (sn->taken) tds_snap_restore(&st->s, sn);
+  return 0;
+}
+
 void tds_open_check(lua_State *L, tds_state *st) {
   static const luaL_Reg fns[] = {{"check_snapshot", l_check_snapshot},
                                  {"check_same", l_check_same},
                                  {"check_finite", l_check_finite},
                                  {"check_release", l_check_release},
+                                 {"check_restore", l_check_restore},
                                  {NULL, NULL}};
   if (luaL_newmetatable(L, SNAP_META)) {
     lua_pushcfunction(L, snap_gc);
