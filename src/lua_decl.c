@@ -8,33 +8,56 @@
 #include "lua_tds.h"
 #include "topo.h"
 
-/* Keys an entry may carry besides its positional values. */
-static const char *const vertex_keys[] = {"fixed", "constraint", "constraints",
-                                          "boundary", "bare", NULL};
-static const char *const edge_keys[] = {"fixed", "no_refine", "constraint",
-                                        "constraints", "boundary", "tension",
-                                        "density", "color", "bare", NULL};
-static const char *const face_keys[] = {"fixed", "no_refine", "constraint",
-                                        "constraints", "tension", "density",
-                                        "color", "nodisplay", NULL};
-static const char *const body_keys[] = {"volume", "density", "volconst",
-                                        "pressure", NULL};
+/* Keys an entry may carry besides its positional values, each with the
+** type its value must have: b boolean, n number, c a constraint number or
+** a list of them. */
+static const char *const vertex_keys[] = {"fixed=b", "constraint=c", "constraints=c",
+                                          "boundary=n", "bare=b", NULL};
+static const char *const edge_keys[] = {"fixed=b", "no_refine=b", "constraint=c",
+                                        "constraints=c", "boundary=n", "tension=n",
+                                        "density=n", "color=n", "bare=b", NULL};
+static const char *const face_keys[] = {"fixed=b", "no_refine=b", "constraint=c",
+                                        "constraints=c", "tension=n", "density=n",
+                                        "color=n", "nodisplay=b", NULL};
+static const char *const body_keys[] = {"volume=n", "density=n", "volconst=n",
+                                        "pressure=n", NULL};
 
-/* Check the entry's string keys; on an unknown one push nil, message. */
+/* Check the entry's string keys and the types of their values; on an
+** unknown key or a wrong type push nil, message and return 1. */
 static int bad_keys(lua_State *L, int t, const char *what, int id,
                     const char *const *keys) {
+  static const char *const want[] = {"b", "a boolean (true or false)", "n", "a number",
+                                     "c", "a constraint number or a list of them", NULL};
   lua_pushnil(L);
   while (lua_next(L, t)) {
-    lua_pop(L, 1);
-    if (lua_type(L, -1) != LUA_TSTRING) continue;
-    const char *k = lua_tostring(L, -1);
-    int ok = 0;
-    for (int i = 0; keys[i]; i++) ok |= !strcmp(k, keys[i]);
-    if (!ok) {
+    if (lua_type(L, -2) != LUA_TSTRING) {
+      lua_pop(L, 1);
+      continue;
+    }
+    const char *k = lua_tostring(L, -2);
+    size_t n = strlen(k);
+    char type = 0;
+    for (int i = 0; keys[i] && !type; i++)
+      if (!strncmp(k, keys[i], n) && keys[i][n] == '=') type = keys[i][n + 1];
+    int vt = lua_type(L, -1);
+    int ok = type == 'b' ? vt == LUA_TBOOLEAN
+             : type == 'n' ? vt == LUA_TNUMBER
+                           : vt == LUA_TNUMBER || vt == LUA_TTABLE;
+    if (!type || !ok) {
+      const char *tn = luaL_typename(L, -1);
+      lua_pop(L, 2);
       lua_pushnil(L);
-      lua_pushfstring(L, "%s %d: unknown attribute '%s'", what, id, k);
+      if (!type) {
+        lua_pushfstring(L, "%s %d: unknown attribute '%s'", what, id, k);
+      } else {
+        const char *w = "";
+        for (int i = 0; want[i]; i += 2)
+          if (want[i][0] == type) w = want[i + 1];
+        lua_pushfstring(L, "%s %d: %s must be %s, not a %s", what, id, k, w, tn);
+      }
       return 1;
     }
+    lua_pop(L, 1);
   }
   return 0;
 }
