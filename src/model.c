@@ -5,21 +5,6 @@
 #include <string.h>
 #include <strings.h>
 
-const char *const tds_method_names[TDS_M_COUNT] = {
-    "facet_area",             "edge_length",
-    "facet_vector_integral",  "edge_vector_integral",
-    "facet_scalar_integral",  "edge_scalar_integral",
-    "gravity_method",         "full_gravity_method",
-};
-
-int tds_method_by_name(const char *name) {
-  for (int i = 0; i < TDS_M_COUNT; i++)
-    if (!strcasecmp(name, tds_method_names[i])) return i;
-  if (!strcasecmp(name, "facet_tension")) return TDS_M_FACET_AREA;
-  if (!strcasecmp(name, "edge_tension")) return TDS_M_EDGE_LENGTH;
-  return -1;
-}
-
 static int lookup(void *ud, const char *name, size_t len) {
   return tds_surf_param_find(ud, name, len);
 }
@@ -195,28 +180,27 @@ int tds_model_quantity(tds_ctx *ctx, tds_surf *s, const char *name, int kind,
 int tds_model_method(tds_ctx *ctx, tds_surf *s, int idx, int method,
                      double modulus, tds_expr *integrand[3]) {
   tds_quantity *q = &s->quant[idx];
-  int need = method == TDS_M_FACET_VECTOR_INTEGRAL || method == TDS_M_EDGE_VECTOR_INTEGRAL
-                 ? 3
-             : method == TDS_M_FACET_SCALAR_INTEGRAL || method == TDS_M_EDGE_SCALAR_INTEGRAL
-                 ? 1
-                 : 0;
+  int user = method >= 0 && method < TDS_M_NROWS && (tds_methods[method].flags & TDS_MF_USER);
+  int flags = user ? tds_methods[method].flags : 0;
+  int need = (flags & TDS_MF_VECTOR) ? 3 : (flags & TDS_MF_SCALAR) ? 1 : 0;
   int have = 0;
   for (int i = 0; integrand && i < 3; i++) have += integrand[i] != NULL;
-  if (method < 0 || method >= TDS_M_COUNT || q->ninst == 4 ||
-      (need == 1 && !integrand[0]) || (need == 0 && have)) {
+  tds_method_inst *ni = NULL;
+  int bad = !user || (need == 1 && !integrand[0]) || (need == 0 && have);
+  if (!bad) ni = realloc(q->inst, (size_t)(q->ninst + 1) * sizeof *ni);
+  if (bad || !ni) {
     free3(integrand);
-    if (q->ninst == 4)
-      return tds_seterr(ctx, TDS_ERANGE, "quantity %s: at most 4 methods", q->name);
+    if (!bad) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
     return tds_seterr(ctx, TDS_ESYNTAX, "quantity %s: method %s %s", q->name,
-                      method >= 0 && method < TDS_M_COUNT ? tds_method_names[method] : "?",
+                      user ? tds_methods[method].name : "?",
                       need ? "needs its integrand" : "takes no integrand");
   }
+  q->inst = ni;
   tds_method_inst *mi = &q->inst[q->ninst++];
   mi->method = method;
   mi->modulus = modulus;
   take3(mi->integrand, integrand);
-  mi->npts = method == TDS_M_EDGE_VECTOR_INTEGRAL || method == TDS_M_EDGE_SCALAR_INTEGRAL
-                 ? edge_points(mi->integrand)
-                 : facet_points(mi->integrand);
+  mi->npts = tds_methods[method].kind == TDS_EL_EDGE ? edge_points(mi->integrand)
+                                                    : facet_points(mi->integrand);
   return TDS_OK;
 }
