@@ -274,6 +274,44 @@ static void gap_closed_form(void) {
   tds_surf_free(&E.s);
 }
 
+/* Degenerate elements (coincident corners, a collinear facet, a zero-length
+** edge) have no derivative; every row must still return finite numbers
+** (no NaN may reach the assembly), and a vanishing element has value 0. */
+static void rows_degenerate(void) {
+  env E;
+  h_setup(&E.ctx, &E.s);
+  tds_surf_param_set(&E.s, "a", 0.7);
+  tds_surf_param_set(&E.s, "b", -1.3);
+  const double p[3] = {0.3, -0.2, 0.5}, q[3] = {0.6, 0.1, 1.1}, r[3] = {0.9, 0.4, 1.7};
+  const double *cases[3][3] = {{p, p, p}, {p, q, r}, {q, q, r}}; /* last: edge q-q */
+  for (int rr = 0; rr < TDS_M_NROWS; rr++) {
+    const tds_method *row = &tds_methods[rr];
+    const integrand_set *is = (row->flags & TDS_MF_VECTOR)   ? &vec_sets[3]
+                              : (row->flags & TDS_MF_SCALAR) ? &sca_sets[3]
+                              : (row->flags & TDS_MF_FORMULA) ? &formula_sets[1]
+                                                              : NULL;
+    tds_expr *ig[3] = {NULL, NULL, NULL};
+    if (is) REQUIRE_OK(&E.ctx, compile_set(&E, is, ig) ? TDS_OK : TDS_ESYNTAX);
+    for (int c = 0; c < 3; c++) {
+      tds_mlocal L = {.x = {cases[c][0], cases[c][1], cases[c][2]}, .ig = ig,
+                      .npts = row->kind == TDS_EL_EDGE ? 2 : 12, .k = 1,
+                      .param = E.s.parval, .G = 9.8};
+      double g[3][3], h[9][9];
+      double v = row->eval(&L, g, h);
+      int fin = isfinite(v);
+      for (int k = 0; k < 3 * row->kind; k++) {
+        fin &= isfinite(g[k / 3][k % 3]);
+        for (int j = 0; j < 3 * row->kind; j++) fin &= isfinite(h[k][j]);
+      }
+      if (!fin) printf("  row %s, case %d: not finite\n", row->name, c);
+      CHECK(fin);
+      if (c == 0) CHECK(v == 0); /* a point: no length, area or volume */
+    }
+    free_set(ig);
+  }
+  tds_surf_free(&E.s);
+}
+
 /* Names: every user row is found by its name, in any case, and Evolver's
 ** aliases map to area and length; internal rows are not user methods. */
 static void names(void) {
@@ -360,6 +398,7 @@ int main(void) {
   RUN(rows_fd);
   RUN(rows_agree);
   RUN(gap_closed_form);
+  RUN(rows_degenerate);
   RUN(names);
   RUN(quantity_many_methods);
   RUN(assembly_sinks);
