@@ -251,14 +251,14 @@ static int s_quantity(const tds_surf *s, const term *t, tds_id el, sink *o) {
   return 1;
 }
 
-/* gravity_method and full_gravity_method: the density difference of the
-** facet's bodies (times G for the full one). */
-static int s_quantity_gravity(const tds_surf *s, const term *t, tds_id f, sink *o) {
+/* Rows flagged TDS_MF_DENSITY (gravity_method, full_gravity_method): the
+** density difference of the facet's bodies (times G with TDS_MF_TIMES_G). */
+static int s_quantity_density(const tds_surf *s, const term *t, tds_id f, sink *o) {
   const tds_mesh *m = &s->m;
   double rho = 0;
   if (m->fb[f][0] != TDS_NONE) rho += m->bdensity[m->fb[f][0]];
   if (m->fb[f][1] != TDS_NONE) rho -= m->bdensity[m->fb[f][1]];
-  if (t->row == &tds_methods[TDS_M_FULL_GRAVITY]) rho *= s->gravity_on ? s->gravity : 0;
+  if (t->row->flags & TDS_MF_TIMES_G) rho *= s->gravity_on ? s->gravity : 0;
   o[0] = (sink){TDS_NONE, t->w * rho};
   return rho != 0;
 }
@@ -367,8 +367,8 @@ static int quantity_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
     for (int j = 0; j < Q->ninst; j++) {
       const tds_method_inst *mi = &Q->inst[j];
       if (mi->modulus == 0 || Q->modulus == 0) continue;
-      int grav = mi->method == TDS_M_GRAVITY || mi->method == TDS_M_FULL_GRAVITY;
-      term t = make(s, mi->method, grav ? s_quantity_gravity : s_quantity, mi->integrand,
+      int dens = tds_methods[mi->method].flags & TDS_MF_DENSITY;
+      term t = make(s, mi->method, dens ? s_quantity_density : s_quantity, mi->integrand,
                     mi->npts);
       t.w = Q->modulus * mi->modulus;
       t.gq = gq;

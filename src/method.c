@@ -149,8 +149,10 @@ const tds_method tds_methods[TDS_M_NROWS] = {
                                     TDS_MF_USER | TDS_MF_SCALAR, tds_mk_edge_sint},
     /* The two gravity methods share the moment kernel; they differ in the
     ** weight the assembly gives each facet (density, or G * density). */
-    [TDS_M_GRAVITY] = {"gravity_method", TDS_EL_FACET, TDS_MF_USER, k_zmoment},
-    [TDS_M_FULL_GRAVITY] = {"full_gravity_method", TDS_EL_FACET, TDS_MF_USER, k_zmoment},
+    [TDS_M_GRAVITY] = {"gravity_method", TDS_EL_FACET, TDS_MF_USER | TDS_MF_DENSITY,
+                       k_zmoment},
+    [TDS_M_FULL_GRAVITY] = {"full_gravity_method", TDS_EL_FACET,
+                            TDS_MF_USER | TDS_MF_DENSITY | TDS_MF_TIMES_G, k_zmoment},
     [TDS_M_FACET_VOLUME] = {"facet_volume", TDS_EL_FACET, 0, tds_mk_volume},
     [TDS_M_FACET_VOLUME_SYM] = {"facet_volume_symmetric", TDS_EL_FACET, 0, tds_mk_volume_sym},
     [TDS_M_EDGE_GAP] = {"edge_gap", TDS_EL_EDGE, TDS_MF_FORMULA | TDS_MF_HESS_FD,

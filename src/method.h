@@ -27,9 +27,13 @@ enum {                     /* row flags */
   TDS_MF_SCALAR = 2,       /* reads a scalar integrand ig[0] (required) */
   TDS_MF_FORMULA = 4,      /* reads a level-set formula ig[0] and constant k */
   TDS_MF_USER = 8,         /* a named quantity may use it (METHOD name) */
-  TDS_MF_HESS_FD = 16      /* Hessian by central differences of the exact
+  TDS_MF_HESS_FD = 16,     /* Hessian by central differences of the exact
                               gradient (the exact one needs third
                               derivatives of the formula) */
+  TDS_MF_DENSITY = 32,     /* as a quantity method, weighted per facet by
+                              the density of its front body minus its
+                              back body's */
+  TDS_MF_TIMES_G = 64      /* ... and by G when gravity is on (0 if off) */
 };
 
 /* Rows. The first TDS_M_COUNT are the named quantity methods, in the
