@@ -223,12 +223,12 @@ static int edge_bodies(const tds_mesh *m, tds_id e, double w, sink *o) {
   return n;
 }
 
-/* Constraint content: + (t->w = 1); boundary content: - (t->w = -1), the
-** other way round (Evolver's convention, checked against evolver-nox-d on
-** column.fe and a test body). */
+/* Constraint content adds to the bodies with edge_bodies' signs; boundary
+** content the other way round (Evolver's convention, checked against
+** evolver-nox-d on column.fe and a test body). */
 static int s_con_content(const tds_surf *s, const term *t, tds_id e, sink *o) {
   if (!on_con(&s->m, t, e)) return 0;
-  return edge_bodies(&s->m, e, conrev(&s->m, e) * t->w, o);
+  return edge_bodies(&s->m, e, conrev(&s->m, e), o);
 }
 
 static int s_bdry_energy(const tds_surf *s, const term *t, tds_id e, sink *o) {
@@ -308,6 +308,24 @@ static int facet_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
   return rc;
 }
 
+/* The energy and content integrands of constraint or boundary `slot`
+** (edge_vector_integral rows; NULL components are 0), each with its sink
+** function and quadrature (npts[0] energy, npts[1] content). */
+static int integrand_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int slot,
+                           tds_expr *const energy[3], tds_expr *const content[3],
+                           const int npts[2], sink_fn fe, sink_fn fc) {
+  tds_expr *const *ig[2] = {energy, content};
+  const sink_fn fn[2] = {fe, fc};
+  int rc = TDS_OK;
+  for (int k = 0; k < 2 && rc == TDS_OK; k++) {
+    if (!has_any(ig[k])) continue;
+    term t = make(s, TDS_M_EDGE_VECTOR_INTEGRAL, fn[k], ig[k], npts[k]);
+    t.slot = slot;
+    rc = energy_term(ctx, s, out, t);
+  }
+  return rc;
+}
+
 /* Edge tension, constraint and boundary integrals, gap energy. */
 static int edge_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
   int rc = TDS_OK;
@@ -317,16 +335,8 @@ static int edge_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
   for (int c = 0; c < TDS_MAX_CON && rc == TDS_OK; c++) {
     const tds_constraint *con = &s->con[c];
     if (!con->number) continue;
-    if (has_any(con->energy)) {
-      term t = make(s, TDS_M_EDGE_VECTOR_INTEGRAL, s_con_energy, con->energy, con->npts[0]);
-      t.slot = c;
-      rc = energy_term(ctx, s, out, t);
-    }
-    if (rc == TDS_OK && has_any(con->content)) {
-      term t = make(s, TDS_M_EDGE_VECTOR_INTEGRAL, s_con_content, con->content, con->npts[1]);
-      t.slot = c;
-      rc = energy_term(ctx, s, out, t);
-    }
+    rc = integrand_terms(ctx, s, out, c, con->energy, con->content, con->npts, s_con_energy,
+                         s_con_content);
     if (rc == TDS_OK && (con->flags & TDS_CON_CONVEX) && con->formula && s->gap_constant != 0) {
       term t = make(s, TDS_M_EDGE_GAP, s_gap, &con->formula, 0);
       t.slot = c;
@@ -336,16 +346,8 @@ static int edge_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
   }
   for (int b = 0; b < s->nbdry && rc == TDS_OK; b++) {
     const tds_boundary *B = &s->bdry[b];
-    if (has_any(B->energy)) {
-      term t = make(s, TDS_M_EDGE_VECTOR_INTEGRAL, s_bdry_energy, B->energy, B->npts[0]);
-      t.slot = b;
-      rc = energy_term(ctx, s, out, t);
-    }
-    if (rc == TDS_OK && has_any(B->content)) {
-      term t = make(s, TDS_M_EDGE_VECTOR_INTEGRAL, s_bdry_content, B->content, B->npts[1]);
-      t.slot = b;
-      rc = energy_term(ctx, s, out, t);
-    }
+    rc = integrand_terms(ctx, s, out, b, B->energy, B->content, B->npts, s_bdry_energy,
+                         s_bdry_content);
   }
   return rc;
 }

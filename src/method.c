@@ -23,8 +23,7 @@ static double eps(int i, int j, int m) {
   return ((j - i + 3) % 3 == 1) ? 1 : -1;
 }
 
-/* u[c][i] = dN/dx[c][i] = E_i x d_c. */
-static void normal_derivs(const double *const *x, double u[3][3][3]) {
+void tds_mk_normal_derivs(const double *const *x, double u[3][3][3]) {
   for (int c = 0; c < 3; c++) {
     double d[3];
     v3_sub(d, x[(c + 1) % 3], x[(c + 2) % 3]);
@@ -45,7 +44,7 @@ void tds_mk_area_hess(const double *const *x, double (*h)[9]) {
   memset(h, 0, sizeof(double[9][9]));
   if (!(len > 0)) return; /* not differentiable: a degenerate facet */
   double n[3] = {N[0] / len, N[1] / len, N[2] / len};
-  normal_derivs(x, u);
+  tds_mk_normal_derivs(x, u);
   /* A = |N|/2: d2A = (u.u' - (n.u)(n.u'))/(2|N|) + n . d2N / 2 */
   for (int c = 0; c < 3; c++)
     for (int i = 0; i < 3; i++)
@@ -87,7 +86,7 @@ static double k_length(const tds_mlocal *L, double g[3][3], double h[9][9]) {
 static void nz_poly_hess(const double *const *x, double P, const double *dP,
                          const double (*ddP)[3], double den, double (*h)[9]) {
   double u[3][3][3];
-  normal_derivs(x, u);
+  tds_mk_normal_derivs(x, u);
   double Nz = (x[1][0] - x[0][0]) * (x[2][1] - x[0][1]) -
               (x[1][1] - x[0][1]) * (x[2][0] - x[0][0]);
   for (int c = 0; c < 3; c++)

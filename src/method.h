@@ -89,6 +89,10 @@ double tds_mk_edge_vint(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_edge_sint(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_edge_gap(const tds_mlocal *L, double g[3][3], double h[9][9]);
 
+/* Derivatives of a facet's normal N = (x1-x0) x (x2-x0):
+** u[c][i] = dN/dx[c][i] = E_i x (x[c+1] - x[c+2]) (indices mod 3). */
+void tds_mk_normal_derivs(const double *const *x, double u[3][3][3]);
+
 /* Hessians of the facet area, z-volume and symmetric volume at corners x
 ** (h as for kernels). */
 void tds_mk_area_hess(const double *const *x, double (*h)[9]);

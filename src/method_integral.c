@@ -128,16 +128,7 @@ double tds_mk_facet_vint(const tds_mlocal *L, double g[3][3], double h[9][9]) {
   v3_sub(ac, x[2], x[0]);
   v3_cross(N, ab, ac);
   clear(3, g, h);
-  if (g) /* u[c][i] = dN/dx[c][i] = E_i x (x[c+1] - x[c+2]) */
-    for (int c = 0; c < 3; c++) {
-      double d[3];
-      v3_sub(d, x[(c + 1) % 3], x[(c + 2) % 3]);
-      for (int i = 0; i < 3; i++) {
-        double e[3] = {0, 0, 0};
-        e[i] = 1;
-        v3_cross(u[c][i], e, d);
-      }
-    }
+  if (g) tds_mk_normal_derivs(x, u);
   for (int q = 0; q < R->n; q++) {
     double p[3] = {0, 0, 0}, f[3], J[3][3], H[3][3][3], w = R->w[q] / 2;
     const double *b = R->b[q];
