@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
@@ -291,9 +292,8 @@ static int h_quantity(df *d, const hdr_kw *k) {
     if (*d->p == '=') d->p++;
     if ((rc = df_header_value(d, &target, what))) return rc;
   }
-  meth ms[4];
+  meth *ms = NULL; /* the methods, any number */
   int nm = 0;
-  memset(ms, 0, sizeof ms);
   for (;;) {
     if ((rc = df_more(d, &have))) goto fail;
     if (!have) break;
@@ -309,10 +309,13 @@ static int h_quantity(df *d, const hdr_kw *k) {
     } else if (!strcmp(w, "modulus")) {
       rc = df_header_value(d, nm ? &ms[nm - 1].modulus : &modulus, what);
     } else if (!strcmp(w, "method") || !strcmp(w, "global_method")) {
-      if (nm == 4) {
-        rc = df_err(d, at, TDS_ESYNTAX, "%s: at most 4 methods are supported", what);
+      meth *nms = realloc(ms, (size_t)(nm + 1) * sizeof *ms);
+      if (!nms) {
+        rc = df_err(d, at, TDS_ENOMEM, "out of memory");
         goto fail;
       }
+      ms = nms;
+      memset(&ms[nm], 0, sizeof ms[nm]);
       int gm = w[0] == 'g';
       if ((rc = df_more(d, &have))) goto fail;
       const char *ma = d->p;
@@ -374,7 +377,7 @@ static int h_quantity(df *d, const hdr_kw *k) {
       rc = df_err_line(d, ms[i].line, TDS_ESYNTAX,
                        "%s: method %s without GLOBAL (applied to listed elements) is "
                        "not supported yet", what,
-                       df_upper(tds_method_names[ms[i].method], u, sizeof u));
+                       df_upper(tds_methods[ms[i].method].name, u, sizeof u));
       goto fail;
     }
   int idx;
@@ -390,7 +393,7 @@ static int h_quantity(df *d, const hdr_kw *k) {
                          ms[i].method == TDS_M_EDGE_VECTOR_INTEGRAL)) {
       rc = df_err_line(d, ms[i].line, TDS_ESYNTAX,
                        "quantity %s: method %s needs a vector_integrand, not a "
-                       "scalar_integrand", name, tds_method_names[ms[i].method]);
+                       "scalar_integrand", name, tds_methods[ms[i].method].name);
       goto fail;
     }
   for (int i = 0; i < nm; i++) {
@@ -401,9 +404,11 @@ static int h_quantity(df *d, const hdr_kw *k) {
       goto fail;
     }
   }
+  free(ms);
   return TDS_OK;
 fail:
-  for (int i = 0; i < 4; i++) df_free3(ms[i].in);
+  for (int i = 0; i < nm; i++) df_free3(ms[i].in);
+  free(ms);
   return rc;
 }
 

@@ -183,13 +183,13 @@ static void header(out *o, const tds_surf *s) {
     for (int j = 0; j < q->ninst; j++) {
       const tds_method_inst *mi = &q->inst[j];
       int mth = mi->method >= 0 && mi->method < TDS_M_COUNT ? mi->method : 0;
-      fprintf(f, "METHOD %s", tds_method_names[mth]);
+      fprintf(f, "METHOD %s", tds_methods[mth].name);
       if (mi->modulus != 1) {
         fputs(" MODULUS", f);
         num(o, mi->modulus, "method modulus", i + 1);
       }
       fputs(" GLOBAL\n", f);
-      if (mth == TDS_M_FACET_VECTOR_INTEGRAL || mth == TDS_M_EDGE_VECTOR_INTEGRAL) {
+      if (tds_methods[mth].flags & TDS_MF_VECTOR) {
         fputs("VECTOR_INTEGRAND:\n", f);
         for (int k = 0; k < 3; k++) {
           fprintf(f, "Q%d: ", k + 1);

@@ -1,94 +1,404 @@
-/* eval.c: energy, gradient and constrained-quantity assembly. */
+/* eval.c: energy, gradient and constrained-quantity assembly.
+**
+** Every term is a row of the method table (method.h) bound to the
+** elements it applies to: a term names its row, its gathered constants
+** (integrands, quadrature), and a sink function that says, per element,
+** with which weights the row's value goes where: to the term's own total
+** (the energy, or a named quantity) or to a body's volume. One loop,
+** assemble(), gathers each element's corners, calls the row and scatters
+** value and gradient. The terms (Evolver's model):
+**   facet tension      facet_area x tension                 -> energy
+**   body volume        facet_volume(_symmetric) +-1         -> bodies
+**   prescribed pressure  the same volume x -+p              -> energy
+**   gravity            full_gravity_method x G density      -> energy
+**   edge tension       edge_length x tension                -> energy
+**   constraint/boundary energy   edge_vector_integral x +-1 -> energy
+**   constraint/boundary content  edge_vector_integral       -> bodies
+**   gap energy         edge_gap on convex constraints       -> energy
+**   named quantities   any user row x modulus               -> quantity
+** FIXED edges carry no constraint integrals (Evolver's rule); boundary
+** integrals apply to every edge on the boundary.
+*/
 #include "eval.h"
 
 #include <math.h>
 #include <string.h>
 
-#include "eval_int.h"
-#include "geom.h"
+#include "method.h"
+#include "vec3.h"
 
-/* Facet pass: area energy, body volumes and gravity. */
-static void facet_pass(tds_surf *s, tds_eval_out *out) {
-  tds_mesh *m = &s->m;
-  double (*grad)[3] = out->grad;
+/* Where a weighted value goes: body b (its volume and, if constrained,
+** its fixq gradient), or with b == TDS_NONE the term's own total. */
+typedef struct sink {
+  tds_id body;
+  double w;
+} sink;
+
+#define MAX_SINKS 64 /* bodies around one edge, and the own total */
+
+typedef struct term term;
+/* Sinks of element el (facet or edge by the row's kind): count, 0 to skip
+** the element, or -1 when there are more than MAX_SINKS. */
+typedef int (*sink_fn)(const tds_surf *s, const term *t, tds_id el, sink *out);
+
+struct term {
+  const tds_method *row;
+  sink_fn sinks;
+  tds_mlocal L;   /* constants for the row; x is filled per element */
+  int slot;       /* constraint or boundary slot, for the sink function */
+  double w;       /* weight for the sink function (sign, modulus) */
+  int32_t gq;     /* own total's gradient: -1 the energy gradient,
+                     q >= 0 fixq quantity q, -2 none */
+  double total;   /* out: sum of w * value to the own total */
+  double sum;     /* out: sum of the unweighted values (total area) */
+};
+
+/* Scatter value v and gradient g of term t on an element with corners vs
+** to its sinks. */
+static inline __attribute__((always_inline)) void
+scatter(tds_surf *s, tds_eval_out *out, term *t, const tds_id *vs, int kind,
+        const sink *sk, int ns, double v, double (*g)[3]) {
   tds_fixq *fq = out->fq;
-  const int grav = s->gravity_on && s->gravity != 0;
-  const int sym = s->symmetric_content;
-  double energy = 0, area = 0;
-
-  for (tds_id b = 0; b < m->nb; b++)
-    m->bvol[b] = (m->bflags[b] & TDS_DEAD) ? 0 : m->bvolconst[b];
-
-  for (tds_id f = 0; f < m->nf; f++) {
-    if (m->fflags[f] & TDS_DEAD) continue;
-    const tds_id *fv = m->fv[f];
-    const double *a = m->x[fv[0]], *b = m->x[fv[1]], *c = m->x[fv[2]];
-    double g[3][3];
-    double A = geom_area(a, b, c, grad ? g : NULL);
-    double ten = m->ften[f];
-    area += A;
-    energy += ten * A;
-    if (grad && ten != 0)
-      for (int k = 0; k < 3; k++) v3_axpy(grad[fv[k]], ten, g[k]);
-
-    tds_id fb0 = m->fb[f][0], fb1 = m->fb[f][1];
-    if ((fb0 == TDS_NONE && fb1 == TDS_NONE) || (m->fflags[f] & TDS_NONCONTENT))
-      continue;
-    int need_vg = fq != NULL || grad != NULL;
-    double V = sym ? geom_volume_sym(a, b, c, need_vg ? g : NULL)
-                   : geom_volume_z(a, b, c, need_vg ? g : NULL);
-    double gw[3][3], W = 0;
-    int wdone = 0;
-    for (int j = 0; j < 2; j++) {
-      tds_id bd = m->fb[f][j];
-      if (bd == TDS_NONE) continue;
-      double sign = j ? -1.0 : 1.0;
-      m->bvol[bd] += sign * V;
-      if (fq && fq->bq[bd] >= 0) {
-        int32_t q = fq->bq[bd];
-        for (int k = 0; k < 3; k++) {
-          double gk[3] = {sign * g[k][0], sign * g[k][1], sign * g[k][2]};
-          tds_fixq_add(fq, fv[k], q, gk);
-        }
+  t->sum += v;
+  for (int k = 0; k < ns; k++) {
+    double w = sk[k].w;
+    tds_id b = sk[k].body;
+    int32_t q = b == TDS_NONE ? t->gq : fq && fq->bq[b] >= 0 ? fq->bq[b] : -2;
+    if (b == TDS_NONE) t->total += w * v;
+    else s->m.bvol[b] += w * v;
+    if (q == -1)
+      for (int c = 0; c < kind; c++) v3_axpy(out->grad[vs[c]], w, g[c]);
+    else if (q >= 0)
+      for (int c = 0; c < kind; c++) {
+        double gc[3] = {w * g[c][0], w * g[c][1], w * g[c][2]};
+        tds_fixq_add(fq, vs[c], q, gc);
       }
-      if (m->bflags[bd] & TDS_PRESSURE) { /* energy -p V */
-        double p = m->bpressure[bd];
-        energy -= sign * p * V;
-        if (grad)
-          for (int k = 0; k < 3; k++) v3_axpy(grad[fv[k]], -sign * p, g[k]);
-      }
-      if (grav && m->bdensity[bd] != 0) {
-        if (!wdone) {
-          W = geom_zmoment(a, b, c, grad ? gw : NULL);
-          wdone = 1;
-        }
-        double w = sign * s->gravity * m->bdensity[bd];
-        energy += w * W;
-        if (grad)
-          for (int k = 0; k < 3; k++) v3_axpy(grad[fv[k]], w, gw[k]);
-      }
-    }
   }
-  out->energy += energy;
-  out->area += area;
 }
 
-/* Edges with a tension (soapfilm: only where set). */
-static void edge_pass(tds_surf *s, tds_eval_out *out) {
+/* Whether any sink needs the gradient. */
+static inline int want_grad(const tds_eval_out *out, const term *t, const sink *sk, int ns) {
+  int want = 0;
+  for (int k = 0; k < ns; k++)
+    want |= sk[k].body == TDS_NONE ? t->gq != -2 : out->fq && out->fq->bq[sk[k].body] >= 0;
+  return want;
+}
+
+/* The assembly loop: for every live element of the kind, the sinks of
+** term t0 (and t1, when not NULL), one gather, the row kernels, the
+** scatter. Written once and instantiated (always_inline) with constant
+** kernels and sink functions for the fused facet pass, and with the
+** row's own for every other term. t1 shares t0's constants (L): only
+** rows without integrands are fused. TDS_OK or TDS_ERANGE (too many
+** bodies on an edge). */
+static inline __attribute__((always_inline)) int
+assemble_k(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int kind, term *t0,
+           tds_mkernel k0, sink_fn f0, term *t1, tds_mkernel k1, sink_fn f1) {
   tds_mesh *m = &s->m;
-  for (tds_id e = 0; e < m->ne; e++) {
-    if ((m->eflags[e] & TDS_DEAD) || m->eten[e] == 0) continue;
-    const double *a = m->x[m->ev[e][0]], *b = m->x[m->ev[e][1]];
-    double d[3];
-    v3_sub(d, b, a);
-    double len = v3_norm(d);
-    out->energy += m->eten[e] * len;
-    if (out->grad && len > 0) {
-      double t = m->eten[e] / len;
-      v3_axpy(out->grad[m->ev[e][1]], t, d);
-      v3_axpy(out->grad[m->ev[e][0]], -t, d);
+  const tds_id n = kind == TDS_EL_FACET ? m->nf : m->ne;
+  const uint32_t *flags = kind == TDS_EL_FACET ? m->fflags : m->eflags;
+  tds_mlocal L = t0->L;
+  sink sk0[MAX_SINKS], sk1[4]; /* a fused t1 (body volumes) has at most 3 */
+  double g[3][3];
+  for (tds_id el = 0; el < n; el++) {
+    if (flags[el] & TDS_DEAD) continue;
+    int n0 = f0(s, t0, el, sk0), n1 = t1 ? f1(s, t1, el, sk1) : 0;
+    if (n0 == 0 && n1 == 0) continue;
+    if (n0 < 0)
+      return tds_seterr(ctx, TDS_ERANGE, "edge %d: more than %d bodies around it",
+                        (int)el + 1, MAX_SINKS - 1);
+    const tds_id *vs = kind == TDS_EL_FACET ? m->fv[el] : m->ev[el];
+    for (int c = 0; c < kind; c++) L.x[c] = m->x[vs[c]];
+    if (n0) {
+      int want = want_grad(out, t0, sk0, n0);
+      double v = k0(&L, want ? g : NULL, NULL);
+      scatter(s, out, t0, vs, kind, sk0, n0, v, g);
+    }
+    if (n1) {
+      int want = want_grad(out, t1, sk1, n1);
+      double v = k1(&L, want ? g : NULL, NULL);
+      scatter(s, out, t1, vs, kind, sk1, n1, v, g);
     }
   }
+  return TDS_OK;
+}
+
+/* One term, any row. */
+static int assemble(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, term *t) {
+  return assemble_k(ctx, s, out, t->row->kind, t, t->row->eval, t->sinks, NULL, NULL, NULL);
+}
+
+/* ---- sink functions ---- */
+
+static inline __attribute__((always_inline)) int
+s_tension(const tds_surf *s, const term *t, tds_id f, sink *o) {
+  (void)t;
+  o[0] = (sink){TDS_NONE, s->m.ften[f]};
+  return 1;
+}
+
+/* Body volumes: + for the front body, - for the back; with a prescribed
+** pressure p the energy -p V as well. */
+static inline __attribute__((always_inline)) int
+s_volume(const tds_surf *s, const term *t, tds_id f, sink *o) {
+  const tds_mesh *m = &s->m;
+  (void)t;
+  if (m->fflags[f] & TDS_NONCONTENT) return 0;
+  int n = 0;
+  double pw = 0;
+  for (int j = 0; j < 2; j++) {
+    tds_id b = m->fb[f][j];
+    if (b == TDS_NONE) continue;
+    double sign = j ? -1.0 : 1.0;
+    o[n++] = (sink){b, sign};
+    if (m->bflags[b] & TDS_PRESSURE) pw -= sign * m->bpressure[b];
+  }
+  if (pw != 0) o[n++] = (sink){TDS_NONE, pw};
+  return n;
+}
+
+/* Gravity: G density int z dV per body, as the flux of (0, 0, z^2/2). */
+static int s_gravity(const tds_surf *s, const term *t, tds_id f, sink *o) {
+  const tds_mesh *m = &s->m;
+  (void)t;
+  if (m->fflags[f] & TDS_NONCONTENT) return 0;
+  double w = 0;
+  if (m->fb[f][0] != TDS_NONE) w += m->bdensity[m->fb[f][0]];
+  if (m->fb[f][1] != TDS_NONE) w -= m->bdensity[m->fb[f][1]];
+  o[0] = (sink){TDS_NONE, s->gravity * w};
+  return w != 0;
+}
+
+static int s_edge_tension(const tds_surf *s, const term *t, tds_id e, sink *o) {
+  (void)t;
+  o[0] = (sink){TDS_NONE, s->m.eten[e]};
+  return s->m.eten[e] != 0;
+}
+
+static double conrev(const tds_mesh *m, tds_id e) {
+  return (m->eflags[e] & TDS_CONREV) ? -1 : 1;
+}
+
+static int on_con(const tds_mesh *m, const term *t, tds_id e) {
+  return (m->econ[e] & ((tds_cmask)1 << t->slot)) && !(m->eflags[e] & TDS_FIXED);
+}
+
+static int s_con_energy(const tds_surf *s, const term *t, tds_id e, sink *o) {
+  if (!on_con(&s->m, t, e)) return 0;
+  o[0] = (sink){TDS_NONE, conrev(&s->m, e)};
+  return 1;
+}
+
+static int s_gap(const tds_surf *s, const term *t, tds_id e, sink *o) {
+  if (!on_con(&s->m, t, e)) return 0;
+  o[0] = (sink){TDS_NONE, 1};
+  return 1;
+}
+
+/* The bodies of the facets around edge e with their content signs: + for
+** a facet that uses the edge forwards and its front body (Evolver's rule),
+** flipped for reversed use or back bodies, times w. Merged per body. */
+static int edge_bodies(const tds_mesh *m, tds_id e, double w, sink *o) {
+  int32_t h = m->eside[e];
+  if (h == TDS_NONE) return 0;
+  int n = 0;
+  int32_t sd = h;
+  do {
+    tds_id f = sd / 3;
+    double or = TDS_OREV(m->fe[f][sd % 3]) ? -1 : 1;
+    for (int j = 0; j < 2; j++) {
+      tds_id b = m->fb[f][j];
+      if (b == TDS_NONE) continue;
+      double sg = (j ? -or : or) * w;
+      int k = 0;
+      while (k < n && o[k].body != b) k++;
+      if (k == n) {
+        if (n == MAX_SINKS) return -1;
+        o[n++] = (sink){b, 0};
+      }
+      o[k].w += sg;
+    }
+    sd = m->side_next[sd];
+  } while (sd != h);
+  return n;
+}
+
+/* Constraint content adds to the bodies with edge_bodies' signs; boundary
+** content the other way round (Evolver's convention, checked against
+** evolver-nox-d on column.fe and a test body). */
+static int s_con_content(const tds_surf *s, const term *t, tds_id e, sink *o) {
+  if (!on_con(&s->m, t, e)) return 0;
+  return edge_bodies(&s->m, e, conrev(&s->m, e), o);
+}
+
+static int s_bdry_energy(const tds_surf *s, const term *t, tds_id e, sink *o) {
+  if (s->m.ebdry[e] != (tds_id)t->slot) return 0;
+  o[0] = (sink){TDS_NONE, conrev(&s->m, e)};
+  return 1;
+}
+
+static int s_bdry_content(const tds_surf *s, const term *t, tds_id e, sink *o) {
+  if (s->m.ebdry[e] != (tds_id)t->slot) return 0;
+  return edge_bodies(&s->m, e, -conrev(&s->m, e), o);
+}
+
+/* A named quantity's method instance: every live element (Evolver's
+** GLOBAL), weight modulus x instance modulus. */
+static int s_quantity(const tds_surf *s, const term *t, tds_id el, sink *o) {
+  (void)s;
+  (void)el;
+  o[0] = (sink){TDS_NONE, t->w};
+  return 1;
+}
+
+/* Rows flagged TDS_MF_DENSITY (gravity_method, full_gravity_method): the
+** density difference of the facet's bodies (times G with TDS_MF_TIMES_G). */
+static int s_quantity_density(const tds_surf *s, const term *t, tds_id f, sink *o) {
+  const tds_mesh *m = &s->m;
+  double rho = 0;
+  if (m->fb[f][0] != TDS_NONE) rho += m->bdensity[m->fb[f][0]];
+  if (m->fb[f][1] != TDS_NONE) rho -= m->bdensity[m->fb[f][1]];
+  if (t->row->flags & TDS_MF_TIMES_G) rho *= s->gravity_on ? s->gravity : 0;
+  o[0] = (sink){TDS_NONE, t->w * rho};
+  return rho != 0;
+}
+
+/* ---- the terms of a surface ---- */
+
+static term make(const tds_surf *s, int row, sink_fn fn, tds_expr *const *ig, int npts) {
+  term t = {.row = &tds_methods[row], .sinks = fn, .gq = -1, .w = 1};
+  t.L.ig = ig;
+  t.L.npts = npts;
+  t.L.param = s->parval;
+  t.L.G = s->gravity_on ? s->gravity : 0;
+  return t;
+}
+
+/* Run t and add its own total to the energy. */
+static int energy_term(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, term t) {
+  if (!out->grad) t.gq = -2;
+  int rc = assemble(ctx, s, out, &t);
+  out->energy += t.total;
+  return rc;
+}
+
+static int has_any(tds_expr *const e[3]) { return e[0] || e[1] || e[2]; }
+
+/* Facet tension, body volumes, pressures and gravity. Tension and volume
+** run fused (one gather per facet), the kernels compiled into the loop:
+** the hot path of every iteration. */
+static int facet_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
+  term ten = make(s, TDS_M_FACET_AREA, s_tension, NULL, 0);
+  int sym = s->symmetric_content;
+  term vol = make(s, sym ? TDS_M_FACET_VOLUME_SYM : TDS_M_FACET_VOLUME, s_volume, NULL, 0);
+  if (!out->grad) ten.gq = vol.gq = -2;
+  int rc;
+  if (s->m.nb == 0)
+    rc = assemble_k(ctx, s, out, TDS_EL_FACET, &ten, tds_mk_area, s_tension, NULL, NULL, NULL);
+  else if (sym)
+    rc = assemble_k(ctx, s, out, TDS_EL_FACET, &ten, tds_mk_area, s_tension, &vol,
+                    tds_mk_volume_sym, s_volume);
+  else
+    rc = assemble_k(ctx, s, out, TDS_EL_FACET, &ten, tds_mk_area, s_tension, &vol,
+                    tds_mk_volume, s_volume);
+  out->energy += ten.total + vol.total;
+  out->area += ten.sum;
+  if (rc == TDS_OK && s->gravity_on && s->gravity != 0 && s->m.nb > 0)
+    rc = energy_term(ctx, s, out, make(s, TDS_M_FULL_GRAVITY, s_gravity, NULL, 0));
+  return rc;
+}
+
+/* The energy and content integrands of constraint or boundary `slot`
+** (edge_vector_integral rows; NULL components are 0), each with its sink
+** function and quadrature (npts[0] energy, npts[1] content). */
+static int integrand_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int slot,
+                           tds_expr *const energy[3], tds_expr *const content[3],
+                           const int npts[2], sink_fn fe, sink_fn fc) {
+  tds_expr *const *ig[2] = {energy, content};
+  const sink_fn fn[2] = {fe, fc};
+  int rc = TDS_OK;
+  for (int k = 0; k < 2 && rc == TDS_OK; k++) {
+    if (!has_any(ig[k])) continue;
+    term t = make(s, TDS_M_EDGE_VECTOR_INTEGRAL, fn[k], ig[k], npts[k]);
+    t.slot = slot;
+    rc = energy_term(ctx, s, out, t);
+  }
+  return rc;
+}
+
+/* Edge tension, constraint and boundary integrals, gap energy. */
+static int edge_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
+  int rc = TDS_OK;
+  int anyten = 0;
+  for (tds_id e = 0; e < s->m.ne && !anyten; e++) anyten = s->m.eten[e] != 0;
+  if (anyten) rc = energy_term(ctx, s, out, make(s, TDS_M_EDGE_LENGTH, s_edge_tension, NULL, 0));
+  for (int c = 0; c < TDS_MAX_CON && rc == TDS_OK; c++) {
+    const tds_constraint *con = &s->con[c];
+    if (!con->number) continue;
+    rc = integrand_terms(ctx, s, out, c, con->energy, con->content, con->npts, s_con_energy,
+                         s_con_content);
+    if (rc == TDS_OK && (con->flags & TDS_CON_CONVEX) && con->formula && s->gap_constant != 0) {
+      term t = make(s, TDS_M_EDGE_GAP, s_gap, &con->formula, 0);
+      t.slot = c;
+      t.L.k = s->gap_constant;
+      rc = energy_term(ctx, s, out, t);
+    }
+  }
+  for (int b = 0; b < s->nbdry && rc == TDS_OK; b++) {
+    const tds_boundary *B = &s->bdry[b];
+    rc = integrand_terms(ctx, s, out, b, B->energy, B->content, B->npts, s_bdry_energy,
+                         s_bdry_content);
+  }
+  return rc;
+}
+
+/* Named quantities: value = modulus * sum of instance modulus * method
+** value + volconst. ENERGY ones add to the energy (and its gradient),
+** FIXED ones fill their fixq gradient (their q indices follow the
+** bodies'), INFO_ONLY ones are only reported. */
+static int quantity_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
+  int32_t qfixed = 0; /* fixq index of the next FIXED quantity */
+  if (out->fq)
+    while (qfixed < out->fq->nq && out->fq->qbody[qfixed] != TDS_NONE) qfixed++;
+  for (int i = 0; i < s->nquant; i++) {
+    tds_quantity *Q = &s->quant[i];
+    int32_t gq = -2;
+    if (Q->kind == TDS_Q_FIXED && out->fq) gq = qfixed++;
+    else if (Q->kind == TDS_Q_ENERGY && out->grad) gq = -1;
+    double v = 0;
+    for (int j = 0; j < Q->ninst; j++) {
+      const tds_method_inst *mi = &Q->inst[j];
+      if (mi->modulus == 0 || Q->modulus == 0) continue;
+      int dens = tds_methods[mi->method].flags & TDS_MF_DENSITY;
+      term t = make(s, mi->method, dens ? s_quantity_density : s_quantity, mi->integrand,
+                    mi->npts);
+      t.w = Q->modulus * mi->modulus;
+      t.gq = gq;
+      int rc = assemble(ctx, s, out, &t);
+      if (rc != TDS_OK) return rc;
+      v += t.total;
+    }
+    Q->value = v + Q->volconst;
+    if (Q->kind == TDS_Q_ENERGY) out->energy += Q->value;
+    if (gq >= 0) out->fq->value[gq] = Q->value;
+  }
+  return TDS_OK;
+}
+
+int tds_eval_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int facet_core) {
+  int rc = facet_core ? facet_terms(ctx, s, out) : TDS_OK;
+  if (rc == TDS_OK) rc = edge_terms(ctx, s, out);
+  if (rc == TDS_OK) rc = quantity_terms(ctx, s, out);
+  if (rc != TDS_OK) return rc;
+  if (out->fq)
+    for (int32_t q = 0; q < out->fq->nq; q++) {
+      tds_id b = out->fq->qbody[q];
+      if (b != TDS_NONE) out->fq->value[q] = s->m.bvol[b];
+    }
+  if (!isfinite(out->energy))
+    return tds_seterr(ctx, TDS_ENUM, "energy is not finite (%s)",
+                      isnan(out->energy) ? "NaN" : out->energy > 0 ? "inf" : "-inf");
+  return TDS_OK;
 }
 
 int tds_eval(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
@@ -97,19 +407,9 @@ int tds_eval(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
   out->area = 0;
   if (out->grad) memset(out->grad, 0, (size_t)m->nv * sizeof *out->grad);
   if (out->fq) tds_fixq_clear(out->fq);
-  facet_pass(s, out);
-  edge_pass(s, out);
-  tds_eval_edges(s, out);
-  tds_eval_quantities(s, out);
-  if (out->fq)
-    for (int32_t q = 0; q < out->fq->nq; q++) {
-      tds_id b = out->fq->qbody[q];
-      if (b != TDS_NONE) out->fq->value[q] = m->bvol[b];
-    }
-  if (!isfinite(out->energy))
-    return tds_seterr(ctx, TDS_ENUM, "energy is not finite (%s)",
-                     isnan(out->energy) ? "NaN" : out->energy > 0 ? "inf" : "-inf");
-  return TDS_OK;
+  for (tds_id b = 0; b < m->nb; b++)
+    m->bvol[b] = (m->bflags[b] & TDS_DEAD) ? 0 : m->bvolconst[b];
+  return tds_eval_terms(ctx, s, out, 1);
 }
 
 int tds_surf_update(tds_ctx *ctx, tds_surf *s) {

@@ -1,9 +1,9 @@
 /*
 ** eval.h: total energy, its gradient, and the constrained quantities.
 **
-** One pass gathers each facet's corners, runs the facet kernels (area with
-** tension, body volume, gravity moment) and scatter-adds the results; edge
-** and quantity terms follow. Energy terms:
+** Every term is a row of the method table (method.h); one assembly loop
+** (eval.c) gathers each element's corners, calls the row and scatter-adds
+** value and gradient. Energy terms:
 **   sum_f tension_f area_f                       (surface tension)
 **   G sum_b density_b int_b z dV                 (gravity, when on)
 **   - sum_b pressure_b V_b                       (bodies with a prescribed pressure)
@@ -27,5 +27,13 @@ typedef struct tds_eval_out {
 ** and named quantity values. TDS_OK, or TDS_ENUM when a value is not
 ** finite (the message names the first bad element). */
 int tds_eval(tds_ctx *ctx, tds_surf *s, tds_eval_out *out);
+
+/* The terms alone, ADDED to out (energy, area, grad, fq) and m.bvol, which
+** the caller has initialised (tds_eval zeroes them and sets bvol to the
+** bodies' volconst). facet_core 0 leaves out facet tension, body volumes,
+** pressures and gravity, for a caller that computed them itself (pg's
+** fused pass). Also sets the fixq values and the quantity values.
+** TDS_OK, TDS_ENUM (energy not finite), TDS_ERANGE. */
+int tds_eval_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int facet_core);
 
 #endif

@@ -103,16 +103,6 @@ void tds_fixq_clear(tds_fixq *fq) {
   if (fq->nent) memset(fq->g, 0, (size_t)fq->nent * sizeof *fq->g);
 }
 
-void tds_fixq_add(tds_fixq *fq, tds_id v, int32_t q, const double gv[3]) {
-  for (int32_t i = fq->start[v]; i < fq->start[v + 1]; i++)
-    if (fq->eq[i] == q) {
-      fq->g[i][0] += gv[0];
-      fq->g[i][1] += gv[1];
-      fq->g[i][2] += gv[2];
-      return;
-    }
-}
-
 int tds_dense_solve(int n, double *A, double *b) {
   for (int k = 0; k < n; k++) {
     int p = k;

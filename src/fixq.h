@@ -38,8 +38,17 @@ void tds_fixq_free(tds_fixq *fq);
 /* Zero all entry gradients. */
 void tds_fixq_clear(tds_fixq *fq);
 /* Add gv to the gradient of quantity q at vertex v (entry must exist in the
-** pattern, which holds by construction). */
-void tds_fixq_add(tds_fixq *fq, tds_id v, int32_t q, const double gv[3]);
+** pattern, which holds by construction). Inline: the assembly calls it
+** for every corner of every facet of a constrained body. */
+static inline void tds_fixq_add(tds_fixq *fq, tds_id v, int32_t q, const double gv[3]) {
+  for (int32_t i = fq->start[v]; i < fq->start[v + 1]; i++)
+    if (fq->eq[i] == q) {
+      fq->g[i][0] += gv[0];
+      fq->g[i][1] += gv[1];
+      fq->g[i][2] += gv[2];
+      return;
+    }
+}
 
 /* Restoring motion dx = sum_q mu_q g_q with G mu = target - value (dx is
 ** overwritten for every vertex). TDS_OK or TDS_ENUM. */

@@ -12,8 +12,9 @@
 #include "vec3.h"
 
 /* Area |N|/2. Gradient: dA/da = (b - c) x n / 2 and cyclic (n = N/|N|). */
-static inline double geom_area(const double a[3], const double b[3],
-                               const double c[3], double g[3][3]) {
+static inline __attribute__((always_inline)) double
+geom_area(const double a[3], const double b[3],
+          const double c[3], double g[3][3]) {
   double ab[3], ac[3], N[3];
   v3_sub(ab, b, a);
   v3_sub(ac, c, a);
@@ -39,8 +40,9 @@ static inline double geom_area(const double a[3], const double b[3],
 
 /* Signed volume under the facet, Evolver's default content z k . dS:
 ** V = (za + zb + zc)/3 * Nz/2. */
-static inline double geom_volume_z(const double a[3], const double b[3],
-                                   const double c[3], double g[3][3]) {
+static inline __attribute__((always_inline)) double
+geom_volume_z(const double a[3], const double b[3],
+              const double c[3], double g[3][3]) {
   double Nz = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
   double zs = a[2] + b[2] + c[2];
   if (g) {
@@ -58,8 +60,9 @@ static inline double geom_volume_z(const double a[3], const double b[3],
 
 /* Signed volume of the cone from the origin, symmetric content
 ** (x, y, z)/3 . dS: V = a . (b x c) / 6. */
-static inline double geom_volume_sym(const double a[3], const double b[3],
-                                     const double c[3], double g[3][3]) {
+static inline __attribute__((always_inline)) double
+geom_volume_sym(const double a[3], const double b[3],
+                const double c[3], double g[3][3]) {
   double bc[3];
   v3_cross(bc, b, c);
   if (g) {
@@ -74,8 +77,9 @@ static inline double geom_volume_sym(const double a[3], const double b[3],
 /* Gravity integrand of a body, the flux of (0, 0, z^2/2) through the facet:
 ** W = (Nz/2) * (S/6) / 2 = Nz S / 24 with S = za^2 + zb^2 + zc^2 + za zb +
 ** zb zc + zc za. Summed over a closed body it is the moment int z dV. */
-static inline double geom_zmoment(const double a[3], const double b[3],
-                                  const double c[3], double g[3][3]) {
+static inline __attribute__((always_inline)) double
+geom_zmoment(const double a[3], const double b[3],
+             const double c[3], double g[3][3]) {
   double Nz = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
   double za = a[2], zb = b[2], zc = c[2];
   double S = za * za + zb * zb + zc * zc + za * zb + zb * zc + zc * za;

@@ -172,7 +172,7 @@ static int add_method(lua_State *L, tds_state *st, int t, int qi,
       tds_expr_free(ig[0]);
       lua_pushnil(L);
       lua_pushfstring(L, "%s: method %s needs a vector_integrand, not a scalar_integrand",
-                      what, tds_method_names[method]);
+                      what, tds_methods[method].name);
       return 0;
     }
   }

@@ -5,21 +5,6 @@
 #include <string.h>
 #include <strings.h>
 
-const char *const tds_method_names[TDS_M_COUNT] = {
-    "facet_area",             "edge_length",
-    "facet_vector_integral",  "edge_vector_integral",
-    "facet_scalar_integral",  "edge_scalar_integral",
-    "gravity_method",         "full_gravity_method",
-};
-
-int tds_method_by_name(const char *name) {
-  for (int i = 0; i < TDS_M_COUNT; i++)
-    if (!strcasecmp(name, tds_method_names[i])) return i;
-  if (!strcasecmp(name, "facet_tension")) return TDS_M_FACET_AREA;
-  if (!strcasecmp(name, "edge_tension")) return TDS_M_EDGE_LENGTH;
-  return -1;
-}
-
 static int lookup(void *ud, const char *name, size_t len) {
   return tds_surf_param_find(ud, name, len);
 }
@@ -188,10 +173,10 @@ int tds_model_quantity(tds_ctx *ctx, tds_surf *s, const char *name, int kind,
         memset(saved, 0, sizeof *saved);
         return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
       }
+      q->inst = NULL; /* the old methods' array is saved's now */
     } else {
       for (int j = 0; j < q->ninst; j++) free3(q->inst[j].integrand);
     }
-    memset(q->inst, 0, sizeof q->inst);
     q->ninst = 0;
   }
   tds_quantity *q = &s->quant[i];
@@ -205,6 +190,7 @@ int tds_model_quantity(tds_ctx *ctx, tds_surf *s, const char *name, int kind,
 
 void tds_model_quantity_forget(tds_quantity *saved) {
   for (int j = 0; j < saved->ninst; j++) free3(saved->inst[j].integrand);
+  free(saved->inst);
   free(saved->name);
   memset(saved, 0, sizeof *saved);
 }
@@ -212,6 +198,9 @@ void tds_model_quantity_forget(tds_quantity *saved) {
 void tds_model_quantity_undo(tds_surf *s, int idx, tds_quantity *saved) {
   tds_quantity *q = &s->quant[idx];
   for (int j = 0; j < q->ninst; j++) free3(q->inst[j].integrand);
+  free(q->inst);
+  q->inst = NULL;
+  q->ninst = 0;
   if (saved->name) { /* redeclared: the old definition comes back */
     free(saved->name);
     saved->name = q->name;
@@ -226,11 +215,9 @@ void tds_model_quantity_undo(tds_surf *s, int idx, tds_quantity *saved) {
 int tds_model_method(tds_ctx *ctx, tds_surf *s, int idx, int method,
                      double modulus, tds_expr *integrand[3]) {
   tds_quantity *q = &s->quant[idx];
-  int need = method == TDS_M_FACET_VECTOR_INTEGRAL || method == TDS_M_EDGE_VECTOR_INTEGRAL
-                 ? 3
-             : method == TDS_M_FACET_SCALAR_INTEGRAL || method == TDS_M_EDGE_SCALAR_INTEGRAL
-                 ? 1
-                 : 0;
+  int user = method >= 0 && method < TDS_M_NROWS && (tds_methods[method].flags & TDS_MF_USER);
+  int flags = user ? tds_methods[method].flags : 0;
+  int need = (flags & TDS_MF_VECTOR) ? 3 : (flags & TDS_MF_SCALAR) ? 1 : 0;
   int have = 0;
   for (int i = 0; integrand && i < 3; i++) have += integrand[i] != NULL;
   /* A scalar integrand sits alone in slot 0; anything in slots 1-2 means a
@@ -238,32 +225,30 @@ int tds_model_method(tds_ctx *ctx, tds_surf *s, int idx, int method,
   ** a missing slot 0). A vector method needs at least one component. */
   int scalar_given = have == 1 && integrand[0];
   const char *why = NULL;
-  if (q->ninst == 4) {
-    free3(integrand);
-    return tds_seterr(ctx, TDS_ERANGE, "quantity %s: at most 4 methods", q->name);
-  }
-  if (method < 0 || method >= TDS_M_COUNT) why = "is not a method";
+  if (!user) why = "is not a method";
   else if (need == 1 && !have) why = "needs a scalar_integrand";
   else if (need == 1 && !scalar_given) why = "needs a scalar_integrand, not a vector_integrand";
   else if (need == 3 && !have) why = "needs a vector_integrand";
   else if (need == 0 && have) why = "takes no integrand";
-  if (why) {
+  tds_method_inst *ni = why ? NULL : realloc(q->inst, (size_t)(q->ninst + 1) * sizeof *ni);
+  if (!ni) {
     free3(integrand);
+    if (!why) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
     return tds_seterr(ctx, TDS_ESYNTAX, "quantity %s: method %s %s", q->name,
-                      method >= 0 && method < TDS_M_COUNT ? tds_method_names[method] : "?",
-                      why);
+                      user ? tds_methods[method].name : "?", why);
   }
+  q->inst = ni;
   tds_method_inst *mi = &q->inst[q->ninst++];
   mi->method = method;
   mi->modulus = modulus;
   if (need == 1) { /* a scalar integrand is kept even when constant 0 */
     mi->integrand[0] = integrand[0];
+    mi->integrand[1] = mi->integrand[2] = NULL;
     integrand[0] = NULL;
   } else {
     take3(mi->integrand, integrand);
   }
-  mi->npts = method == TDS_M_EDGE_VECTOR_INTEGRAL || method == TDS_M_EDGE_SCALAR_INTEGRAL
-                 ? edge_points(mi->integrand)
-                 : facet_points(mi->integrand);
+  mi->npts = tds_methods[method].kind == TDS_EL_EDGE ? edge_points(mi->integrand)
+                                                    : facet_points(mi->integrand);
   return TDS_OK;
 }

@@ -58,9 +58,6 @@ void tds_model_quantity_forget(tds_quantity *saved);
 int tds_model_method(tds_ctx *ctx, tds_surf *s, int idx, int method,
                      double modulus, tds_expr *integrand[3]);
 
-/* Method number for a name ("facet_vector_integral", ...) or -1. */
-int tds_method_by_name(const char *name);
-extern const char *const tds_method_names[TDS_M_COUNT];
 
 /* Quantity index by name (case-insensitive), or -1. */
 int tds_model_quantity_find(const tds_surf *s, const char *name);

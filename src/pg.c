@@ -137,8 +137,6 @@ int pg_work_init(tds_ctx *ctx, tds_surf *s, pgw *w, int depth) {
   w->threads = 1;
   w->isa = pg_pass_isa(1);
   w->flip_tol = 1e-12;
-  for (tds_id e = 0; e < m->ne; e++)
-    if (!(m->eflags[e] & TDS_DEAD) && m->eten[e] != 0) w->has_edge_tension = 1;
   classify(s, w);
   pg_gauge_init(s, w);
   if (depth > 0 && pg_accel_init(&w->aa, 3 * w->nmov, depth) != TDS_OK) goto nomem;

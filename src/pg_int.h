@@ -107,7 +107,6 @@ typedef struct pgw {
   tds_fixq fq;
   double *an;             /* normal component of each fq entry */
   double *gram, *rhs, *mult;
-  int has_edge_tension;   /* some edge has a tension */
   /* flips (pg_flip.c) */
   tds_pairset ps;         /* the mesh's edges as vertex pairs */
   double flip_tol;        /* flip when sin(a + b) < -flip_tol */

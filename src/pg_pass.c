@@ -5,10 +5,12 @@
 ** tension energy and area gradient, the Hessian of the area in each corner
 ** (the star model's A2 for any direction), the restricted Voronoi cells of
 ** its corners, the cotangents of its angles (the Delaunay test), and the
-** body terms (volume and its gradient, gravity, prescribed pressure) exactly
-** as eval.c's facet pass computes them. The edge and quantity terms are
-** eval.c's own (tds_eval_edges, tds_eval_quantities). A unit test checks
-** energy, gradient and quantities against tds_eval.
+** body terms (volume and its gradient, gravity, prescribed pressure): a
+** fused specialisation of the method table's facet rows (facet_area,
+** facet_volume(_symmetric), full_gravity_method) with their weights as
+** eval.c gives them. The edge and quantity terms are the table's own
+** assembly (tds_eval_terms). A unit test (test_pg: test_fused_pass)
+** checks energy, gradient and quantities against tds_eval, i.e. the rows.
 **
 ** The star model. Moving corner v of a facet by t d changes N by t w with
 ** w = d x e, e the edge opposite v; the area |N + t w|/2 has
@@ -45,8 +47,9 @@
 #include <omp.h>
 #endif
 
-#include "eval_int.h"
+#include "eval.h"
 #include "geom.h"
+#include "method.h"
 #include "pg_int.h"
 #include "vec3.h"
 
@@ -362,7 +365,7 @@ static void plan_build(tds_surf *s, pgw *w) {
 
 /* The facets. --------------------------------------------------------- */
 
-/* Body terms of facet f, as eval.c's facet pass: volumes (and their
+/* Body terms of facet f with eval.c's weights: the volume rows (their
 ** gradients into the fixq sums), prescribed pressures and gravity (into
 ** grad). */
 static double body_terms(const tds_surf *s, pgw *w, pg_half *hf, tds_id f,
@@ -371,8 +374,10 @@ static double body_terms(const tds_surf *s, pgw *w, pg_half *hf, tds_id f,
   const int32_t *sl = w->fslot[f];
   double(*fg[2])[3] = {w->fq.g, w->fgbuf};
   double g[3][3], gw[3][3], W = 0, energy = 0;
-  double V = s->symmetric_content ? geom_volume_sym(a, b, c, g)
-                                  : geom_volume_z(a, b, c, g);
+  tds_mlocal L = {.x = {a, b, c}};
+  const tds_method *vol =
+      &tds_methods[s->symmetric_content ? TDS_M_FACET_VOLUME_SYM : TDS_M_FACET_VOLUME];
+  double V = vol->eval(&L, g, NULL);
   int wdone = 0;
   const int grav = s->gravity_on && s->gravity != 0;
   for (int j = 0; j < 2; j++) {
@@ -390,7 +395,7 @@ static double body_terms(const tds_surf *s, pgw *w, pg_half *hf, tds_id f,
     }
     if (grav && m->bdensity[bd] != 0) {
       if (!wdone) {
-        W = geom_zmoment(a, b, c, gw);
+        W = tds_methods[TDS_M_FULL_GRAVITY].eval(&L, gw, NULL);
         wdone = 1;
       }
       double wt = sign * s->gravity * m->bdensity[bd];
@@ -762,35 +767,14 @@ int pg_pass(tds_ctx *ctx, tds_surf *s, pgw *w, double *energy_out) {
     m->bvol[b] = (m->bflags[b] & TDS_DEAD)
                      ? 0 : m->bvolconst[b] + (w->half[0].bvol[b] + w->half[1].bvol[b]);
 
-  /* Edge tensions (eval.c's edge pass), then constraint and boundary
-  ** integrals and named quantities: eval.c's own code. */
+  /* Everything but the facet terms (edge tensions, constraint and
+  ** boundary integrals, named quantities): the method table's assembly,
+  ** as tds_eval runs it. */
   tds_eval_out out = {.energy = energy, .area = area_total, .grad = w->grad,
                       .fq = fq->nq ? fq : NULL};
-  if (w->has_edge_tension)
-    for (tds_id e = 0; e < m->ne; e++) {
-      if ((m->eflags[e] & TDS_DEAD) || m->eten[e] == 0) continue;
-      const double *a = m->x[m->ev[e][0]], *b = m->x[m->ev[e][1]];
-      double d[3];
-      v3_sub(d, b, a);
-      double len = v3_norm(d);
-      out.energy += m->eten[e] * len;
-      if (len > 0) {
-        double t = m->eten[e] / len;
-        v3_axpy(w->grad[m->ev[e][1]], t, d);
-        v3_axpy(w->grad[m->ev[e][0]], -t, d);
-      }
-    }
-  tds_eval_edges(s, &out);
-  tds_eval_quantities(s, &out);
-  for (int32_t q = 0; q < fq->nq; q++) {
-    tds_id b = fq->qbody[q];
-    if (b != TDS_NONE) fq->value[q] = m->bvol[b];
-  }
+  int rc = tds_eval_terms(ctx, s, &out, 0);
   s->energy = out.energy;
   s->area = out.area;
   *energy_out = out.energy;
-  if (!isfinite(out.energy))
-    return tds_seterr(ctx, TDS_ENUM, "energy is not finite (%s)",
-                     isnan(out.energy) ? "NaN" : out.energy > 0 ? "inf" : "-inf");
-  return TDS_OK;
+  return rc;
 }

@@ -1,5 +1,7 @@
 /* quadrature.c: the integration rules of the edge and facet integrals. */
-#include "eval_int.h"
+#include "quadrature.h"
+
+#include <stddef.h>
 
 static const double t1[1] = {0.5}, w1[1] = {1};
 static const double t2[2] = {0.21132486540518711775, 0.78867513459481288225};

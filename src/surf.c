@@ -43,6 +43,7 @@ void tds_surf_free(tds_surf *s) {
     free(s->quant[i].name);
     for (int j = 0; j < s->quant[i].ninst; j++)
       free_exprs(s->quant[i].inst[j].integrand, 3);
+    free(s->quant[i].inst);
   }
   free(s->quant);
   free(s->read_text);

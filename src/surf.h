@@ -9,8 +9,7 @@
 #define TDS_SURF_H
 
 #include "mesh.h"
-
-typedef struct tds_expr tds_expr;
+#include "method.h"
 
 #define TDS_MAX_CON 64   /* constraint slots (bits of tds_cmask) */
 
@@ -41,11 +40,6 @@ typedef struct tds_boundary {
 } tds_boundary;
 
 enum { TDS_Q_ENERGY = 0, TDS_Q_FIXED, TDS_Q_INFO };
-enum {
-  TDS_M_FACET_AREA = 0, TDS_M_EDGE_LENGTH, TDS_M_FACET_VECTOR_INTEGRAL,
-  TDS_M_EDGE_VECTOR_INTEGRAL, TDS_M_FACET_SCALAR_INTEGRAL,
-  TDS_M_EDGE_SCALAR_INTEGRAL, TDS_M_GRAVITY, TDS_M_FULL_GRAVITY, TDS_M_COUNT
-};
 
 typedef struct tds_method_inst {
   int method;             /* TDS_M_* */
@@ -63,7 +57,7 @@ typedef struct tds_quantity {
   double value;           /* as last computed */
   double pressure;        /* Lagrange multiplier (FIXED) */
   int ninst;
-  tds_method_inst inst[4];
+  tds_method_inst *inst;  /* ninst instances (any number) */
 } tds_quantity;
 
 typedef struct tds_surf {

@@ -6,7 +6,7 @@
 #include <math.h>
 
 #include "check.h"
-#include "eval_int.h"
+#include "quadrature.h"
 #include "model.h"
 
 static double fact(int n) { return n <= 1 ? 1 : n * fact(n - 1); }

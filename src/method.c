@@ -1,0 +1,168 @@
+/* method.c: the method table and its geometric rows (area, length,
+** volumes, gravity moment) with their Hessians.
+**
+** Values and gradients are geom.h's (the same bits as before the table).
+** Hessians use that the facet normal N = (x1-x0) x (x2-x0)
+** = x0 x x1 + x1 x x2 + x2 x x0 is bilinear in the corners:
+**   dN/dx[c][i] = u[c][i] = E_i x d_c,  d_c = x[c+1] - x[c+2],
+**   d2N/dx[c][i]dx[d][j] = sigma(c,d) E_i x E_j,
+** with sigma = +1 when d = c+1, -1 when d = c+2, 0 when d = c (mod 3).
+*/
+#include "method.h"
+
+#include <string.h>
+#include <strings.h>
+
+
+/* sigma(c, d) above. */
+static double sigma(int c, int d) { return d == (c + 1) % 3 ? 1 : d == (c + 2) % 3 ? -1 : 0; }
+
+/* eps_ijm, the Levi-Civita symbol. */
+static double eps(int i, int j, int m) {
+  if (i == j || j == m || i == m) return 0;
+  return ((j - i + 3) % 3 == 1) ? 1 : -1;
+}
+
+void tds_mk_normal_derivs(const double *const *x, double u[3][3][3]) {
+  for (int c = 0; c < 3; c++) {
+    double d[3];
+    v3_sub(d, x[(c + 1) % 3], x[(c + 2) % 3]);
+    for (int i = 0; i < 3; i++) {
+      double e[3] = {0, 0, 0};
+      e[i] = 1;
+      v3_cross(u[c][i], e, d);
+    }
+  }
+}
+
+void tds_mk_area_hess(const double *const *x, double (*h)[9]) {
+  double ab[3], ac[3], N[3], u[3][3][3];
+  v3_sub(ab, x[1], x[0]);
+  v3_sub(ac, x[2], x[0]);
+  v3_cross(N, ab, ac);
+  double len = v3_norm(N);
+  memset(h, 0, sizeof(double[9][9]));
+  if (!(len > 0)) return; /* not differentiable: a degenerate facet */
+  double n[3] = {N[0] / len, N[1] / len, N[2] / len};
+  tds_mk_normal_derivs(x, u);
+  /* A = |N|/2: d2A = (u.u' - (n.u)(n.u'))/(2|N|) + n . d2N / 2 */
+  for (int c = 0; c < 3; c++)
+    for (int i = 0; i < 3; i++)
+      for (int d = 0; d < 3; d++)
+        for (int j = 0; j < 3; j++) {
+          const double *p = u[c][i], *q = u[d][j];
+          double v = (v3_dot(p, q) - v3_dot(n, p) * v3_dot(n, q)) / len;
+          double s = sigma(c, d);
+          if (s != 0)
+            for (int m = 0; m < 3; m++) v += s * eps(i, j, m) * n[m];
+          h[3 * c + i][3 * d + j] = 0.5 * v;
+        }
+}
+
+static double k_length(const tds_mlocal *L, double g[3][3], double h[9][9]) {
+  double d[3];
+  v3_sub(d, L->x[1], L->x[0]);
+  double len = v3_norm(d);
+  if (g) {
+    double t[3] = {0, 0, 0};
+    if (len > 0) t[0] = d[0] / len, t[1] = d[1] / len, t[2] = d[2] / len;
+    for (int i = 0; i < 3; i++) g[1][i] = t[i], g[0][i] = -t[i];
+    if (h) {
+      static const double s[2] = {-1, 1};
+      for (int c = 0; c < 2; c++)
+        for (int i = 0; i < 3; i++)
+          for (int e = 0; e < 2; e++)
+            for (int j = 0; j < 3; j++)
+              h[3 * c + i][3 * e + j] =
+                  len > 0 ? s[c] * s[e] * ((i == j) - t[i] * t[j]) / len : 0;
+    }
+  }
+  return len;
+}
+
+/* Hessian of Nz * P / den, P a polynomial in the corner heights with
+** gradient dP[c] (along z) and Hessian ddP[c][d] (z, z): shared by the
+** z-volume (P = z0 + z1 + z2) and the gravity moment. */
+static void nz_poly_hess(const double *const *x, double P, const double *dP,
+                         const double (*ddP)[3], double den, double (*h)[9]) {
+  double u[3][3][3];
+  tds_mk_normal_derivs(x, u);
+  double Nz = (x[1][0] - x[0][0]) * (x[2][1] - x[0][1]) -
+              (x[1][1] - x[0][1]) * (x[2][0] - x[0][0]);
+  for (int c = 0; c < 3; c++)
+    for (int i = 0; i < 3; i++)
+      for (int d = 0; d < 3; d++)
+        for (int j = 0; j < 3; j++) {
+          double v = P * sigma(c, d) * eps(i, j, 2);
+          if (i == 2) v += dP[c] * u[d][j][2];
+          if (j == 2) v += dP[d] * u[c][i][2];
+          if (i == 2 && j == 2) v += Nz * ddP[c][d];
+          h[3 * c + i][3 * d + j] = v / den;
+        }
+}
+
+void tds_mk_volume_hess(const double *const *x, double (*h)[9]) {
+  static const double dP[3] = {1, 1, 1}, ddP[3][3] = {{0}};
+  nz_poly_hess(x, x[0][2] + x[1][2] + x[2][2], dP, ddP, 6, h);
+}
+
+static double k_zmoment(const tds_mlocal *L, double g[3][3], double h[9][9]) {
+  double W = geom_zmoment(L->x[0], L->x[1], L->x[2], g);
+  if (h) {
+    double z[3] = {L->x[0][2], L->x[1][2], L->x[2][2]}, zs = z[0] + z[1] + z[2];
+    double S = z[0] * z[0] + z[1] * z[1] + z[2] * z[2] + z[0] * z[1] + z[1] * z[2] +
+               z[2] * z[0];
+    double dS[3] = {z[0] + zs, z[1] + zs, z[2] + zs};
+    double ddS[3][3] = {{2, 1, 1}, {1, 2, 1}, {1, 1, 2}};
+    nz_poly_hess(L->x, S, dS, (const double(*)[3])ddS, 24, h);
+  }
+  return W;
+}
+
+/* V = det(x0, x1, x2)/6 is trilinear. */
+void tds_mk_volume_sym_hess(const double *const *x, double (*h)[9]) {
+  for (int c = 0; c < 3; c++)
+    for (int i = 0; i < 3; i++)
+      for (int d = 0; d < 3; d++)
+        for (int j = 0; j < 3; j++) {
+          double v = 0;
+          if (c != d) {
+            const double *t = x[3 - c - d];
+            for (int m = 0; m < 3; m++) v += eps(i, j, m) * t[m];
+            v *= sigma(c, d);
+          }
+          h[3 * c + i][3 * d + j] = v / 6;
+        }
+}
+
+const tds_method tds_methods[TDS_M_NROWS] = {
+    [TDS_M_FACET_AREA] = {"facet_area", TDS_EL_FACET, TDS_MF_USER, tds_mk_area},
+    [TDS_M_EDGE_LENGTH] = {"edge_length", TDS_EL_EDGE, TDS_MF_USER, k_length},
+    [TDS_M_FACET_VECTOR_INTEGRAL] = {"facet_vector_integral", TDS_EL_FACET,
+                                     TDS_MF_USER | TDS_MF_VECTOR, tds_mk_facet_vint},
+    [TDS_M_EDGE_VECTOR_INTEGRAL] = {"edge_vector_integral", TDS_EL_EDGE,
+                                    TDS_MF_USER | TDS_MF_VECTOR, tds_mk_edge_vint},
+    [TDS_M_FACET_SCALAR_INTEGRAL] = {"facet_scalar_integral", TDS_EL_FACET,
+                                     TDS_MF_USER | TDS_MF_SCALAR, tds_mk_facet_sint},
+    [TDS_M_EDGE_SCALAR_INTEGRAL] = {"edge_scalar_integral", TDS_EL_EDGE,
+                                    TDS_MF_USER | TDS_MF_SCALAR, tds_mk_edge_sint},
+    /* The two gravity methods share the moment kernel; they differ in the
+    ** weight the assembly gives each facet (density, or G * density). */
+    [TDS_M_GRAVITY] = {"gravity_method", TDS_EL_FACET, TDS_MF_USER | TDS_MF_DENSITY,
+                       k_zmoment},
+    [TDS_M_FULL_GRAVITY] = {"full_gravity_method", TDS_EL_FACET,
+                            TDS_MF_USER | TDS_MF_DENSITY | TDS_MF_TIMES_G, k_zmoment},
+    [TDS_M_FACET_VOLUME] = {"facet_volume", TDS_EL_FACET, 0, tds_mk_volume},
+    [TDS_M_FACET_VOLUME_SYM] = {"facet_volume_symmetric", TDS_EL_FACET, 0, tds_mk_volume_sym},
+    [TDS_M_EDGE_GAP] = {"edge_gap", TDS_EL_EDGE, TDS_MF_FORMULA | TDS_MF_HESS_FD,
+                        tds_mk_edge_gap},
+};
+
+int tds_method_by_name(const char *name) {
+  for (int i = 0; i < TDS_M_NROWS; i++)
+    if ((tds_methods[i].flags & TDS_MF_USER) && !strcasecmp(name, tds_methods[i].name))
+      return i;
+  if (!strcasecmp(name, "facet_tension")) return TDS_M_FACET_AREA;
+  if (!strcasecmp(name, "edge_tension")) return TDS_M_EDGE_LENGTH;
+  return -1;
+}

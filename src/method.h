@@ -1,0 +1,124 @@
+/*
+** method.h: the method table. Every energy and constraint term of tds is a
+** row of it (Evolver's method table): a name, the element kind it lives on,
+** flags, and one kernel that gives the term's value on ONE element and, on
+** request, its gradient and Hessian with respect to the element's corners.
+**
+** Kernels see only gathered local data (tds_mlocal): the corner positions
+** in the element's orientation, the integrands, the parameter values. They
+** know nothing about the mesh, bodies or tensions: which elements a row
+** applies to, with which weight, and where the results go (the energy,
+** a body's volume, a named quantity) is the assembly's business (eval.c:
+** one loop gathers, calls the row, scatters). So a new term is a kernel
+** plus a row here, and a unit test (tests/unit/test_methods.c) checks
+** every row's gradient and Hessian by finite differences.
+*/
+#ifndef TDS_METHOD_H
+#define TDS_METHOD_H
+
+#include "expr.h"
+#include "geom.h"
+
+/* Element kinds; the value is the number of corners a kernel sees. */
+enum { TDS_EL_EDGE = 2, TDS_EL_FACET = 3 };
+
+enum {                     /* row flags */
+  TDS_MF_VECTOR = 1,       /* reads a vector integrand ig[0..2] (NULL = 0) */
+  TDS_MF_SCALAR = 2,       /* reads a scalar integrand ig[0] (required) */
+  TDS_MF_FORMULA = 4,      /* reads a level-set formula ig[0] and constant k */
+  TDS_MF_USER = 8,         /* a named quantity may use it (METHOD name) */
+  TDS_MF_HESS_FD = 16,     /* Hessian by central differences of the exact
+                              gradient (the exact one needs third
+                              derivatives of the formula) */
+  TDS_MF_DENSITY = 32,     /* as a quantity method, weighted per facet by
+                              the density of its front body minus its
+                              back body's */
+  TDS_MF_TIMES_G = 64      /* ... and by G when gravity is on (0 if off) */
+};
+
+/* Rows. The first TDS_M_COUNT are the named quantity methods, in the
+** order dumps and datafiles have always used; the rest are built-in terms
+** that only the assembly uses. */
+enum {
+  TDS_M_FACET_AREA = 0, TDS_M_EDGE_LENGTH, TDS_M_FACET_VECTOR_INTEGRAL,
+  TDS_M_EDGE_VECTOR_INTEGRAL, TDS_M_FACET_SCALAR_INTEGRAL,
+  TDS_M_EDGE_SCALAR_INTEGRAL, TDS_M_GRAVITY, TDS_M_FULL_GRAVITY,
+  TDS_M_COUNT,
+  TDS_M_FACET_VOLUME = TDS_M_COUNT, /* body content int z dx dy */
+  TDS_M_FACET_VOLUME_SYM,           /* symmetric content (x,y,z)/3 . dS */
+  TDS_M_EDGE_GAP,                   /* gap energy on a convex constraint */
+  TDS_M_NROWS
+};
+
+/* Gathered local data of one element. */
+typedef struct tds_mlocal {
+  const double *x[3];      /* corners in the element's orientation (edge:
+                              tail, head): pointers into the mesh, or into
+                              the gatherer's scratch */
+  tds_expr *const *ig;     /* integrand(s), as the row's flags say */
+  int npts;                /* quadrature points (tds_edge_rule/facet_rule) */
+  double k;                /* row constant: TDS_M_EDGE_GAP's gap constant */
+  const double *param;     /* parameter values the expressions read */
+  double G;                /* the expressions' G (gravity constant) */
+} tds_mlocal;
+
+/* Value of the term on one element. With g not NULL also the gradient,
+** g[c][i] = dE/dx[c][i]; with h not NULL (then g is not NULL either) the
+** Hessian, h[3c+i][3d+j] = d2E/dx[c][i]dx[d][j] (full and symmetric; only
+** the first 3*kind rows and columns are written). Pure: no allocation, no
+** state, safe from several threads. */
+typedef double (*tds_mkernel)(const tds_mlocal *L, double g[3][3], double h[9][9]);
+
+typedef struct tds_method {
+  const char *name;        /* Evolver's name where it has one */
+  int kind;                /* TDS_EL_* */
+  int flags;               /* TDS_MF_* */
+  tds_mkernel eval;
+} tds_method;
+
+extern const tds_method tds_methods[TDS_M_NROWS];
+
+/* Row of a named quantity method ("facet_vector_integral", also Evolver's
+** aliases facet_tension and edge_tension), case-insensitive, or -1. */
+int tds_method_by_name(const char *name);
+
+/* Kernels the assembly calls directly (declared for the table). */
+double tds_mk_facet_vint(const tds_mlocal *L, double g[3][3], double h[9][9]);
+double tds_mk_facet_sint(const tds_mlocal *L, double g[3][3], double h[9][9]);
+double tds_mk_edge_vint(const tds_mlocal *L, double g[3][3], double h[9][9]);
+double tds_mk_edge_sint(const tds_mlocal *L, double g[3][3], double h[9][9]);
+double tds_mk_edge_gap(const tds_mlocal *L, double g[3][3], double h[9][9]);
+
+/* Derivatives of a facet's normal N = (x1-x0) x (x2-x0):
+** u[c][i] = dN/dx[c][i] = E_i x (x[c+1] - x[c+2]) (indices mod 3). */
+void tds_mk_normal_derivs(const double *const *x, double u[3][3][3]);
+
+/* Hessians of the facet area, z-volume and symmetric volume at corners x
+** (h as for kernels). */
+void tds_mk_area_hess(const double *const *x, double (*h)[9]);
+void tds_mk_volume_hess(const double *const *x, double (*h)[9]);
+void tds_mk_volume_sym_hess(const double *const *x, double (*h)[9]);
+
+/* The kernels of facet_area, facet_volume and facet_volume_symmetric,
+** inline so that the assembly's fused facet pass (eval.c) compiles them
+** into its loop; the table points at these same functions. */
+static inline __attribute__((always_inline)) double
+tds_mk_area(const tds_mlocal *L, double g[3][3], double h[9][9]) {
+  double A = geom_area(L->x[0], L->x[1], L->x[2], g);
+  if (h) tds_mk_area_hess(L->x, h);
+  return A;
+}
+static inline __attribute__((always_inline)) double
+tds_mk_volume(const tds_mlocal *L, double g[3][3], double h[9][9]) {
+  double V = geom_volume_z(L->x[0], L->x[1], L->x[2], g);
+  if (h) tds_mk_volume_hess(L->x, h);
+  return V;
+}
+static inline __attribute__((always_inline)) double
+tds_mk_volume_sym(const tds_mlocal *L, double g[3][3], double h[9][9]) {
+  double V = geom_volume_sym(L->x[0], L->x[1], L->x[2], g);
+  if (h) tds_mk_volume_sym_hess(L->x, h);
+  return V;
+}
+
+#endif
