@@ -378,7 +378,7 @@ static int h_quantity(df *d, const hdr_kw *k) {
       goto fail;
     }
   int idx;
-  rc = tds_model_quantity(d->ctx, d->s, name, qkind, modulus, target, &idx);
+  rc = tds_model_quantity(d->ctx, d->s, name, qkind, modulus, target, &idx, NULL);
   if (rc) {
     rc = df_core(d, qline, rc, NULL);
     goto fail;

@@ -293,15 +293,10 @@ int tds_iterate(tds_ctx *ctx, tds_surf *s, int n) {
   }
   for (int i = n; i > 0; i--) {
     rc = step(ctx, s, &w);
-    if (rc == TDS_ENUM && n > 1) {
+    if (rc != TDS_OK && n > 1) { /* say which step failed */
       char msg[sizeof ctx->errmsg];
       snprintf(msg, sizeof msg, "%s", ctx->errmsg);
-      tds_seterr(ctx, rc, "step %d of %d: %s; the surface is as before the command",
-                 n - i + 1, n, msg);
-    } else if (rc == TDS_ENUM) {
-      char msg[sizeof ctx->errmsg];
-      snprintf(msg, sizeof msg, "%s", ctx->errmsg);
-      tds_seterr(ctx, rc, "%s; the surface is as before the command", msg);
+      tds_seterr(ctx, rc, "step %d of %d: %s", n - i + 1, n, msg);
     }
     if (rc != TDS_OK) break;
     tds_printf(ctx, "%3d. area: %#17.15g energy: %#17.15g  scale: %g\n", i,
@@ -323,7 +318,7 @@ int tds_iterate(tds_ctx *ctx, tds_surf *s, int n) {
   ** which is where the vertices are; otherwise compute them. A failed
   ** command (not an interruption) puts the surface back as it was. */
   if (rc == TDS_EINTR || n == 0) tds_surf_update(ctx, s);
-  return tds_snap_end(s, &sn, rc);
+  return tds_snap_end(ctx, s, &sn, rc);
 }
 
 int tds_pressures(tds_ctx *ctx, tds_surf *s) {

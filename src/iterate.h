@@ -18,8 +18,9 @@
 
 /* Run n steps, printing one Evolver-style line per step unless quiet.
 ** Polls ctx->interrupt between steps: on interrupt returns TDS_EINTR with
-** the surface at the last completed step. On a numerical failure the step
-** is undone and TDS_ENUM returned. */
+** the surface at the last completed step. On any other failure (TDS_ENUM
+** for a non-finite energy, a refused scale limit) the surface is exactly
+** as before the call, all n steps undone (snap.h). */
 int tds_iterate(tds_ctx *ctx, tds_surf *s, int n);
 
 /* Body pressures (Lagrange multipliers) at the current positions, stored

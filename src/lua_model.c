@@ -216,24 +216,33 @@ static int l_quantity(lua_State *L) {
   double mod = lua_isnil(L, -1) ? 1 : lua_tonumber(L, -1);
   lua_pop(L, 1);
   int qi;
-  if (tds_model_quantity(&st->ctx, &st->s, name, kind, mod, target, &qi) != TDS_OK)
+  /* all or nothing: a failing method takes the declaration back (a
+  ** redeclared quantity keeps its old definition) */
+  tds_quantity saved;
+  if (tds_model_quantity(&st->ctx, &st->s, name, kind, mod, target, &qi, &saved) != TDS_OK)
     return core_failed(L, st);
   lua_getfield(L, 1, "methods");
   if (lua_istable(L, -1)) {
     int ms = lua_gettop(L);
     for (lua_Integer i = 1; i <= luaL_len(L, ms); i++) {
       lua_rawgeti(L, ms, i);
-      if (!lua_istable(L, -1) || !add_method(L, st, lua_gettop(L), qi, what, 1)) {
-        if (lua_istable(L, -1)) return 2;
+      if (!lua_istable(L, -1)) {
+        tds_model_quantity_undo(&st->s, qi, &saved);
         lua_pushnil(L);
         lua_pushfstring(L, "%s: methods must be a list of tables", what);
+        return 2;
+      }
+      if (!add_method(L, st, lua_gettop(L), qi, what, 1)) { /* nil, message pushed */
+        tds_model_quantity_undo(&st->s, qi, &saved);
         return 2;
       }
       lua_pop(L, 1);
     }
   } else if (!add_method(L, st, 1, qi, what, 0)) {
+    tds_model_quantity_undo(&st->s, qi, &saved);
     return 2;
   }
+  tds_model_quantity_forget(&saved);
   lua_pushboolean(L, 1);
   return 1;
 }

@@ -127,24 +127,21 @@ static int safe_rename(lua_State *L) {
   return call_original(L);
 }
 
-/* load(chunk [, name [, mode [, env]]]): text only */
-static int safe_load(lua_State *L) {
+/* Force argument `mode` (a position) to "t", keeping any later argument
+** (an env given as nil must stay given). */
+static int text_mode(lua_State *L, int mode) {
   int n = lua_gettop(L);
-  if (n < 2) {
-    lua_settop(L, 2);
-    n = 2;
-  }
+  if (n < mode - 1) lua_settop(L, mode - 1);
   lua_pushliteral(L, "t");
-  if (n >= 3) lua_replace(L, 3);
-  else n = 3;
-  lua_settop(L, n);
+  if (n >= mode) lua_replace(L, mode);
   return call_original(L);
 }
 
+/* load(chunk [, name [, mode [, env]]]): text only */
+static int safe_load(lua_State *L) { return text_mode(L, 3); }
+
 /* loadfile([name [, mode [, env]]]): text only */
-static int safe_loadfile(lua_State *L) {
-  return safe_load(L);
-}
+static int safe_loadfile(lua_State *L) { return text_mode(L, 2); }
 
 /* dofile([name]): text only */
 static int safe_dofile(lua_State *L) {

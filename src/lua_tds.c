@@ -12,9 +12,9 @@
 
 /* Push "file:line: " of the innermost user code on the stack (skipping C
 ** functions and the embedded prelude), or "" if there is none. */
-static void where_user(lua_State *L) {
+static void where_user_from(lua_State *L, int level) {
   lua_Debug ar;
-  for (int level = 1; lua_getstack(L, level, &ar); level++) {
+  for (; lua_getstack(L, level, &ar); level++) {
     lua_getinfo(L, "Sl", &ar);
     if (ar.currentline > 0 && strncmp(ar.source, "=[tds ", 6) != 0) {
       lua_pushfstring(L, "%s:%d: ", ar.short_src, ar.currentline);
@@ -23,6 +23,8 @@ static void where_user(lua_State *L) {
   }
   lua_pushliteral(L, "");
 }
+
+static void where_user(lua_State *L) { where_user_from(L, 1); }
 
 int tds_lua_fail(lua_State *L, tds_state *st, int rc) {
   (void)rc;
@@ -116,9 +118,18 @@ static volatile sig_atomic_t sig_seen; /* an interruption since the chunk began 
 static int sig_also_term;              /* --on-interrupt: SIGTERM stops too */
 
 static void stop_hook(lua_State *L, lua_Debug *ar) {
-  (void)ar;
+  /* Raise only in Lua code outside the check mode's wrapper (which
+  ** finishes its verification and re-raises the command's own message);
+  ** the hook stays armed and fires again at the next instruction. A C
+  ** function polls ctx.interrupt itself. */
+  if (lua_getinfo(L, "S", ar) &&
+      (ar->what[0] == 'C' || strcmp(ar->source, "=[tds check]") == 0))
+    return;
   if (sig_st) sig_st->ctx.interrupt = 0;
-  luaL_error(L, "interrupted");
+  where_user_from(L, 0); /* the user's line, not the prelude's */
+  lua_pushliteral(L, "interrupted");
+  lua_concat(L, 2);
+  lua_error(L);
 }
 
 static void on_sigint(int sig) {

@@ -167,8 +167,9 @@ int tds_model_quantity_find(const tds_surf *s, const char *name) {
 }
 
 int tds_model_quantity(tds_ctx *ctx, tds_surf *s, const char *name, int kind,
-                       double modulus, double target, int *idx) {
+                       double modulus, double target, int *idx, tds_quantity *saved) {
   int i = tds_model_quantity_find(s, name);
+  if (saved) memset(saved, 0, sizeof *saved);
   if (i < 0) {
     tds_quantity *nq = realloc(s->quant, (size_t)(s->nquant + 1) * sizeof *nq);
     if (!nq) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
@@ -180,7 +181,17 @@ int tds_model_quantity(tds_ctx *ctx, tds_surf *s, const char *name, int kind,
     s->nquant++;
   } else {
     tds_quantity *q = &s->quant[i];
-    for (int j = 0; j < q->ninst; j++) free3(q->inst[j].integrand);
+    if (saved) { /* the caller keeps the old methods until it commits */
+      *saved = *q;
+      saved->name = strdup(q->name);
+      if (!saved->name) {
+        memset(saved, 0, sizeof *saved);
+        return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+      }
+    } else {
+      for (int j = 0; j < q->ninst; j++) free3(q->inst[j].integrand);
+    }
+    memset(q->inst, 0, sizeof q->inst);
     q->ninst = 0;
   }
   tds_quantity *q = &s->quant[i];
@@ -190,6 +201,26 @@ int tds_model_quantity(tds_ctx *ctx, tds_surf *s, const char *name, int kind,
   q->value = q->pressure = 0;
   *idx = i;
   return TDS_OK;
+}
+
+void tds_model_quantity_forget(tds_quantity *saved) {
+  for (int j = 0; j < saved->ninst; j++) free3(saved->inst[j].integrand);
+  free(saved->name);
+  memset(saved, 0, sizeof *saved);
+}
+
+void tds_model_quantity_undo(tds_surf *s, int idx, tds_quantity *saved) {
+  tds_quantity *q = &s->quant[idx];
+  for (int j = 0; j < q->ninst; j++) free3(q->inst[j].integrand);
+  if (saved->name) { /* redeclared: the old definition comes back */
+    free(saved->name);
+    saved->name = q->name;
+    *q = *saved;
+  } else { /* new: it was appended last */
+    free(q->name);
+    s->nquant--;
+  }
+  memset(saved, 0, sizeof *saved);
 }
 
 int tds_model_method(tds_ctx *ctx, tds_surf *s, int idx, int method,

@@ -41,9 +41,17 @@ int tds_model_boundary(tds_ctx *ctx, tds_surf *s, int number, int nparams,
 int tds_model_boundary_slot(const tds_surf *s, int number);
 
 /* Declare a named quantity (kind TDS_Q_*); returns its index in *idx.
-** Redeclaring a name replaces it. */
+** Redeclaring a name replaces it. With `saved` not NULL, the replaced
+** declaration is moved there (saved->name is NULL for a new name), so
+** that tds_model_quantity_undo can put it back if adding its methods
+** fails; otherwise it is freed. */
 int tds_model_quantity(tds_ctx *ctx, tds_surf *s, const char *name, int kind,
-                       double modulus, double target, int *idx);
+                       double modulus, double target, int *idx, tds_quantity *saved);
+/* Undo a tds_model_quantity that took `saved`: a new quantity is removed,
+** a redeclared one gets its old definition back. */
+void tds_model_quantity_undo(tds_surf *s, int idx, tds_quantity *saved);
+/* Free what tds_model_quantity saved, once the new declaration stands. */
+void tds_model_quantity_forget(tds_quantity *saved);
 
 /* Add a method instance to quantity idx: method TDS_M_*, integrand
 ** expressions as the method needs (vector: 3, scalar: [0]), modulus. */

@@ -403,12 +403,7 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   pg_work_free(&w);
   int rc2 = rc == TDS_OK || rc == TDS_EINTR ? tds_surf_update(ctx, s) : TDS_OK;
   if (rc == TDS_OK) rc = rc2;
-  if (rc != TDS_OK && rc != TDS_EINTR) {
-    char msg[sizeof ctx->errmsg];
-    snprintf(msg, sizeof msg, "%s", ctx->errmsg);
-    tds_seterr(ctx, rc, "%s; the surface is as before the command", msg);
-  }
-  tds_snap_end(s, &sn, rc);
+  tds_snap_end(ctx, s, &sn, rc);
   res->mean_edge = mean_edge(m);
   res->seconds = now() - t0;
   if (rc == TDS_OK || rc == TDS_EINTR)

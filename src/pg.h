@@ -67,8 +67,8 @@ void tds_pg_defaults(tds_pg_opts *o);
 ** best r since the last flip when running until converged, else the last
 ** one), body pressures (Evolver's sign: -lambda) and s->energy. Polls
 ** ctx->interrupt: TDS_EINTR leaves the last completed iteration. TDS_OK,
-** TDS_ENOMEM, TDS_ENUM (non-finite values; the surface is restored to the
-** last good mesh), TDS_EINTR. */
+** TDS_ENOMEM, TDS_ENUM (non-finite values), TDS_EINTR. Any failure but
+** an interruption leaves the surface exactly as before the call (snap.h). */
 int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
                tds_pg_result *res);
 

@@ -85,11 +85,15 @@ void tds_snap_restore(tds_surf *s, tds_snap *sn) {
   tds_snap_free(sn);
 }
 
-int tds_snap_end(tds_surf *s, tds_snap *sn, int rc) {
-  if (rc == TDS_OK || rc == TDS_EINTR)
+int tds_snap_end(tds_ctx *ctx, tds_surf *s, tds_snap *sn, int rc) {
+  if (rc == TDS_OK || rc == TDS_EINTR) {
     tds_snap_free(sn);
-  else
-    tds_snap_restore(s, sn);
+    return rc;
+  }
+  tds_snap_restore(s, sn);
+  static const char note[] = "; the surface is as before the command";
+  size_t n = strlen(ctx->errmsg);
+  if (n + sizeof note <= sizeof ctx->errmsg) memcpy(ctx->errmsg + n, note, sizeof note);
   return rc;
 }
 

@@ -36,8 +36,9 @@ void tds_snap_restore(tds_surf *s, tds_snap *sn);
 
 /* End a command that took sn: on success (TDS_OK) or interruption
 ** (TDS_EINTR: the completed steps are kept) release the snapshot; on any
-** other failure put the surface back. Returns rc. */
-int tds_snap_end(tds_surf *s, tds_snap *sn, int rc);
+** other failure put the surface back and add "; the surface is as before
+** the command" to the message. Returns rc. */
+int tds_snap_end(tds_ctx *ctx, tds_surf *s, tds_snap *sn, int rc);
 
 /* Release a snapshot that is not needed (the command succeeded). */
 void tds_snap_free(tds_snap *sn);

@@ -2,8 +2,10 @@
 ** topo.h: topology-changing commands and the face builder.
 **
 ** Each command checks and reserves everything it needs before mutating,
-** so a failure (out of memory) leaves the surface as it was. All of them
-** bump topo_gen; ids of existing elements never change.
+** and the refine, equiangulate and vertex-average commands also keep a
+** snapshot (snap.h), so any failure (out of memory, a non-finite energy
+** afterwards) leaves the surface exactly as it was. All of them bump
+** topo_gen; ids of existing elements never change.
 */
 #ifndef TDS_TOPO_H
 #define TDS_TOPO_H

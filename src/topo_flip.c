@@ -128,5 +128,5 @@ int tds_equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nfl
   tds_snap sn;
   int rc = tds_snap_take(ctx, s, &sn);
   if (rc != TDS_OK) return rc;
-  return tds_snap_end(s, &sn, equiangulate(ctx, s, sel, nflips));
+  return tds_snap_end(ctx, s, &sn, equiangulate(ctx, s, sel, nflips));
 }

@@ -189,5 +189,5 @@ int tds_refine(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nsplit) {
   tds_snap sn;
   int rc = tds_snap_take(ctx, s, &sn);
   if (rc != TDS_OK) return rc;
-  return tds_snap_end(s, &sn, refine(ctx, s, sel, nsplit));
+  return tds_snap_end(ctx, s, &sn, refine(ctx, s, sel, nsplit));
 }

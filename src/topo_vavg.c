@@ -103,5 +103,5 @@ int tds_vertex_average(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
   tds_snap sn;
   int rc = tds_snap_take(ctx, s, &sn);
   if (rc != TDS_OK) return rc;
-  return tds_snap_end(s, &sn, vertex_average(ctx, s, sel, nmoved));
+  return tds_snap_end(ctx, s, &sn, vertex_average(ctx, s, sel, nmoved));
 }

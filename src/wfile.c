@@ -105,6 +105,11 @@ int tds_wfile_open(tds_ctx *ctx, tds_wfile *w, const char *path) {
   }
   /* the new file gets the old one's permission bits (after the exclusive
   ** create, so no one else could open it meanwhile) */
+  /* and, where allowed (root), its owner; elsewhere the writer owns it */
+  if (exists && (st.st_uid != geteuid() || st.st_gid != getegid()) &&
+      fchown(fd, st.st_uid, st.st_gid) != 0) {
+    /* not permitted: the file stays the writer's */
+  }
   if (exists && fchmod(fd, mode) != 0) {
     int e = errno;
     close(fd);

@@ -5,7 +5,8 @@
 ** The text goes to a new temporary file in the target's directory, created
 ** exclusively (O_CREAT|O_EXCL|O_NOFOLLOW, a unique name, so a planted file
 ** or symlink is never followed or overwritten), with the target's
-** permission bits; it is flushed and fsync'ed, then renamed over the
+** permission bits (and owner, where the process may set it); it is
+** flushed and fsync'ed, then renamed over the
 ** target, and the directory is synced. A target that is a symlink is
 ** resolved, so the file it points to is replaced and the link kept. On any
 ** failure (no space, file-size limit, read-only place, I/O error) the

@@ -96,7 +96,7 @@ REJECT='NaN vertex|non-finite vertex' expect lua_pg_leaves_nan 0 "check:	true	tr
 REJECT='non-finite vertex' expect lua_vavg_nonfinite 0 "check after V:	true	true" \
   -- -q $T/lua_vavg_nonfinite.tds
 expect lua_vavg_nonfinite_message 0 \
-  "V():	false	$T/lua_vavg_nonfinite.tds:6: energy is not finite (NaN)" \
+  "V():	false	$T/lua_vavg_nonfinite.tds:6: energy is not finite (NaN); the surface is as before the command" \
   -- -q $T/lua_vavg_nonfinite.tds
 
 # D4: setters, G(), gravity_constant and parameters refuse NaN and inf.
@@ -240,3 +240,12 @@ vertices { {0,0,0}, {1,0,0}, {0,1,0}, {0,0,1} }
 edges { {1,2}, {2,3}, {3,1}, {1,4}, {2,4}, {3,4} }
 faces { {-3,-2,-1}, {1,5,-4}, {2,6,-5}, {3,4,-6} }
 print(pcall(bodies, { {1,2,3,4, volume = 1, pressure = 2} }) and "" or false, body_count)'
+# a quantity whose method is refused is not declared (a new name) or keeps
+# its old definition (a redeclared one): 'a' still measures the cube's area 6
+expect quantity_failure_atomic 0 "a	6.0	q	nil" -- -q -e '
+quantity { name = "a", info_only = true, method = "facet_area" }
+assert(not pcall(quantity, { name = "a", info_only = true, method = "facet_scalar_integral" }))
+assert(not pcall(quantity, { name = "q", info_only = true,
+  methods = { { method = "facet_area" }, { method = "edge_vector_integral" } } }))
+dofile("scripts/cube.tds")
+print("a", (tds.quantity_info("a")), "q", (tds.quantity_info("q")))'

@@ -5,6 +5,10 @@
 TDS=$1
 BUILD=$2
 export TDS
+# The check mode (lua/check.lua): every command of every test run of tds is
+# verified: nothing non-finite after it, nothing changed if it failed.
+TDS_CHECK=1
+export TDS_CHECK
 cd "$(dirname "$0")/.." || exit 1
 # Evolver's outputs are cached across runs of the suite (see lib.sh).
 TDS_EVOLVER_CACHE=${TDS_EVOLVER_CACHE:-$(pwd)/build/evolver-cache}
@@ -19,8 +23,7 @@ trap 'rm -rf "$out"' EXIT
   done
   for s in tests/scripts/*.tds; do
     name=$(basename "$s" .tds)
-    # TDS_CHECK=1: every command is verified (lua/check.lua)
-    if (cd tests/scripts && TDS_CHECK=1 "$TDS" -q "$name.tds") > "$out/$name.log" 2>&1; then
+    if (cd tests/scripts && "$TDS" -q "$name.tds") > "$out/$name.log" 2>&1; then
       echo "PASS script/$name"
     else
       echo "FAIL script/$name: $(tail -n 3 "$out/$name.log" | tr '\n' ' ')"
