@@ -3,12 +3,13 @@
 **
 ** Each input is a datafile; it is also given to the content sniffer
 ** (tds_datafile_detect) as a file without extension. When it loads, the
-** harness runs a bounded round of commands on it -- a dump that must reload to the same counts
-** and energy, one `g` step, one `r` (small surfaces only), another `g` --
-** checks the mesh invariants after each, and dumps and reloads again. A
-** failing command is fine if it leaves the surface exactly as before; a
-** crash, sanitizer report, broken mesh, non-finite value after a load or
-** a successful command, or a dump that does not reload is a bug.
+** harness runs a bounded round of commands on it -- a dump that must
+** reload to the same counts and energy, one `g` step, one `r` (small
+** surfaces only), another `g` -- checks the mesh invariants after each,
+** and dumps and reloads again. A failing command is fine if it leaves the
+** surface exactly as before; a crash, sanitizer report, broken mesh,
+** non-finite value after a load or a successful command, or a dump that
+** does not reload is a bug.
 */
 #include <math.h>
 #include <stdint.h>
