@@ -404,6 +404,8 @@ static int binop(parser *p, int op, opnd *a, const opnd *b) {
   if (p->rc) return p->rc;
   if (a->isconst && b->isconst)
     return emit_const(p, a, a->start, tds_expr_fold(op, a->val, b->val));
+  if (op == TDS_OP_POW && b->isconst && b->val == 0)     /* a^0 is 1 for every a (pow), */
+    return emit_const(p, a, a->start, 1);   /* also where a's derivative overflows */
   if (op == TDS_OP_POW && b->isconst && b->val == 2) {   /* x^2 -> sqr */
     p->ncode = b->start;
     return unop(p, TDS_OP_SQR, a);

@@ -9,7 +9,8 @@
 ** evaluators must agree: the same value (or all NaN), the same gradient
 ** from eval_grad and eval_hess, a symmetric Hessian, zero derivatives for
 ** variables that do not occur, and a constant program that needs neither
-** parameters nor variables. The gradient is not compared with finite
+** parameters nor variables; the polynomial degree is at least -1 and a
+** degree-0 program has a zero gradient. The gradient is not compared with finite
 ** differences: expressions are arbitrary (floor, ?:, huge powers), so such
 ** a check would flag correct code.
 */
@@ -57,6 +58,10 @@ static void evaluate(const tds_expr *e) {
       FUZZ_CHECK(!tds_expr_uses_var(e, var), "constant uses variable %d", var);
     (void)v;
   }
+  /* Polynomial degree (for quadrature rules): at least -1, and a degree-0
+     program has a zero gradient wherever its value is finite. */
+  int degree = tds_expr_degree(e);
+  FUZZ_CHECK(degree >= -1, "'%s': degree %d", tds_expr_text(e), degree);
   for (int point = 0; point < 4; point++) {
     double vars[TDS_NVARS];
     for (int i = 0; i < TDS_NVARS; i++) vars[i] = next_value();
@@ -68,6 +73,8 @@ static void evaluate(const tds_expr *e) {
     FUZZ_CHECK(same(v0, v1) && same(v0, v2), "'%s': values %.17g %.17g %.17g",
                tds_expr_text(e), v0, v1, v2);
     for (int i = 0; i < TDS_NDIFF; i++) {
+      if (degree == 0 && isfinite(v0))
+        FUZZ_CHECK(g1[i] == 0, "'%s': degree 0 but d/d%d = %.17g", tds_expr_text(e), i, g1[i]);
       FUZZ_CHECK(same(g1[i], g2[i]), "'%s': d/d%d %.17g vs %.17g", tds_expr_text(e), i,
                  g1[i], g2[i]);
       if (!tds_expr_uses_var(e, i)) {

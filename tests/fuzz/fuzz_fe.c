@@ -1,13 +1,15 @@
 /*
 ** fuzz_fe.c: libFuzzer harness of the .fe datafile loader.
 **
-** Each input is a datafile. When it loads, the harness runs a bounded
-** round of commands on it -- a dump that must reload to the same counts
-** and energy, one `g` step, one `r` (small surfaces only), another `g` --
-** checks the mesh invariants after each, and dumps and reloads again. A
-** failing command is fine if it leaves the surface exactly as before; a
-** crash, sanitizer report, broken mesh, non-finite value after a load or
-** a successful command, or a dump that does not reload is a bug.
+** Each input is a datafile; it is also given to the content sniffer
+** (tds_datafile_detect) as a file without extension. When it loads, the
+** harness runs a bounded round of commands on it -- a dump that must
+** reload to the same counts and energy, one `g` step, one `r` (small
+** surfaces only), another `g` -- checks the mesh invariants after each,
+** and dumps and reloads again. A failing command is fine if it leaves the
+** surface exactly as before; a crash, sanitizer report, broken mesh,
+** non-finite value after a load or a successful command, or a dump that
+** does not reload is a bug.
 */
 #include <math.h>
 #include <stdint.h>
@@ -95,7 +97,21 @@ int LLVMFuzzerInitialize(int *argc, char ***argv) {
   return 0;
 }
 
+/* Content sniffing (a file named without .fe/.tds) reads the same bytes. */
+static void detect(const uint8_t *data, size_t size) {
+  const char *path = fuzz_scratch("");
+  FILE *f = fopen(path, "wb");
+  if (!f) return;
+  size_t n = fwrite(data, 1, size, f);
+  if (fclose(f) == 0 && n == size) {
+    int r = tds_datafile_detect(path);
+    FUZZ_CHECK(r == 0 || r == 1, "detect returned %d", r);
+  }
+  unlink(path);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
+  detect(data, size);
   tds_ctx ctx;
   init_ctx(&ctx);
   tds_surf s;

@@ -212,6 +212,16 @@ static void test_folding_and_queries(void) {
     CHECK(g[TDS_X] == 1 && g[TDS_Y] == 0 && g[TDS_Z] == 9.8);
     tds_expr_free(e);
   }
+  /* a^0 folds to 1 (C's pow(a, 0) is 1 for every a): its gradient is 0
+     even where a's derivative overflows; fuzz_expr found "x^1^6^0" giving
+     value 1 with gradient NaN at x = 1e300 (0 * inf). */
+  e = comp("x^1^6^0", 0);
+  if (e) {
+    CHECK(tds_expr_is_const(e) && tds_expr_degree(e) == 0);
+    double v[TDS_NVARS] = {1e300, 0, 0, 0, 0, 0}, g[TDS_NDIFF], h[TDS_NDIFF][TDS_NDIFF];
+    CHECK(tds_expr_eval_hess(e, NULL, v, g, h) == 1 && g[TDS_X] == 0 && h[0][0] == 0);
+    tds_expr_free(e);
+  }
   /* right-nested constants fold however deep the stack would be */
   char buf[2000] = "";
   for (int i = 0; i < 150; i++) strcat(buf, "1+(");
