@@ -19,8 +19,12 @@ end
 -- pg(n): n iterations. pg(): until the termination criterion. pg{...}:
 -- options iterations, max, nmax, s, plain, depth, flips, every, rtol.
 -- Returns { iterations, r, flips, lambda, energy, converged, ... }.
+local PG_KEYS = { iterations = "number", n = "number", max = "number", nmax = "number",
+  s = "number", plain = "boolean", depth = "number", flips = "boolean", every = "number",
+  rtol = "number", threads = "number" }
 function pg(arg)
   local o = opts_of(arg, "pg")
+  tds.check_options(o, "pg", PG_KEYS, 2)
   local t = {}
   for k, v in pairs(o) do t[k] = v end
   if t.n and not t.iterations then t.iterations = t.n; t.n = nil end
@@ -70,6 +74,7 @@ end
 function curvature(o)
   o = o or {}
   if type(o) == "number" or type(o) == "string" then o = { target = o } end
+  tds.check_options(o, "curvature", { target = "number|string", quiet = "boolean" }, 2)
   local target = o.target
   if target == nil then target = (tds.count(tds.body) > 0) and "pressure" or 0 end
   local c

@@ -110,24 +110,68 @@ function parameter(t)
   end
 end
 
+-- Option tables: an unknown key, or a value whose type is not among those
+-- `known` lists for it ("number|string"), is an error naming the key at
+-- the caller's caller's line (level counts as for error()); nothing the
+-- user typed is ignored.
+function tds.check_options(t, what, known, level)
+  for k, v in pairs(t) do
+    if type(k) == "string" then
+      local want = known[k]
+      if not want then
+        local names = {}
+        for name in pairs(known) do names[#names + 1] = name end
+        table.sort(names)
+        error(("%s: unknown key '%s' (known: %s)"):format(what, k, table.concat(names, ", ")),
+              level + 1)
+      end
+      if not ("|" .. want .. "|"):find("|" .. type(v) .. "|", 1, true) then
+        error(("%s: %s must be a %s, not a %s"):format(what, k, want:gsub("|", " or "), type(v)),
+              level + 1)
+      end
+    end
+  end
+end
+local check_options = tds.check_options
+
 -- constraint(n, {...}), boundary(n, {...}), quantity{...}: the model.
 local function raise_at_caller(ok, err)
   if not ok then error(err, 3) end
 end
+local INTEGRAND = "string|number"
+local CONSTRAINT_KEYS = { formula = "string", energy = "table", content = "table",
+  nonnegative = "boolean", nonpositive = "boolean", convex = "boolean", global = "boolean" }
 function constraint(n, t)
   if math.type(n) ~= "integer" or type(t) ~= "table" then
     error("constraint(number, { formula = ... }) expected", 2)
   end
+  check_options(t, "constraint " .. n, CONSTRAINT_KEYS, 2)
+  if t.nonnegative and t.nonpositive then
+    error(("constraint %d: nonnegative and nonpositive contradict each other"):format(n), 2)
+  end
   raise_at_caller(tds.constraint(n, t))
 end
+local BOUNDARY_KEYS = { parameters = "number", x = INTEGRAND, y = INTEGRAND, z = INTEGRAND,
+  energy = "table", content = "table", convex = "boolean" }
 function boundary(n, t)
   if math.type(n) ~= "integer" or type(t) ~= "table" then
     error("boundary(number, { parameters = 1, x = ..., y = ..., z = ... }) expected", 2)
   end
+  check_options(t, "boundary " .. n, BOUNDARY_KEYS, 2)
   raise_at_caller(tds.boundary(n, t))
 end
+local METHOD_KEYS = { method = "string", modulus = "number", vector_integrand = "table",
+  scalar_integrand = INTEGRAND }
+local QUANTITY_KEYS = { name = "string", fixed = "number", energy = "boolean",
+  info_only = "boolean", modulus = "number", methods = "table", method = "string",
+  vector_integrand = "table", scalar_integrand = INTEGRAND }
 function quantity(t)
   if type(t) ~= "table" then error("quantity{ name = ..., method = ... } expected", 2) end
+  local what = "quantity " .. tostring(t.name)
+  check_options(t, what, QUANTITY_KEYS, 2)
+  for i, m in ipairs(type(t.methods) == "table" and t.methods or {}) do
+    if type(m) == "table" then check_options(m, what .. " method " .. i, METHOD_KEYS, 2) end
+  end
   raise_at_caller(tds.quantity(t))
 end
 
