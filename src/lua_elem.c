@@ -387,7 +387,8 @@ static int elem_index(lua_State *L) {
   }
   lua_pop(L, 2);
   lua_getfield(L, -1, "methods");
-  lua_getfield(L, -1, k);
+  if (lua_getfield(L, -1, k) == LUA_TNIL) /* a misspelt name is not nil */
+    return tds_lua_error(L, "%s %d has no attribute '%s'", kind_name[kind], (int)id + 1, k);
   return 1;
 }
 
