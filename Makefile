@@ -27,6 +27,9 @@ LIVE_LIBS = $(shell pkg-config --libs libmicrohttpd) -pthread
 CORE_SRC := $(filter-out $(BIND_SRC) $(LIVE_SRC),$(wildcard src/*.c))
 LUA_SRC := $(sort $(wildcard lua/*.lua))
 CORE_OBJ := $(CORE_SRC:src/%.c=$(BUILD)/%.o)
+# The core (no Lua) as a library: the program, the unit tests and the
+# fuzzers link it.
+LIBTDS := $(BUILD)/libtds.a
 BIND_OBJ := $(BIND_SRC:src/%.c=$(BUILD)/%.o)
 LIVE_OBJ := $(LIVE_SRC:src/%.c=$(BUILD)/%.o)
 UNIT_SRC := $(wildcard tests/unit/test_*.c)
@@ -44,7 +47,11 @@ deps:
 deps-test:
 	@sh scripts/deps.sh test
 
-$(TDS_BIN): $(CORE_OBJ) $(BIND_OBJ) $(LIVE_OBJ) | deps
+$(LIBTDS): $(CORE_OBJ)
+	rm -f $@
+	ar rcs $@ $^
+
+$(TDS_BIN): $(BIND_OBJ) $(LIVE_OBJ) $(LIBTDS) | deps
 	$(CC) $(CFLAGS_ALL) -fopenmp -o $@ $^ $(LIBS) $(LIVE_LIBS)
 
 # The live view's page needs three.js from the npm registry (web/).
@@ -65,8 +72,8 @@ $(BUILD)/lua_tds.o: $(BUILD)/prelude.inc
 $(BUILD)/prelude.inc: $(LUA_SRC) scripts/embed.sh | $(BUILD)
 	sh scripts/embed.sh $(LUA_SRC) > $@
 
-$(BUILD)/test_%: tests/unit/test_%.c tests/unit/*.h $(CORE_OBJ) | deps
-	$(CC) $(CFLAGS_ALL) -fopenmp -Isrc -Itests/unit -o $@ $< $(CORE_OBJ) $(CAIRO_LIBS) -lm
+$(BUILD)/test_%: tests/unit/test_%.c tests/unit/*.h $(LIBTDS) | deps
+	$(CC) $(CFLAGS_ALL) -fopenmp -Isrc -Itests/unit -o $@ $< $(LIBTDS) $(CAIRO_LIBS) -lm
 
 $(BUILD):
 	mkdir -p $(BUILD)
@@ -110,12 +117,12 @@ fuzz:
 fuzz-bins: $(FUZZ_NAMES:%=$(BUILD)/fuzz_%)
 
 # The harnesses without libFuzzer replay their corpora in `make test`.
-FUZZ_OBJ = $(CORE_OBJ) $(filter-out $(BUILD)/main.o,$(BIND_OBJ)) $(LIVE_OBJ)
+FUZZ_OBJ = $(filter-out $(BUILD)/main.o,$(BIND_OBJ)) $(LIVE_OBJ) $(LIBTDS)
 $(BUILD)/test_fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c tests/fuzz/fuzz_util.h $(FUZZ_OBJ) | deps
-	$(CC) $(CFLAGS_ALL) -fopenmp $(LUA_CFLAGS) -DFUZZ_NAME='"$*"' -Isrc -o $@ $(filter %.c %.o,$^) $(LIBS) $(LIVE_LIBS)
+	$(CC) $(CFLAGS_ALL) -fopenmp $(LUA_CFLAGS) -DFUZZ_NAME='"$*"' -Isrc -o $@ $(filter %.c %.o %.a,$^) $(LIBS) $(LIVE_LIBS)
 
 $(BUILD)/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_util.h $(FUZZ_OBJ) | deps
-	$(CC) $(CFLAGS_ALL) -fopenmp -fsanitize=fuzzer $(LUA_CFLAGS) -Isrc -o $@ $(filter %.c %.o,$^) $(LIBS) $(LIVE_LIBS)
+	$(CC) $(CFLAGS_ALL) -fopenmp -fsanitize=fuzzer $(LUA_CFLAGS) -Isrc -o $@ $(filter %.c %.o %.a,$^) $(LIBS) $(LIVE_LIBS)
 
 fuzz-smoke: fuzz
 	sh tests/fuzz/smoke.sh $(FUZZ_BUILD) $(FUZZ_TIME) $(FUZZ_NAMES)
