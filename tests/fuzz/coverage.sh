@@ -4,7 +4,8 @@
 # harnesses must be built with -fprofile-instr-generate -fcoverage-mapping
 # (the fuzz-cov target does that in build-fuzzcov/).
 # Usage: coverage.sh BUILD_DIR NAME...   (FUZZ_CORPUS: folder holding one
-# corpus folder per harness; default tests/fuzz/corpus)
+# folder per harness, with the inputs or, as campaign.sh leaves them, a
+# corpus/ folder of them; default tests/fuzz/corpus)
 set -eu
 build=$1
 shift
@@ -16,18 +17,20 @@ for name in "$@"; do
     expr) files="src/expr_*.c" ;;
     *) files="src/*.c" ;;
   esac
+  dir=$corpora/$name
+  [ -d "$dir/corpus" ] && dir=$dir/corpus # a campaign.sh output folder
   rm -rf "$build/prof-$name"
   mkdir -p "$build/prof-$name"
   # One process per input, so an input that crashes loses only its own
   # profile (a crash stops the profile from being written).
   failed=0
-  for f in "$corpora/$name"/*; do
+  for f in "$dir"/*; do
     LLVM_PROFILE_FILE=$build/prof-$name/%p.profraw TMPDIR=${TMPDIR:-/tmp} \
       "$build/fuzz_$name" -timeout=60 -rss_limit_mb=4096 "$f" > /dev/null 2>&1 ||
       failed=$((failed + 1))
   done
   llvm-profdata-14 merge -sparse -o "$build/$name.profdata" "$build/prof-$name"/*.profraw
-  echo "== fuzz_$name on $corpora/$name: $(ls "$corpora/$name" | wc -l) inputs, $failed failing"
+  echo "== fuzz_$name on $dir: $(ls "$dir" | wc -l) inputs, $failed failing"
   echo "file regions lines branches (percent covered)"
   # shellcheck disable=SC2086
   llvm-cov-14 report "$build/fuzz_$name" -instr-profile="$build/$name.profdata" $files |
