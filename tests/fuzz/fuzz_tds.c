@@ -6,8 +6,9 @@
 ** not compile, each line goes through the REPL's Evolver-style reader
 ** (tds.translate) instead. The state is a sandbox: no os.execute, io,
 ** dofile, loadfile, require, package or debug; load takes text only;
-** dump/load_datafile/write_fe are pointed at one scratch file of this
-** process; print and progress output are dropped. Work is bounded: a Lua
+** dump/load_datafile/write_text (so write_fe) are pointed at one scratch
+** file of this process; tds functions not on an allowlist are refused;
+** print and progress output are dropped. Work is bounded: a Lua
 ** instruction budget, a Lua memory limit, g() and pg() capped at a few
 ** iterations, r() only on small surfaces.
 **
@@ -105,10 +106,26 @@ static const char sandbox[] =
     "  if tds[name] then wrap(name) end\n"
     "end\n"
     "wrap('dump', function() return SCRATCH end)\n"
+    "wrap('write_text', function(_, text) return SCRATCH .. '.w', text end)\n"
     "wrap('load_datafile', function() return SCRATCH end)\n"
     "wrap('load_chunk', function() return SCRATCH end)\n"
     "if tds.load_replace then wrap('load_replace', function() return SCRATCH end) end\n"
     "dump = tds.dump\n"
+    "-- Deny by default: a tds function added later (it might write files)\n"
+    "-- is refused until it is listed here or redirected above.\n"
+    "local allowed = {}\n"
+    "for name in ('body boundary check check_finite check_release check_same '\n"
+    "  .. 'check_snapshot constraint count curvature datafile_info decl_body decl_edge '\n"
+    "  .. 'decl_face decl_vertex dump edge equiangulate facet facet_min_angle get gravity '\n"
+    "  .. 'iterate load_chunk load_datafile memory methods next optimize param pg '\n"
+    "  .. 'pg_flip_all pg_multipliers pressures props quality quantity quantity_info quiet '\n"
+    "  .. 'refine reserve scale setting totals translate vertex vertex_average '\n"
+    "  .. 'vertex_mean_curvature write_text'):gmatch('%S+') do allowed[name] = true end\n"
+    "for name, f in pairs(tds) do\n"
+    "  if type(f) == 'function' and not allowed[name] then\n"
+    "    tds[name] = function() error('fuzz: tds.' .. name .. ' is not allowed in the harness', 2) end\n"
+    "  end\n"
+    "end\n"
     "io = { open = function(path, mode)\n"
     "  if mode ~= 'w' then return nil, 'fuzz: reading files is disabled' end\n"
     "  return real_open(SCRATCH .. '.w', 'w')\n"
