@@ -22,6 +22,10 @@ local user = {}       -- functions defined by name := {...} (true) or procedure
 -- text cannot redefine them as commands by accident (E.protect).
 local protected = {}
 local redefined = {}  -- single letters redefined with :::=
+-- The runtime finds the user's line through the debug library, which safe
+-- mode takes away from user code afterwards: keep a reference now.
+local debug = debug
+
 -- depth: how many top-level Evolver commands are running; an abort is
 -- caught by the outermost one only (abort returns to the prompt).
 local depth = 0

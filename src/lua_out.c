@@ -43,11 +43,16 @@ static void to_file(void *ud, const char *text) {
 }
 
 static int l_output_open(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
   const char *path = luaL_checkstring(L, 1);
   const char *mode = luaL_checkstring(L, 2);
   int pipe = !strcmp(mode, "|");
   if (!pipe && strcmp(mode, "a") && strcmp(mode, "w"))
     return luaL_argerror(L, 2, "expected \"a\", \"w\" or \"|\"");
+  /* Safe mode: no command runs, no file is written outside its folder. */
+  if (pipe && st->safe)
+    return tds_lua_nilmsg(L, "safe mode: piping output to a command is not allowed");
+  if (!pipe && !tds_lua_may_write(L, st, path)) return 2;
   target *t = lua_newuserdatauv(L, sizeof *t, 0);
   t->f = NULL;
   t->pipe = pipe;

@@ -110,6 +110,10 @@ static const char sandbox[] =
     "wrap('load_datafile', function() return SCRATCH end)\n"
     "wrap('load_chunk', function() return SCRATCH end)\n"
     "if tds.load_replace then wrap('load_replace', function() return SCRATCH end) end\n"
+    "-- Evolver's redirection (>>, >>>, |) writes to the scratch file, never a command.\n"
+    "if tds.output_open then\n"
+    "  wrap('output_open', function(_, mode) return SCRATCH .. '.o', mode == '|' and 'w' or mode end)\n"
+    "end\n"
     "dump = tds.dump\n"
     "-- Deny by default: a tds function added later (it might write files)\n"
     "-- is refused until it is listed here or redirected above.\n"
@@ -120,7 +124,9 @@ static const char sandbox[] =
     "  .. 'iterate load_chunk load_datafile memory methods next optimize param pg '\n"
     "  .. 'pg_flip_all pg_multipliers pressures props quality quantity quantity_info quiet '\n"
     "  .. 'refine reserve scale setting totals translate vertex vertex_average '\n"
-    "  .. 'vertex_mean_curvature write_text'):gmatch('%S+') do allowed[name] = true end\n"
+    "  .. 'vertex_mean_curvature write_text check_options check_restore body_warnings '\n"
+    "  .. 'recalc load_replace read_text datafile_name output_open output_set '\n"
+    "  .. 'output_write output_close'):gmatch('%S+') do allowed[name] = true end\n"
     "for name, f in pairs(tds) do\n"
     "  if type(f) == 'function' and not allowed[name] then\n"
     "    tds[name] = function() error('fuzz: tds.' .. name .. ' is not allowed in the harness', 2) end\n"
@@ -214,6 +220,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   tds_ctx ctx = st->ctx;
   FUZZ_CHECK(tds_mesh_check(&ctx, &st->s.m) == TDS_OK, "mesh broken: %s", ctx.errmsg);
   lua_close(L);
-  unlink(scratch);
+  /* the scratch file and its companions (io.open and redirection) */
+  static const char *const companions[] = {"", ".w", ".o", ".tmp"};
+  char path[600];
+  for (int i = 0; i < 4; i++) {
+    snprintf(path, sizeof path, "%s%s", scratch, companions[i]);
+    unlink(path);
+  }
   return 0;
 }

@@ -65,3 +65,17 @@ run pre.tds
 # the output folder must exist; --out needs --safe
 run --safe --out nowhere -e 'print(1)'
 run --out out -e 'print(1)'
+# Evolver's command language in a datafile's read section: system, a pipe
+# and a redirection outside the output folder are refused.
+cp /usr/share/doc/evolver/examples/cube.fe cube_system.fe
+cp cube_system.fe cube_clean.fe
+cp cube_system.fe cube_pipe.fe
+cp cube_system.fe cube_redirect.fe
+printf '\nsystem "touch spawned_system"\n' >> cube_system.fe
+printf '\nprint 1 | "touch spawned_pipe"\n' >> cube_pipe.fe
+printf '\nprint 2 >> "../victim_redirect"\n' >> cube_redirect.fe
+run --safe --out out cube_system.fe
+run --safe --out out cube_pipe.fe
+run --safe --out out cube_redirect.fe
+run --safe --out out cube_clean.fe -e 'evolver [[ print 3 >> "out/inside.txt" ]] print(io.open("out/inside.txt"):read("l"))'
+[ -e spawned_system ] || [ -e spawned_pipe ] || [ -e "$dir/../victim_redirect" ] || echo "nothing spawned or written outside"
