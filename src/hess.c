@@ -12,6 +12,7 @@ void tds_hess_free(tds_hess *h) {
   free(h->vidx);
   free(h->vert);
   free(h->grad);
+  free(h->fgrad);
   free(h->mult);
   free(h->value);
   free(h->target);
@@ -90,6 +91,12 @@ int tds_hess_assemble(tds_ctx *ctx, tds_surf *s, const tds_hess_opts *opts,
     out->target[q] = fq.target[q];
   }
   if (tds_spmat_from_trip(&trip, 1, &out->H) || fill_A(&fq, out)) goto nomem;
+  out->fgrad = malloc(((size_t)out->n + 1) * sizeof *out->fgrad);
+  if (!out->fgrad) goto nomem;
+  for (int32_t i = 0; i < out->n; i++) out->fgrad[i] = acc.ew * out->grad[i];
+  for (int32_t q = 0; q < fq.nq; q++)
+    for (int32_t e = out->A.colptr[q]; e < out->A.colptr[q + 1]; e++)
+      out->fgrad[out->A.rowind[e]] += qw[q] * out->A.val[e];
   tds_sptrip_free(&trip);
   tds_fixq_free(&fq);
   free(grad);

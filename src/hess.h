@@ -9,10 +9,9 @@
 ** vert[k] = v); fixed and dead vertices have vidx -1 and no rows.
 ** Vertices on level-set constraints and parametric boundaries are
 ** included with all three coordinates: H is the Hessian in full xyz
-** coordinates, and restricting it to each vertex's motion space (the
-** constraint's tangent plane, or the boundary's parameters, and the
-** level-set curvature term that restriction brings) is the Newton
-** step's job, not this file's.
+** coordinates; tds_hess_reduce (below) restricts it to each vertex's
+** motion space (the level sets' tangent plane, or the boundary's
+** parameters) with the curvature term that restriction brings.
 **
 ** The assembly is tds_eval's own loop (eval.c) with every row's kernel
 ** asked for its Hessian, so exactly the terms of the energy are in it:
@@ -47,6 +46,9 @@ typedef struct tds_hess {
   int32_t n;             /* unknowns: 3 x movable vertices */
   tds_spmat H;           /* n x n symmetric, upper triangle, CSC */
   double *grad;          /* n: gradient of the energy (same index map) */
+  double *fgrad;         /* n: gradient of the function H is the Hessian
+                            of: grad E - sum_q lambda_q grad Q_q for the
+                            Lagrangian, grad E, or grad Q_q alone */
   double energy;
   int32_t nq;            /* constrained quantities */
   tds_spmat A;           /* n x nq: column q = grad Q_q (xyz, unprojected) */
@@ -69,5 +71,32 @@ void tds_hess_free(tds_hess *h);
 ** triangle, CSC: the quantities' rows and columns follow the coordinates.
 ** TDS_OK or TDS_ENOMEM. */
 int tds_hess_kkt(tds_ctx *ctx, const tds_hess *h, tds_spmat *K);
+
+/* The Hessian restricted to the vertices' motion spaces (motion.h), as
+** second derivatives of the function along the motion tds's steps make:
+** per movable vertex k, reduced coordinates u (start[k] .. start[k+1]-1)
+** with dx = B u to first order, where B (columns basis[k][.][a]) is
+**   a free vertex:     the identity (3 coordinates);
+**   on level sets:     an orthonormal basis of the tangent space of its
+**                      equality constraints (3 - their rank coordinates;
+**                      one-sided constraints are not held, as in
+**                      tds_motion_project);
+**   on a boundary:     dX/dp, the coordinates being the parameters.
+** Hr = B^T H B + the curvature term of the motion: on level sets phi_j
+** with normal components (N^T N) mu = N^T f (f = h->fgrad at the vertex),
+** -sum_j mu_j B^T Hess(phi_j) B; on a boundary sum_i f_i d2X_i/dp dp.
+** grad = B^T fgrad, A = B^T A. TDS_OK, TDS_ENOMEM. */
+typedef struct tds_hess_red {
+  int32_t nvm;           /* movable vertices (h->n / 3) */
+  int32_t *start;        /* nvm + 1 */
+  double (*basis)[3][3]; /* nvm: basis[k][i][a] = dx_i/du_a */
+  int32_t m;             /* reduced unknowns */
+  tds_spmat H;           /* m x m, upper triangle */
+  double *grad;          /* m */
+  tds_spmat A;           /* m x nq */
+} tds_hess_red;
+
+int tds_hess_reduce(tds_ctx *ctx, const tds_surf *s, const tds_hess *h, tds_hess_red *out);
+void tds_hess_red_free(tds_hess_red *r);
 
 #endif
