@@ -16,6 +16,8 @@
 **   constraint/boundary content  edge_vector_integral       -> bodies
 **   gap energy         edge_gap on convex constraints       -> energy
 **   named quantities   any user row x modulus               -> quantity
+** With tds_eval_out.hess the same loop also asks each kernel for its
+** Hessian and scatters it, weighted like the gradient (hess.c).
 ** FIXED edges carry no constraint integrals (Evolver's rule); boundary
 ** integrals apply to every edge on the boundary.
 */
@@ -53,9 +55,8 @@ struct term {
   double sum;     /* out: sum of the unweighted values (total area) */
 };
 
-/* Scatter value v and gradient g of term t on an element with corners vs
-** to its sinks. */
-/* Add w * h (the element Hessian) to the upper half of the global one. */
+/* Add w * h (the element Hessian) to the upper half of the global one
+** (hess.h's index map; rows of vertices that cannot move are left out). */
 static void scatter_hess(tds_hess_acc *ha, const tds_id *vs, int kind, double w,
                          double (*h)[9]) {
   if (w == 0) return;
@@ -67,13 +68,15 @@ static void scatter_hess(tds_hess_acc *ha, const tds_id *vs, int kind, double w,
       if (k < 0) continue;
       for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++)
-          if ((ha->lower ? r + i >= k + j : r + i <= k + j) && tds_sptrip_add(ha->trip, r + i, k + j,
-                                               w * h[3 * c + i][3 * d + j]))
+          if ((ha->lower ? r + i >= k + j : r + i <= k + j) &&
+              tds_sptrip_add(ha->trip, r + i, k + j, w * h[3 * c + i][3 * d + j]))
             ha->status = TDS_ENOMEM;
     }
   }
 }
 
+/* Scatter value v, gradient g and (h not NULL) Hessian h of term t on an
+** element with corners vs to its sinks. */
 static inline __attribute__((always_inline)) void
 scatter(tds_surf *s, tds_eval_out *out, term *t, const tds_id *vs, int kind,
         const sink *sk, int ns, double v, double (*g)[3], double (*h)[9]) {

@@ -553,6 +553,23 @@ static void reduced_boundary(const char *file) {
 static void hess_reduced_catbody(void) { reduced_boundary(EX "catbody.fe"); }
 static void hess_reduced_column(void) { reduced_boundary(EX "column.fe"); }
 
+/* A non-finite energy is an error with a message, leaves out empty and
+** the positions as they were. */
+static void hess_bad_input(void) {
+  tds_ctx ctx;
+  tds_surf s;
+  h_setup(&ctx, &s);
+  REQUIRE_OK(&ctx, h_cube(&ctx, &s, 1));
+  s.m.x[3][1] = NAN;
+  tds_hess h = {0};
+  CHECK(tds_hess_assemble(&ctx, &s, NULL, &h) == TDS_ENUM);
+  CHECK(strstr(ctx.errmsg, "not finite") != NULL);
+  CHECK(h.n == 0 && h.H.colptr == NULL && h.vidx == NULL && h.A.colptr == NULL);
+  CHECK(isnan(s.m.x[3][1]) && s.m.x[3][0] == h_cube_x[3][0]);
+  tds_hess_free(&h); /* safe on an emptied one */
+  tds_surf_free(&s);
+}
+
 int main(void) {
   RUN(hess_flat_square);
   RUN(hess_tetra_fd);
@@ -567,5 +584,6 @@ int main(void) {
   RUN(hess_reduced_levelset);
   RUN(hess_reduced_catbody);
   RUN(hess_reduced_column);
+  RUN(hess_bad_input);
   return check_done();
 }
