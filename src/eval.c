@@ -16,6 +16,8 @@
 **   constraint/boundary content  edge_vector_integral       -> bodies
 **   gap energy         edge_gap on convex constraints       -> energy
 **   named quantities   any user row x modulus               -> quantity
+** With tds_eval_out.hess the same loop also asks each kernel for its
+** Hessian and scatters it, weighted like the gradient (hess.c).
 ** FIXED edges carry no constraint integrals (Evolver's rule); boundary
 ** integrals apply to every edge on the boundary.
 */
@@ -53,11 +55,31 @@ struct term {
   double sum;     /* out: sum of the unweighted values (total area) */
 };
 
-/* Scatter value v and gradient g of term t on an element with corners vs
-** to its sinks. */
+/* Add w * h (the element Hessian) to the upper half of the global one
+** (hess.h's index map; rows of vertices that cannot move are left out). */
+static void scatter_hess(tds_hess_acc *ha, const tds_id *vs, int kind, double w,
+                         double (*h)[9]) {
+  if (w == 0) return;
+  for (int c = 0; c < kind; c++) {
+    int32_t r = ha->vidx[vs[c]];
+    if (r < 0) continue;
+    for (int d = 0; d < kind; d++) {
+      int32_t k = ha->vidx[vs[d]];
+      if (k < 0) continue;
+      for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+          if ((ha->lower ? r + i >= k + j : r + i <= k + j) &&
+              tds_sptrip_add(ha->trip, r + i, k + j, w * h[3 * c + i][3 * d + j]))
+            ha->status = TDS_ENOMEM;
+    }
+  }
+}
+
+/* Scatter value v, gradient g and (h not NULL) Hessian h of term t on an
+** element with corners vs to its sinks. */
 static inline __attribute__((always_inline)) void
 scatter(tds_surf *s, tds_eval_out *out, term *t, const tds_id *vs, int kind,
-        const sink *sk, int ns, double v, double (*g)[3]) {
+        const sink *sk, int ns, double v, double (*g)[3], double (*h)[9]) {
   tds_fixq *fq = out->fq;
   t->sum += v;
   for (int k = 0; k < ns; k++) {
@@ -73,12 +95,17 @@ scatter(tds_surf *s, tds_eval_out *out, term *t, const tds_id *vs, int kind,
         double gc[3] = {w * g[c][0], w * g[c][1], w * g[c][2]};
         tds_fixq_add(fq, vs[c], q, gc);
       }
+    if (out->hess) {
+      tds_hess_acc *ha = out->hess;
+      double hw = q == -1 ? ha->ew : q >= 0 && ha->qw ? ha->qw[q] : 0;
+      scatter_hess(ha, vs, kind, w * hw, h);
+    }
   }
 }
 
 /* Whether any sink needs the gradient. */
 static inline int want_grad(const tds_eval_out *out, const term *t, const sink *sk, int ns) {
-  int want = 0;
+  int want = out->hess != NULL;
   for (int k = 0; k < ns; k++)
     want |= sk[k].body == TDS_NONE ? t->gq != -2 : out->fq && out->fq->bq[sk[k].body] >= 0;
   return want;
@@ -99,7 +126,8 @@ assemble_k(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int kind, term *t0,
   const uint32_t *flags = kind == TDS_EL_FACET ? m->fflags : m->eflags;
   tds_mlocal L = t0->L;
   sink sk0[MAX_SINKS], sk1[4]; /* a fused t1 (body volumes) has at most 3 */
-  double g[3][3];
+  double g[3][3], h[9][9];
+  double (*hp)[9] = out->hess ? h : NULL;
   for (tds_id el = 0; el < n; el++) {
     if (flags[el] & TDS_DEAD) continue;
     int n0 = f0(s, t0, el, sk0), n1 = t1 ? f1(s, t1, el, sk1) : 0;
@@ -111,13 +139,13 @@ assemble_k(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int kind, term *t0,
     for (int c = 0; c < kind; c++) L.x[c] = m->x[vs[c]];
     if (n0) {
       int want = want_grad(out, t0, sk0, n0);
-      double v = k0(&L, want ? g : NULL, NULL);
-      scatter(s, out, t0, vs, kind, sk0, n0, v, g);
+      double v = k0(&L, want ? g : NULL, hp);
+      scatter(s, out, t0, vs, kind, sk0, n0, v, g, hp);
     }
     if (n1) {
       int want = want_grad(out, t1, sk1, n1);
-      double v = k1(&L, want ? g : NULL, NULL);
-      scatter(s, out, t1, vs, kind, sk1, n1, v, g);
+      double v = k1(&L, want ? g : NULL, hp);
+      scatter(s, out, t1, vs, kind, sk1, n1, v, g, hp);
     }
   }
   return TDS_OK;

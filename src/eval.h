@@ -14,6 +14,21 @@
 #define TDS_EVAL_H
 
 #include "fixq.h"
+#include "sparse.h"
+
+/* Hessian collection (hess.h): when tds_eval_out.hess is not NULL, every
+** term's element Hessian, times its sink's weight and the weight below,
+** is added as triplets (upper half of the global matrix) to trip. */
+typedef struct tds_hess_acc {
+  const int32_t *vidx;  /* vertex slot -> global index of its x (y, z
+                           follow), or -1 for a vertex that cannot move */
+  double ew;            /* weight of the energy's Hessian */
+  const double *qw;     /* fixq q -> weight of quantity q's Hessian */
+  tds_sptrip *trip;
+  int lower;            /* take the kernels' lower halves (a symmetry
+                           check; the matrix stored is the same) */
+  int status;           /* TDS_ENOMEM when a triplet could not be added */
+} tds_hess_acc;
 
 typedef struct tds_eval_out {
   double energy;        /* total energy */
@@ -21,6 +36,8 @@ typedef struct tds_eval_out {
   double (*grad)[3];    /* if not NULL: dE/dx per vertex slot (overwritten) */
   tds_fixq *fq;         /* if not NULL: values and gradients of the
                            constrained quantities (pattern must be built) */
+  tds_hess_acc *hess;   /* if not NULL: collect Hessians (needs grad and,
+                           when quantities are weighted, fq) */
 } tds_eval_out;
 
 /* Evaluate at the current positions. Also stores body volumes in m.bvol

@@ -1,0 +1,137 @@
+/* sparse.c: triplets to CSC, lookup and product (sparse.h). */
+#include "sparse.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+
+int tds_sptrip_add(tds_sptrip *t, int32_t i, int32_t j, double v) {
+  if (t->n == t->cap) {
+    int64_t cap = t->cap ? 2 * t->cap : 1024;
+    int32_t *ni = realloc(t->i, (size_t)cap * sizeof *ni);
+    if (!ni) return -1;
+    t->i = ni;
+    int32_t *nj = realloc(t->j, (size_t)cap * sizeof *nj);
+    if (!nj) return -1;
+    t->j = nj;
+    double *nv = realloc(t->v, (size_t)cap * sizeof *nv);
+    if (!nv) return -1;
+    t->v = nv;
+    t->cap = cap;
+  }
+  t->i[t->n] = i;
+  t->j[t->n] = j;
+  t->v[t->n] = v;
+  t->n++;
+  return 0;
+}
+
+void tds_sptrip_free(tds_sptrip *t) {
+  free(t->i);
+  free(t->j);
+  free(t->v);
+  memset(t, 0, sizeof *t);
+}
+
+void tds_spmat_free(tds_spmat *a) {
+  free(a->colptr);
+  free(a->rowind);
+  free(a->val);
+  memset(a, 0, sizeof *a);
+}
+
+typedef struct rv {
+  int32_t r;
+  double v;
+} rv;
+
+static int by_row(const void *a, const void *b) {
+  int32_t x = ((const rv *)a)->r, y = ((const rv *)b)->r;
+  return (x > y) - (x < y);
+}
+
+int tds_spmat_from_trip(const tds_sptrip *t, int upper, tds_spmat *out) {
+  memset(out, 0, sizeof *out);
+  out->nrow = t->nrow;
+  out->ncol = t->ncol;
+  out->upper = upper;
+  int32_t nc = t->ncol;
+  int64_t *cnt = calloc((size_t)nc + 1, sizeof *cnt);
+  rv *e = malloc(((size_t)t->n + 1) * sizeof *e);
+  out->colptr = calloc((size_t)nc + 1, sizeof *out->colptr);
+  if (!cnt || !e || !out->colptr) goto nomem;
+  /* bucket by column (after mapping to the upper half) */
+  for (int64_t k = 0; k < t->n; k++) {
+    int32_t j = t->j[k];
+    if (upper && t->i[k] > j) j = t->i[k];
+    cnt[j + 1]++;
+  }
+  for (int32_t j = 0; j < nc; j++) cnt[j + 1] += cnt[j];
+  int64_t *pos = calloc((size_t)nc + 1, sizeof *pos);
+  if (!pos) goto nomem;
+  memcpy(pos, cnt, ((size_t)nc + 1) * sizeof *pos);
+  for (int64_t k = 0; k < t->n; k++) {
+    int32_t i = t->i[k], j = t->j[k];
+    if (upper && i > j) {
+      int32_t s = i;
+      i = j;
+      j = s;
+    }
+    e[pos[j]++] = (rv){i, t->v[k]};
+  }
+  free(pos);
+  /* sort each column by row and sum repeats, compacting in place */
+  int64_t n = 0;
+  for (int32_t j = 0; j < nc; j++) {
+    rv *c = e + cnt[j];
+    int64_t len = cnt[j + 1] - cnt[j];
+    qsort(c, (size_t)len, sizeof *c, by_row);
+    int64_t start = n;
+    for (int64_t k = 0; k < len; k++) {
+      if (n > start && e[n - 1].r == c[k].r) e[n - 1].v += c[k].v;
+      else e[n++] = c[k];
+    }
+    if (n > INT32_MAX) goto nomem;
+    out->colptr[j + 1] = (int32_t)n;
+  }
+  out->rowind = malloc(((size_t)n + 1) * sizeof *out->rowind);
+  out->val = malloc(((size_t)n + 1) * sizeof *out->val);
+  if (!out->rowind || !out->val) goto nomem;
+  for (int64_t k = 0; k < n; k++) {
+    out->rowind[k] = e[k].r;
+    out->val[k] = e[k].v;
+  }
+  free(cnt);
+  free(e);
+  return 0;
+nomem:
+  free(cnt);
+  free(e);
+  tds_spmat_free(out);
+  return -1;
+}
+
+double tds_spmat_get(const tds_spmat *a, int32_t i, int32_t j) {
+  if (a->upper && i > j) {
+    int32_t s = i;
+    i = j;
+    j = s;
+  }
+  int32_t lo = a->colptr[j], hi = a->colptr[j + 1];
+  while (lo < hi) {
+    int32_t mid = lo + (hi - lo) / 2;
+    if (a->rowind[mid] < i) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo < a->colptr[j + 1] && a->rowind[lo] == i ? a->val[lo] : 0;
+}
+
+void tds_spmat_mulv(const tds_spmat *a, const double *x, double *y) {
+  memset(y, 0, (size_t)a->nrow * sizeof *y);
+  for (int32_t j = 0; j < a->ncol; j++)
+    for (int32_t k = a->colptr[j]; k < a->colptr[j + 1]; k++) {
+      int32_t i = a->rowind[k];
+      y[i] += a->val[k] * x[j];
+      if (a->upper && i != j) y[j] += a->val[k] * x[i];
+    }
+}
