@@ -24,8 +24,8 @@
 **    unwrap along a path, not per element: the quad around an edge for
 **    Delaunay flips (pg_flip.c, topo_flip.c), the boundary neighbours of a
 **    vertex (pg_step.c, topo_vavg.c), an edge's midpoint and a polygon's
-**    centroid when refining or reading a datafile (topo_refine.c,
-**    build.c), and star_term/star_area's moved corner (pg_kernel.c).
+**    centroid and the diagonal choice when refining or reading a datafile
+**    (topo_refine.c, build.c).
 */
 #ifndef TDS_GATHER_H
 #define TDS_GATHER_H

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gather.h"
 #include "geom.h"
 #include "motion.h"
 #include "snap.h"
@@ -35,8 +36,9 @@ static int over_facets(const tds_mesh *m, tds_id v, double out[3]) {
   for (int32_t i = m->vf_start[v]; i < m->vf_start[v + 1]; i++) {
     tds_id f = m->vf[i];
     if (m->fcon[f] != m->vcon[v]) continue;
-    const double *a = m->x[m->fv[f][0]], *b = m->x[m->fv[f][1]],
-                 *c = m->x[m->fv[f][2]];
+    tds_corners C;
+    tds_gather_facet(m, f, &C);
+    const double *a = C.x[0], *b = C.x[1], *c = C.x[2];
     double ab[3], ac[3], N[3];
     v3_sub(ab, b, a);
     v3_sub(ac, c, a);
