@@ -22,10 +22,10 @@
 **    mesh_check.c's finiteness check);
 **  - patches that span more than one element, which the torus model must
 **    unwrap along a path, not per element: the quad around an edge for
-**    Delaunay flips (pg_flip.c, topo_flip.c), the boundary neighbours of a
-**    vertex (pg_step.c, topo_vavg.c), an edge's midpoint and a polygon's
-**    centroid and the diagonal choice when refining or reading a datafile
-**    (topo_refine.c, build.c).
+**    Delaunay flips (pg_flip.c, topo_flip.c), pg's boundary neighbours
+**    of a vertex (pg_step.c, kept as vertex ids), the diagonal choice when
+**    refining (topo_refine.c's dist2, a corner to a new midpoint) and a
+**    datafile polygon's centroid (build.c).
 */
 #ifndef TDS_GATHER_H
 #define TDS_GATHER_H

@@ -13,7 +13,7 @@
 ** edges on the same constraints when v is on a contact line), if there are
 ** exactly two; 0 if v should not move. */
 static int along_curve(const tds_mesh *m, tds_id v, int triple, double out[3]) {
-  tds_id nb[2];
+  tds_corners nb[2]; /* the two edges from v: x[1] is the neighbour */
   int n = 0;
   for (int32_t i = m->ve_start[v]; i < m->ve_start[v + 1]; i++) {
     tds_id e = TDS_OID(m->ve[i]);
@@ -21,10 +21,10 @@ static int along_curve(const tds_mesh *m, tds_id v, int triple, double out[3]) {
     int on = triple ? val >= 3 : (m->econ[e] == m->vcon[v] && val <= 1);
     if (!on) continue;
     if (n == 2) return 0;
-    nb[n++] = tds_oe_head(m, m->ve[i]);
+    tds_gather_edge(m, m->ve[i], &nb[n++]);
   }
   if (n != 2) return 0;
-  v3_add(out, m->x[nb[0]], m->x[nb[1]]);
+  v3_add(out, nb[0].x[1], nb[1].x[1]);
   v3_scale(out, 0.5);
   return 1;
 }
