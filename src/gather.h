@@ -18,14 +18,16 @@
 **    build.c, mesh.c, lua_elem.c's x/y/z getters and setters), gravity's
 **    z at a vertex (metrics.c), bounding boxes (pg_pass.c);
 **  - whole-array copies and dumps of coordinates (dump.c, snap.c,
-**    live_snap.c, export.c's vertex table, lua_export.c's marks,
-**    mesh_check.c's finiteness check);
+**    live_snap.c, export.c's vertex table and displacement from marks,
+**    lua_export.c's marks, mesh_check.c's finiteness check);
 **  - patches that span more than one element, which the torus model must
 **    unwrap along a path, not per element: the quad around an edge for
 **    Delaunay flips (pg_flip.c, topo_flip.c), pg's boundary neighbours
 **    of a vertex (pg_step.c, kept as vertex ids), the diagonal choice when
 **    refining (topo_refine.c's dist2, a corner to a new midpoint) and a
-**    datafile polygon's centroid (build.c).
+**    datafile polygon's centroid (build.c). topo_vavg.c's over_facets
+**    compares gathered facet centroids with the vertex's own position: on
+**    a torus those facets must be gathered from v's corner.
 */
 #ifndef TDS_GATHER_H
 #define TDS_GATHER_H
