@@ -26,6 +26,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "gather.h"
 #include "method.h"
 #include "vec3.h"
 
@@ -136,7 +137,12 @@ assemble_k(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int kind, term *t0,
       return tds_seterr(ctx, TDS_ERANGE, "edge %d: more than %d bodies around it",
                         (int)el + 1, MAX_SINKS - 1);
     const tds_id *vs = kind == TDS_EL_FACET ? m->fv[el] : m->ev[el];
-    for (int c = 0; c < kind; c++) L.x[c] = m->x[vs[c]];
+    tds_corners C;
+    if (kind == TDS_EL_FACET)
+      tds_gather_facet(m, el, &C);
+    else
+      tds_gather_edge(m, TDS_OREF(el, 0), &C);
+    for (int c = 0; c < kind; c++) L.x[c] = C.x[c];
     if (n0) {
       int want = want_grad(out, t0, sk0, n0);
       double v = k0(&L, want ? g : NULL, hp);

@@ -10,6 +10,7 @@
 
 #include "wfile.h"
 #include "export_int.h"
+#include "gather.h"
 #include "geom.h"
 #include "metrics.h"
 #include "vec3.h"
@@ -235,6 +236,12 @@ static double tri_area(const xmesh *x, int32_t t) {
   return geom_area(x->x[x->tri[t][0]], x->x[x->tri[t][1]], x->x[x->tri[t][2]], NULL);
 }
 
+static double facet_area(const tds_mesh *m, tds_id f) {
+  tds_corners C;
+  tds_gather_facet(m, f, &C);
+  return geom_area(C.x[0], C.x[1], C.x[2], NULL);
+}
+
 static double tri_min_angle(const xmesh *x, int32_t t) {
   const double *a = x->x[x->tri[t][0]], *b = x->x[x->tri[t][1]], *c = x->x[x->tri[t][2]];
   double A = geom_angle(a, b, c), B = geom_angle(b, c, a), C = TDS_PI - A - B;
@@ -301,9 +308,7 @@ static int fields(tds_ctx *ctx, const tds_surf *s, const tds_export_opts *o, bui
         v[t] = f == TDS_NONE ? tri_min_angle(x, t) : tds_facet_min_angle(m, f);
         break;
       case TDS_FF_AREA:
-        v[t] = f == TDS_NONE ? tri_area(x, t)
-                             : geom_area(m->x[m->fv[f][0]], m->x[m->fv[f][1]], m->x[m->fv[f][2]],
-                                         NULL);
+        v[t] = f == TDS_NONE ? tri_area(x, t) : facet_area(m, f);
         break;
       case TDS_FF_TENSION: v[t] = f == TDS_NONE ? 0 : m->ften[f]; break;
       case TDS_FF_COLOR: {

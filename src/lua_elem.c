@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gather.h"
 #include "geom.h"
 #include "lua_tds.h"
 #include "motion.h"
@@ -128,7 +129,7 @@ static int push_body(lua_State *L, tds_id b) {
 
 static double edge_length(const tds_mesh *m, tds_id e) {
   double d[3];
-  v3_sub(d, m->x[m->ev[e][1]], m->x[m->ev[e][0]]);
+  tds_edge_vec(m, TDS_OREF(e, 0), d);
   return v3_norm(d);
 }
 
@@ -262,8 +263,9 @@ static int facet_get(lua_State *L, tds_state *st, tds_id f, const char *k) {
   tds_surf *s = &st->s;
   tds_mesh *m = &s->m;
   if (!strcmp(k, "area")) {
-    lua_pushnumber(L, geom_area(m->x[m->fv[f][0]], m->x[m->fv[f][1]],
-                                m->x[m->fv[f][2]], NULL));
+    tds_corners C;
+    tds_gather_facet(m, f, &C);
+    lua_pushnumber(L, geom_area(C.x[0], C.x[1], C.x[2], NULL));
   } else if (!strcmp(k, "tension") || !strcmp(k, "density")) lua_pushnumber(L, m->ften[f]);
   else if (!strcmp(k, "fixed")) lua_pushboolean(L, m->fflags[f] & TDS_FIXED);
   else if (!strcmp(k, "no_refine")) lua_pushboolean(L, m->fflags[f] & TDS_NO_REFINE);

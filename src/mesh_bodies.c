@@ -4,6 +4,7 @@
 
 #include <stdio.h>
 
+#include "gather.h"
 #include "geom.h"
 
 /* The body on the side of facet side `sd` that its edge's direction turns
@@ -83,8 +84,9 @@ int32_t tds_mesh_body_warnings(tds_ctx *ctx, const tds_mesh *m, const char *wher
     tds_warnf(ctx, "%swarning: inconsistent bodies on %d edges in all\n", where, bad);
   for (tds_id f = 0; f < m->nf; f++) {
     if (!tds_alive(m->fflags, f)) continue;
-    const tds_id *v = m->fv[f];
-    if (geom_area(m->x[v[0]], m->x[v[1]], m->x[v[2]], NULL) == 0) {
+    tds_corners C;
+    tds_gather_facet(m, f, &C);
+    if (geom_area(C.x[0], C.x[1], C.x[2], NULL) == 0) {
       name_facet(m, f, a, sizeof a);
       tds_warnf(ctx, "%swarning: %s has zero area\n", where, a);
       bad++;

@@ -4,14 +4,16 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "gather.h"
 #include "geom.h"
 #include "pg.h"
 #include "vec3.h"
 
 
 double tds_facet_min_angle(const tds_mesh *m, tds_id f) {
-  const double *a = m->x[m->fv[f][0]], *b = m->x[m->fv[f][1]],
-               *c = m->x[m->fv[f][2]];
+  tds_corners F;
+  tds_gather_facet(m, f, &F);
+  const double *a = F.x[0], *b = F.x[1], *c = F.x[2];
   double A = geom_angle(a, b, c), B = geom_angle(b, c, a), C = TDS_PI - A - B;
   double mn = A < B ? A : B;
   if (C < mn) mn = C;
@@ -72,12 +74,13 @@ static int star_sums(const tds_surf *s, tds_id v, double K[3], double S[3],
                      double *amixp, double *anglep) {
   const tds_mesh *m = &s->m;
   double amix = 0, angle = 0;
-  const double *xi = m->x[v];
   for (int c = 0; c < 3; c++) K[c] = S[c] = 0;
   for (int32_t i = m->vf_start[v]; i < m->vf_start[v + 1]; i++) {
     tds_id f = m->vf[i];
     int k = m->fv[f][0] == v ? 0 : m->fv[f][1] == v ? 1 : 2;
-    const double *xj = m->x[m->fv[f][(k + 1) % 3]], *xk = m->x[m->fv[f][(k + 2) % 3]];
+    tds_corners C;
+    tds_gather_facet(m, f, &C);
+    const double *xi = C.x[k], *xj = C.x[(k + 1) % 3], *xk = C.x[(k + 2) % 3];
     double eij[3], eik[3], ejk[3], N[3];
     v3_sub(eij, xj, xi);
     v3_sub(eik, xk, xi);

@@ -11,6 +11,7 @@
 #include <omp.h>
 #endif
 
+#include "gather.h"
 #include "motion.h"
 #include "progress.h"
 #include "pg_int.h"
@@ -214,7 +215,7 @@ static double mean_edge(const tds_mesh *m) {
   for (tds_id e = 0; e < m->ne; e++) {
     if (m->eflags[e] & TDS_DEAD) continue;
     double d[3];
-    v3_sub(d, m->x[m->ev[e][1]], m->x[m->ev[e][0]]);
+    tds_edge_vec(m, TDS_OREF(e, 0), d);
     sum += v3_norm(d);
     n++;
   }

@@ -4,6 +4,7 @@
 ** facet loop). */
 #include <math.h>
 
+#include "gather.h"
 #include "pg.h"
 #include "vec3.h"
 
@@ -30,10 +31,11 @@ double tds_pg_vertex_normal(const tds_mesh *m, tds_id v, double n[3]) {
   for (int32_t i = m->vf_start[v]; i < m->vf_start[v + 1]; i++) {
     tds_id f = m->vf[i];
     if (m->ften[f] == 0) continue;
-    const tds_id *fv = m->fv[f];
+    tds_corners C;
+    tds_gather_facet(m, f, &C);
     double a[3], b[3], N[3];
-    v3_sub(a, m->x[fv[1]], m->x[fv[0]]);
-    v3_sub(b, m->x[fv[2]], m->x[fv[0]]);
+    v3_sub(a, C.x[1], C.x[0]);
+    v3_sub(b, C.x[2], C.x[0]);
     v3_cross(N, a, b);
     v3_add(S, S, N);
   }
@@ -50,13 +52,14 @@ double tds_pg_vertex_normal(const tds_mesh *m, tds_id v, double n[3]) {
 static inline void star_term(const tds_mesh *m, tds_id f, int k,
                              const double d[3], double *A0, double *A1,
                              double *A2) {
-  const tds_id *fv = m->fv[f];
-  const double *a = m->x[fv[0]], *b = m->x[fv[1]], *c = m->x[fv[2]];
+  tds_corners C;
+  tds_gather_facet(m, f, &C);
+  const double *a = C.x[0], *b = C.x[1], *c = C.x[2];
   double e1[3], e2[3], N[3], ed[3], wv[3];
   v3_sub(e1, b, a);
   v3_sub(e2, c, a);
   v3_cross(N, e1, e2);
-  v3_sub(ed, m->x[fv[(k + 1) % 3]], m->x[fv[(k + 2) % 3]]);
+  v3_sub(ed, C.x[(k + 1) % 3], C.x[(k + 2) % 3]);
   v3_cross(wv, d, ed);
   double nn = v3_dot(N, N), nl = sqrt(nn), nw = v3_dot(N, wv), ww = v3_dot(wv, wv);
   double ten = m->ften[f];
@@ -86,8 +89,10 @@ double tds_pg_star_area(const tds_mesh *m, tds_id v, const double d[3],
   for (int32_t i = m->vf_start[v]; i < m->vf_start[v + 1]; i++) {
     tds_id f = m->vf[i];
     double p[3][3], e1[3], e2[3], N[3];
+    tds_corners C;
+    tds_gather_facet(m, f, &C);
     for (int k = 0; k < 3; k++) {
-      v3_copy(p[k], m->x[m->fv[f][k]]);
+      v3_copy(p[k], C.x[k]);
       if (m->fv[f][k] == v) v3_axpy(p[k], t, d);
     }
     v3_sub(e1, p[1], p[0]);

@@ -48,6 +48,7 @@
 #endif
 
 #include "eval.h"
+#include "gather.h"
 #include "geom.h"
 #include "method.h"
 #include "pg_int.h"
@@ -220,8 +221,9 @@ int pg_plan_init(tds_surf *s, pgw *w) {
   int32_t n = 0;
   for (tds_id f = 0; f < m->nf; f++) {
     if (m->fflags[f] & TDS_DEAD) continue;
-    const tds_id *fv = m->fv[f];
-    k[n].key = m->x[fv[0]][ax] + m->x[fv[1]][ax] + m->x[fv[2]][ax];
+    tds_corners C;
+    tds_gather_facet(m, f, &C);
+    k[n].key = C.x[0][ax] + C.x[1][ax] + C.x[2][ax];
     k[n++].f = f;
   }
   qsort(k, (size_t)n, sizeof *k, fkey_cmp);
@@ -428,8 +430,9 @@ static void facet_scalar(const tds_surf *s, pgw *w, pg_half *hf, tds_id f,
                          double *energy, double *area_total) {
   const tds_mesh *m = &s->m;
   const uint8_t md = w->fmode[f];
-  const tds_id *fv = m->fv[f];
-  const double *p0 = m->x[fv[0]], *p1 = m->x[fv[1]], *p2 = m->x[fv[2]];
+  tds_corners C;
+  tds_gather_facet(m, f, &C);
+  const double *p0 = C.x[0], *p1 = C.x[1], *p2 = C.x[2];
   double e[3][3], N[3];
   v3_sub(e[0], p1, p0);
   v3_sub(e[1], p2, p1);
@@ -487,19 +490,18 @@ typedef struct pg_block {
 static inline __attribute__((always_inline)) void
 pass_half_impl(const tds_surf *s, pgw *w, pg_half *hf) {
   const tds_mesh *m = &s->m;
-  const double (*x)[3] = (const double(*)[3])m->x;
   pg_acc *acc = w->acc;
   double energy = 0, area_total = 0;
   vd ven = {0, 0, 0, 0}, var = ven;
   int32_t i = hf->i0;
   for (; i + 4 <= hf->i1; i += 4) {
     const tds_id *f = w->forder + i;
-    const tds_id *fv0 = m->fv[f[0]], *fv1 = m->fv[f[1]], *fv2 = m->fv[f[2]],
-                 *fv3 = m->fv[f[3]];
+    tds_corners C[4];
+    for (int l = 0; l < 4; l++) tds_gather_facet(m, f[l], &C[l]);
     vd p[3][3];
     for (int k = 0; k < 3; k++)
       for (int c = 0; c < 3; c++)
-        p[k][c] = (vd){x[fv0[k]][c], x[fv1[k]][c], x[fv2[k]][c], x[fv3[k]][c]};
+        p[k][c] = (vd){C[0].x[k][c], C[1].x[k][c], C[2].x[k][c], C[3].x[k][c]};
     vd e[3][3], N[3];
     for (int c = 0; c < 3; c++) {
       e[0][c] = p[1][c] - p[0][c];
@@ -638,9 +640,8 @@ pass_half_impl(const tds_surf *s, pgw *w, pg_half *hf) {
       }
       for (int l = 0; l < 4; l++) {
         if (!(md[l] & FM_BODY)) continue;
-        const tds_id *fv = m->fv[f[l]];
         if (!(md[l] & FM_BODY1)) {
-          energy += body_terms(s, w, hf, f[l], x[fv[0]], x[fv[1]], x[fv[2]]);
+          energy += body_terms(s, w, hf, f[l], C[l].x[0], C[l].x[1], C[l].x[2]);
           continue;
         }
         int j = (md[l] & FM_SIDE1) ? 1 : 0;

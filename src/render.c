@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "export.h"
+#include "gather.h"
 #include "metrics.h"
 #include "render_int.h"
 #include "vec3.h"
@@ -121,8 +122,10 @@ static int frame(tds_ctx *ctx, const tds_mesh *m, const tds_render_opts *o,
   int any = 0;
   for (tds_id f = 0; f < m->nf; f++) {
     if (m->fflags[f] & TDS_DEAD) continue;
+    tds_corners C;
+    tds_gather_facet(m, f, &C);
     for (int k = 0; k < 3; k++) {
-      const double *p = m->x[m->fv[f][k]];
+      const double *p = C.x[k];
       if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
         return tds_seterr(ctx, TDS_ENUM, "snapshot: vertex %d has a non-finite "
                           "coordinate", m->fv[f][k] + 1);
@@ -138,9 +141,11 @@ static int frame(tds_ctx *ctx, const tds_mesh *m, const tds_render_opts *o,
   for (int c = 0; c < 3; c++) in->center[c] = 0.5 * (lo[c] + hi[c]);
   for (tds_id f = 0; f < m->nf; f++) {
     if (m->fflags[f] & TDS_DEAD) continue;
+    tds_corners C;
+    tds_gather_facet(m, f, &C);
     for (int k = 0; k < 3; k++) {
       double d[3];
-      v3_sub(d, m->x[m->fv[f][k]], in->center);
+      v3_sub(d, C.x[k], in->center);
       double r = v3_norm(d);
       if (r > R) R = r;
     }
@@ -296,8 +301,10 @@ int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
     for (tds_id f = 0; vn && f < m->nf; f++) {
       if (m->fflags[f] & (TDS_DEAD | TDS_NODISPLAY)) continue;
       double a[3], b[3], N[3];
-      v3_sub(a, m->x[m->fv[f][1]], m->x[m->fv[f][0]]);
-      v3_sub(b, m->x[m->fv[f][2]], m->x[m->fv[f][0]]);
+      tds_corners C;
+      tds_gather_facet(m, f, &C);
+      v3_sub(a, C.x[1], C.x[0]);
+      v3_sub(b, C.x[2], C.x[0]);
       v3_cross(N, a, b);
       for (int k = 0; k < 3; k++) v3_add(vn[m->fv[f][k]], vn[m->fv[f][k]], N);
     }
@@ -337,13 +344,15 @@ int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
     if (o->color == TDS_RCOL_COLOR && m->fcolor[f] < 0) continue; /* CLEAR */
     rfacet *r = &rf[n];
     float z[3];
-    for (int k = 0; k < 3; k++) project(&in, o, m->x[m->fv[f][k]], &r->x[k], &r->y[k], &z[k]);
+    tds_corners C;
+    tds_gather_facet(m, f, &C);
+    for (int k = 0; k < 3; k++) project(&in, o, C.x[k], &r->x[k], &r->y[k], &z[k]);
     r->depth = (z[0] + z[1] + z[2]) / 3;
     double rgb[3], N[3];
     facet_color(m, f, o->color, val[f], lo, hi, rgb);
     double a[3], b[3];
-    v3_sub(a, m->x[m->fv[f][1]], m->x[m->fv[f][0]]);
-    v3_sub(b, m->x[m->fv[f][2]], m->x[m->fv[f][0]]);
+    v3_sub(a, C.x[1], C.x[0]);
+    v3_sub(b, C.x[2], C.x[0]);
     v3_cross(N, a, b);
     double shade = o->lighting ? lambert(&in, L, N) : 1;
     for (int k = 0; k < 3; k++) r->rgb[k] = (float)(rgb[k] * shade);

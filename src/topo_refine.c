@@ -3,6 +3,7 @@
 
 #include <stdlib.h>
 
+#include "gather.h"
 #include "motion.h"
 #include "recalc.h"
 #include "snap.h"
@@ -111,7 +112,9 @@ static tds_id split_edge(tds_surf *s, tds_id e, int32_t *e2) {
   tds_mesh *m = &s->m;
   tds_id t = m->ev[e][0], h = m->ev[e][1];
   double x[3];
-  v3_add(x, m->x[t], m->x[h]);
+  tds_corners C;
+  tds_gather_edge(m, TDS_OREF(e, 0), &C);
+  v3_add(x, C.x[0], C.x[1]);
   v3_scale(x, 0.5);
   tds_id v = tds_mesh_add_vertex(m, x);
   m->vflags[v] = m->eflags[e] & TDS_FIXED;

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gather.h"
 #include "geom.h"
 #include "motion.h"
 #include "snap.h"
@@ -12,7 +13,7 @@
 ** edges on the same constraints when v is on a contact line), if there are
 ** exactly two; 0 if v should not move. */
 static int along_curve(const tds_mesh *m, tds_id v, int triple, double out[3]) {
-  tds_id nb[2];
+  tds_corners nb[2]; /* the two edges from v: x[1] is the neighbour */
   int n = 0;
   for (int32_t i = m->ve_start[v]; i < m->ve_start[v + 1]; i++) {
     tds_id e = TDS_OID(m->ve[i]);
@@ -20,10 +21,10 @@ static int along_curve(const tds_mesh *m, tds_id v, int triple, double out[3]) {
     int on = triple ? val >= 3 : (m->econ[e] == m->vcon[v] && val <= 1);
     if (!on) continue;
     if (n == 2) return 0;
-    nb[n++] = tds_oe_head(m, m->ve[i]);
+    tds_gather_edge(m, m->ve[i], &nb[n++]);
   }
   if (n != 2) return 0;
-  v3_add(out, m->x[nb[0]], m->x[nb[1]]);
+  v3_add(out, nb[0].x[1], nb[1].x[1]);
   v3_scale(out, 0.5);
   return 1;
 }
@@ -35,8 +36,9 @@ static int over_facets(const tds_mesh *m, tds_id v, double out[3]) {
   for (int32_t i = m->vf_start[v]; i < m->vf_start[v + 1]; i++) {
     tds_id f = m->vf[i];
     if (m->fcon[f] != m->vcon[v]) continue;
-    const double *a = m->x[m->fv[f][0]], *b = m->x[m->fv[f][1]],
-                 *c = m->x[m->fv[f][2]];
+    tds_corners C;
+    tds_gather_facet(m, f, &C);
+    const double *a = C.x[0], *b = C.x[1], *c = C.x[2];
     double ab[3], ac[3], N[3];
     v3_sub(ab, b, a);
     v3_sub(ac, c, a);

@@ -1,0 +1,73 @@
+/*
+** gather.h: the one place that reads element geometry out of the mesh.
+**
+** Every kernel that needs the corner positions of a facet or an edge (its
+** area, normal, volume, angles, length, vector) gets them here, never by
+** indexing m->x with the element's vertices itself. Today a corner is
+** just a pointer into m->x and every helper compiles to the same loads as
+** the direct reads did. The torus model will change only these helpers: a
+** facet's corners become its first vertex plus the wrapped edge vectors
+** (written into the tds_corners scratch, which is why callers pass one),
+** and an edge vector becomes head + wrap*period - tail. Callers only ever
+** use differences of corners of one gathered element, or the corners
+** themselves as points of that element.
+**
+** Direct reads of m->x that remain, and why:
+**  - a vertex's own position: moving, projecting or placing one vertex
+**    (motion.c, pg_step.c, topo_vavg.c's result, iterate.c, recalc.c,
+**    build.c, mesh.c, lua_elem.c's x/y/z getters and setters), gravity's
+**    z at a vertex (metrics.c), bounding boxes (pg_pass.c);
+**  - whole-array copies and dumps of coordinates (dump.c, snap.c,
+**    live_snap.c, export.c's vertex table and displacement from marks,
+**    lua_export.c's marks, mesh_check.c's finiteness check);
+**  - patches that span more than one element, which the torus model must
+**    unwrap along a path, not per element: the quad around an edge for
+**    Delaunay flips (pg_flip.c, topo_flip.c), pg's boundary neighbours
+**    of a vertex (pg_step.c, kept as vertex ids), the diagonal choice when
+**    refining (topo_refine.c's dist2, a corner to a new midpoint) and a
+**    datafile polygon's centroid (build.c). topo_vavg.c's over_facets
+**    compares gathered facet centroids with the vertex's own position: on
+**    a torus those facets must be gathered from v's corner.
+*/
+#ifndef TDS_GATHER_H
+#define TDS_GATHER_H
+
+#include "mesh.h"
+
+/* Gathered corners of one element: x[0..2] (facet) or x[0..1] (edge:
+** tail, head), valid while the mesh's coordinates and this struct are
+** unchanged. tmp is the gatherer's scratch (unused without a torus). */
+typedef struct tds_corners {
+  const double *x[3];
+  double tmp[3][3];
+} tds_corners;
+
+/* Corners of facet f in its orientation: x[k] is vertex fv[f][k]. */
+static inline __attribute__((always_inline)) void
+tds_gather_facet(const tds_mesh *m, tds_id f, tds_corners *c) {
+  const tds_id *fv = m->fv[f];
+  c->x[0] = m->x[fv[0]];
+  c->x[1] = m->x[fv[1]];
+  c->x[2] = m->x[fv[2]];
+}
+
+/* Tail and head of oriented edge oe: x[0] tail, x[1] head. */
+static inline __attribute__((always_inline)) void
+tds_gather_edge(const tds_mesh *m, int32_t oe, tds_corners *c) {
+  const tds_id *ev = m->ev[TDS_OID(oe)];
+  int r = TDS_OREV(oe);
+  c->x[0] = m->x[ev[r]];
+  c->x[1] = m->x[ev[!r]];
+}
+
+/* d = head - tail of oriented edge oe. */
+static inline __attribute__((always_inline)) void
+tds_edge_vec(const tds_mesh *m, int32_t oe, double d[3]) {
+  tds_corners c;
+  tds_gather_edge(m, oe, &c);
+  d[0] = c.x[1][0] - c.x[0][0];
+  d[1] = c.x[1][1] - c.x[0][1];
+  d[2] = c.x[1][2] - c.x[0][2];
+}
+
+#endif
