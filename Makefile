@@ -118,11 +118,15 @@ fuzz-bins: $(FUZZ_NAMES:%=$(BUILD)/fuzz_%)
 
 # The harnesses without libFuzzer replay their corpora in `make test`.
 FUZZ_OBJ = $(filter-out $(BUILD)/main.o,$(BIND_OBJ)) $(LIVE_OBJ) $(LIBTDS)
-$(BUILD)/test_fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c tests/fuzz/fuzz_util.h $(FUZZ_OBJ) | deps
-	$(CC) $(CFLAGS_ALL) -fopenmp $(LUA_CFLAGS) -DFUZZ_NAME='"$*"' -Isrc -o $@ $(filter %.c %.o %.a,$^) $(LIBS) $(LIVE_LIBS)
+# fuzz_evo.c includes fuzz_tds.c, so every harness depends on all sources.
+FUZZ_SRC := $(wildcard tests/fuzz/*.c tests/fuzz/*.h)
+$(BUILD)/test_fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_SRC) $(FUZZ_OBJ) | deps
+	$(CC) $(CFLAGS_ALL) -fopenmp $(LUA_CFLAGS) -DFUZZ_NAME='"$*"' -Isrc -o $@ $< \
+	  tests/fuzz/replay.c $(filter %.o %.a,$^) $(LIBS) $(LIVE_LIBS)
 
-$(BUILD)/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_util.h $(FUZZ_OBJ) | deps
-	$(CC) $(CFLAGS_ALL) -fopenmp -fsanitize=fuzzer $(LUA_CFLAGS) -Isrc -o $@ $(filter %.c %.o %.a,$^) $(LIBS) $(LIVE_LIBS)
+$(BUILD)/fuzz_%: tests/fuzz/fuzz_%.c $(FUZZ_SRC) $(FUZZ_OBJ) | deps
+	$(CC) $(CFLAGS_ALL) -fopenmp -fsanitize=fuzzer $(LUA_CFLAGS) -Isrc -o $@ $< \
+	  $(filter %.o %.a,$^) $(LIBS) $(LIVE_LIBS)
 
 fuzz-smoke: fuzz
 	sh tests/fuzz/smoke.sh $(FUZZ_BUILD) $(FUZZ_TIME) $(FUZZ_NAMES)

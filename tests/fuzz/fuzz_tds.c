@@ -132,15 +132,19 @@ static const char sandbox[] =
     "    tds[name] = function() error('fuzz: tds.' .. name .. ' is not allowed in the harness', 2) end\n"
     "  end\n"
     "end\n"
+    "-- output is dropped (the Evolver runtime writes and flushes io.stdout)\n"
+    "local sink = { write = function(self) return self end, flush = function() end,\n"
+    "  close = function() end, setvbuf = function() end }\n"
     "io = { open = function(path, mode)\n"
     "  if mode ~= 'w' then return nil, 'fuzz: reading files is disabled' end\n"
     "  return real_open(SCRATCH .. '.w', 'w')\n"
-    "end }\n"
+    "end, write = function() end, stdout = sink, stderr = sink }\n"
     "os = { clock = os.clock, time = os.time }\n"
     "dofile, loadfile, require, package, debug = nil, nil, nil, nil, nil\n"
-    "load = function(chunk, name, mode, env)\n"
+    "load = function(chunk, name, mode, ...)\n"
     "  if type(chunk) ~= 'string' then return nil, 'fuzz: load takes text only' end\n"
-    "  return real_load(chunk, name, 't', env)\n"
+    "  -- an env given as nil is nil; none given is the globals (as load)\n"
+    "  return real_load(chunk, name, 't', ...)\n"
     "end\n"
     "print = function() end\n"
     "string.dump = nil\n";
@@ -169,6 +173,21 @@ static const char evolver_text[] =
     "bodies { {1,2,3,4,5,6, volume = 1} }\n"
     "evolver(text)\n";
 #endif
+
+/* Run the harness's own chunk with the input as its argument; the stack
+** is left as it was (a chunk that does not compile is the harness's bug). */
+static void run_chunk(lua_State *L, const char *chunk, size_t n, const char *name,
+                      const uint8_t *data, size_t size) {
+  int top = lua_gettop(L);
+  if (luaL_loadbuffer(L, chunk, n, name) != LUA_OK) {
+    fprintf(stderr, "fuzz: %s does not compile: %s\n", name, lua_tostring(L, -1));
+    abort();
+  }
+  lua_pushlstring(L, (const char *)data, size);
+  if (lua_pcall(L, 1, 0, 0) != LUA_OK && getenv("FUZZ_VERBOSE")) /* to debug the harness */
+    fprintf(stderr, "fuzz: %s\n", lua_tostring(L, -1));
+  lua_settop(L, top);
+}
 
 int LLVMFuzzerInitialize(int *argc, char ***argv) {
   (void)argc;
@@ -200,22 +219,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   steps = 0;
   lua_sethook(L, budget_hook, LUA_MASKCOUNT, HOOK_EVERY);
 #ifdef FUZZ_EVOLVER
-  if (luaL_loadbuffer(L, evolver_text, sizeof evolver_text - 1, "=evolver") == LUA_OK) {
-    lua_pushlstring(L, (const char *)data, size);
-    lua_pcall(L, 1, 0, 0);
-  }
-  if (0) {
+  run_chunk(L, evolver_text, sizeof evolver_text - 1, "=evolver", data, size);
 #else
-  if (luaL_loadbufferx(L, (const char *)data, size, "=fuzz", "t") == LUA_OK) {
-#endif
+  if (luaL_loadbufferx(L, (const char *)data, size, "=fuzz", "t") == LUA_OK)
     lua_pcall(L, 0, 0, 0);
-  } else {
-    lua_pop(L, 1);
-    if (luaL_loadbuffer(L, evolver_lines, sizeof evolver_lines - 1, "=evolver") == LUA_OK) {
-      lua_pushlstring(L, (const char *)data, size);
-      lua_pcall(L, 1, 0, 0);
-    }
-  }
+  else
+    run_chunk(L, evolver_lines, sizeof evolver_lines - 1, "=evolver", data, size);
+#endif
   lua_sethook(L, NULL, 0, 0);
   tds_ctx ctx = st->ctx;
   FUZZ_CHECK(tds_mesh_check(&ctx, &st->s.m) == TDS_OK, "mesh broken: %s", ctx.errmsg);
