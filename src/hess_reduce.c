@@ -7,6 +7,7 @@
 
 #include "expr.h"
 #include "hess.h"
+#include "motion.h"
 #include "vec3.h"
 
 void tds_hess_red_free(tds_hess_red *r) {
@@ -18,16 +19,6 @@ void tds_hess_red_free(tds_hess_red *r) {
   memset(r, 0, sizeof *r);
 }
 
-static void vars_at(const tds_surf *s, const double x[3], const double p[2],
-                    double vars[TDS_NVARS]) {
-  vars[TDS_X] = x[0];
-  vars[TDS_Y] = x[1];
-  vars[TDS_Z] = x[2];
-  vars[TDS_P1] = p ? p[0] : 0;
-  vars[TDS_P2] = p ? p[1] : 0;
-  vars[TDS_G] = s->gravity_on ? s->gravity : 0;
-}
-
 /* Basis B (columns B[.][a]) and curvature block C (d x d) of vertex v,
 ** f the gradient there; returns d. */
 static int vertex_space(const tds_surf *s, tds_id v, const double f[3], double B[3][3],
@@ -36,7 +27,7 @@ static int vertex_space(const tds_surf *s, tds_id v, const double f[3], double B
   double vars[TDS_NVARS], g[TDS_NDIFF], H[TDS_NDIFF][TDS_NDIFF];
   memset(B, 0, sizeof(double[3][3]));
   memset(C, 0, sizeof(double[3][3]));
-  vars_at(s, m->x[v], m->vp[v], vars);
+  tds_motion_vars(s, m->x[v], m->vp[v], vars);
   if (m->vbdry[v] != TDS_NONE) {
     const tds_boundary *bd = &s->bdry[m->vbdry[v]];
     int np = bd->nparams;

@@ -11,8 +11,8 @@
 #define MAX_ACTIVE 3        /* independent level sets a vertex can be on */
 #define MAX_NEWTON 25
 
-static void vars_at(const tds_surf *s, const double x[3], const double p[2],
-                    double vars[TDS_NVARS]) {
+void tds_motion_vars(const tds_surf *s, const double x[3], const double p[2],
+                     double vars[TDS_NVARS]) {
   vars[TDS_X] = x[0];
   vars[TDS_Y] = x[1];
   vars[TDS_Z] = x[2];
@@ -29,7 +29,7 @@ static int active_sets(const tds_surf *s, tds_id v, const double x[3],
   tds_cmask mask = s->m.vcon[v];
   int k = 0;
   double vars[TDS_NVARS], g[TDS_NDIFF];
-  vars_at(s, x, NULL, vars);
+  tds_motion_vars(s, x, NULL, vars);
   for (int c = 0; mask && c < TDS_MAX_CON; c++) {
     if (!(mask & ((tds_cmask)1 << c))) continue;
     mask &= ~((tds_cmask)1 << c);
@@ -75,7 +75,7 @@ void tds_motion_project(const tds_surf *s, tds_id v, double w[3]) {
     /* Parameter-space covector: J^T w, J = dX/dp. */
     const tds_boundary *B = &s->bdry[bd];
     double vars[TDS_NVARS], g[TDS_NDIFF], out[3] = {0, 0, 0};
-    vars_at(s, m->x[v], m->vp[v], vars);
+    tds_motion_vars(s, m->x[v], m->vp[v], vars);
     for (int i = 0; i < 3; i++) {
       tds_expr_eval_grad(B->x[i], s->parval, vars, g);
       for (int j = 0; j < B->nparams; j++) out[j] += g[TDS_P1 + j] * w[i];
@@ -111,7 +111,7 @@ static int place_on_boundary(tds_surf *s, tds_id v) {
   tds_mesh *m = &s->m;
   const tds_boundary *B = &s->bdry[m->vbdry[v]];
   double vars[TDS_NVARS];
-  vars_at(s, m->x[v], m->vp[v], vars);
+  tds_motion_vars(s, m->x[v], m->vp[v], vars);
   for (int i = 0; i < 3; i++)
     m->x[v][i] = tds_expr_eval(B->x[i], s->parval, vars);
   return isfinite(m->x[v][0] + m->x[v][1] + m->x[v][2]) ? TDS_OK : TDS_ENUM;
@@ -146,7 +146,7 @@ void tds_boundary_param_toward(const tds_surf *s, int32_t bd, const double targe
   p[1] = pstart[1];
   for (int it = 0; it < 5; it++) {
     double vars[TDS_NVARS], g[TDS_NDIFF], J[3][2], r[3];
-    vars_at(s, target, p, vars);
+    tds_motion_vars(s, target, p, vars);
     for (int i = 0; i < 3; i++) {
       r[i] = target[i] - tds_expr_eval_grad(B->x[i], s->parval, vars, g);
       J[i][0] = g[TDS_P1];

@@ -34,6 +34,11 @@ void tds_boundary_param_toward(const tds_surf *s, int32_t bd,
                                const double target[3], const double pstart[2],
                                double p[2]);
 
+/* The variables a constraint or boundary formula sees at position x with
+** boundary parameters p (NULL: 0): x y z p1 p2 and G (0 with gravity off). */
+void tds_motion_vars(const tds_surf *s, const double x[3], const double p[2],
+                     double vars[TDS_NVARS]);
+
 /* Nonzero if vertex v can move at all. */
 static inline int tds_vertex_free(const tds_surf *s, tds_id v) {
   return !(s->m.vflags[v] & (TDS_FIXED | TDS_DEAD));
