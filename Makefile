@@ -1,7 +1,8 @@
 # tds: build, test and benchmark. `make demo`, `make test` work on a fresh
 # Debian machine: missing packages are installed by scripts/deps.sh (the
-# build needs only a compiler, Lua 5.4 and readline; Surface Evolver is
-# installed by the targets that compare against it).
+# build needs a compiler, Lua 5.4, readline, cairo, libmicrohttpd and npm
+# for three.js; Surface Evolver, the browser and Python's mesh readers are
+# installed by the targets that test against them, clang by `make fuzz`).
 
 CC ?= cc
 BUILD ?= build
