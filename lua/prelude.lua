@@ -273,7 +273,7 @@ Reporting     v()  total_energy  total_area  vertex_count ... body_count
 Files         tds file.fe (load a datafile)  dump("out.fe")
               export("out.ply" | .obj .stl .off .vtu .vtk .msh, {...})  mark()
 Pictures      snapshot("s.png", {color=, view=})  plot("c.png")  quality{png=}
-              verbose(on)  (doc/output.md)
+              verbose(on)  show() live 3-D view in the browser  (doc/output.md)
 Leaving       q()  (at the prompt: q, or Ctrl-D)
 Evolver text  at the prompt (g 5; r; u   angle := 45   print total_area),
               tds file.fe -f cmds, evolver(text) in Lua (doc/command-language.md)
