@@ -55,13 +55,7 @@ static int l_mark(lua_State *L) {
 
 /* tds.vertex_gauss_curvature(v) -> number or nil (not measured) */
 static int l_vertex_gauss_curvature(lua_State *L) {
-  tds_state *st = TDS_STATE(L);
-  tds_id v = tds_check_elem(L, st, 1, TDS_VERTEX, NULL);
-  if (tds_mesh_adjacency(&st->s.m) != TDS_OK) return luaL_error(L, "out of memory");
-  double k = tds_vertex_gauss_curvature(&st->s, v);
-  if (isnan(k)) return 0;
-  lua_pushnumber(L, k);
-  return 1;
+  return tds_lua_vertex_measure(L, tds_vertex_gauss_curvature);
 }
 
 /* Raise "file:line: message" at the caller's line (never returns). */

@@ -169,14 +169,18 @@ static int l_curvature(lua_State *L) {
   return 1;
 }
 
-static int l_vertex_mean_curvature(lua_State *L) {
+int tds_lua_vertex_measure(lua_State *L, double (*measure)(const tds_surf *, tds_id)) {
   tds_state *st = TDS_STATE(L);
   tds_id v = tds_check_elem(L, st, 1, TDS_VERTEX, NULL);
   if (tds_mesh_adjacency(&st->s.m) != TDS_OK) return luaL_error(L, "out of memory");
-  double h = tds_vertex_mean_curvature(&st->s, v);
+  double h = measure(&st->s, v);
   if (isnan(h)) return 0;
   lua_pushnumber(L, h);
   return 1;
+}
+
+static int l_vertex_mean_curvature(lua_State *L) {
+  return tds_lua_vertex_measure(L, tds_vertex_mean_curvature);
 }
 
 static int l_facet_min_angle(lua_State *L) {

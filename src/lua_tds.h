@@ -30,6 +30,10 @@ typedef struct tds_state {
 ** functions and the embedded prelude), or "" if there is none. */
 void tds_lua_where(lua_State *L);
 
+/* tds.vertex_*(v): push measure(v) for vertex handle 1, or nothing where
+** the measure is not defined (NaN); lua_pg.c. */
+int tds_lua_vertex_measure(lua_State *L, double (*measure)(const tds_surf *, tds_id));
+
 /* Raise the core's message for rc as a Lua error (never returns). */
 int tds_lua_fail(lua_State *L, tds_state *st, int rc);
 
