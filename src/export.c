@@ -170,9 +170,8 @@ static int make_mesh(tds_ctx *ctx, const tds_surf *s, const tds_export_opts *o,
     for (int k = 0; k < 3; k++) map[m->fv[f][k]] = 1;
   }
   for (tds_id v = 0; v < m->nv; v++) map[v] = map[v] ? nv++ : -1;
-  /* room for caps: a loop of n edges adds n - 2 triangles, and the loops
-  ** have at most as many edges as the triangles have sides */
-  int32_t room = 4 * nt + 1;
+  /* room for caps (tds_export_caps) */
+  int32_t room = 6 * nt + 1;
   b->x.x = tds_calloc((size_t)(nv > 0 ? nv : 1), sizeof *b->x.x);
   b->vid = tds_calloc((size_t)(nv > 0 ? nv : 1), sizeof *b->vid);
   b->x.tri = tds_calloc((size_t)room, sizeof *b->x.tri);

@@ -59,8 +59,9 @@ void xput_num(FILE *f, double v);
 void xtri_normal(const xmesh *x, int32_t t, double n[3]);
 
 /* Close every boundary loop of the triangle set in x by appending cap
-** triangles (export_cap.c); x->tri must have room for 4 * nt + 1
-** triangles (caps add fewer than the boundary's 3 * nt sides). An edge
+** triangles (export_cap.c); x->tri must have room for 6 * nt + 1
+** triangles (caps add at most 5/3 of the boundary's at most 3 * nt
+** sides: a loop of n sides adds n - 2, a bridged hole 2 more). An edge
 ** is on the boundary by the excess of its uses in one direction over the
 ** other, so caps also close a set whose orientation is inconsistent.
 ** TDS_OK, TDS_ENOMEM, or TDS_ERANGE when the boundary edges do not chain
