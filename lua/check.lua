@@ -49,6 +49,8 @@ end
 
 local function setting(_, ...) return select("#", ...) > 0 end -- a write
 for _, name in ipairs { "iterate", "refine", "equiangulate", "vertex_average", "pg",
+                        "edgeweed", "areaweed", "edge_divide", "skinny", "notch", "delete",
+                        "edgeswap", "pop", "jiggle",
                         "totals" } do
   guard(name, true, true)
 end

@@ -620,6 +620,31 @@ B.r = function(n) for _ = 1, times(n, "r") do flush(); tds.refine(nil) end end
 B.refine = B.r
 B.u = function(n) for _ = 1, times(n, "u") do flush(); tds.equiangulate(nil) end end
 B.equiangulate = B.u
+-- Mesh maintenance: t w l K n take their cutoff on the line (Evolver would
+-- prompt for it; a command file cannot answer).
+local function cutcmd(name, what, fn)
+  return function(v)
+    if v == nil then fail(("%s needs a %s (%s value)"):format(name, what, name)) end
+    flush()
+    fn(num(v, name))
+  end
+end
+B.t = cutcmd("t", "cutoff edge length", tds.edgeweed)
+B.edgeweed = cutcmd("edgeweed", "cutoff edge length", tds.edgeweed)
+B.w = cutcmd("w", "cutoff facet area", tds.areaweed)
+B.areaweed = cutcmd("areaweed", "cutoff facet area", tds.areaweed)
+B.l = cutcmd("l", "cutoff edge length", tds.edge_divide)
+B.edge_divide = cutcmd("edge_divide", "cutoff edge length", tds.edge_divide)
+B.K = cutcmd("K", "cutoff angle", tds.skinny)
+B.n = cutcmd("n", "cutoff angle", tds.notch)
+B.notch = cutcmd("notch", "cutoff angle", tds.notch)
+B.j = function(temp) flush(); tds.jiggle(temp ~= nil and num(temp, "j") or 0.05) end
+B.jiggle = B.j
+B.o = function()
+  flush()
+  local ok, err = pcall(tds.pop, nil)
+  if not ok then err = tostring(err); fail("o: " .. (err:match("not supported.*") or err)) end
+end
 B.V = function(n) for _ = 1, times(n, "V") do flush(); tds.vertex_average(nil) end end
 B.vertex_average = B.V
 B.v = function()
@@ -720,10 +745,10 @@ B.convert_to_quantities = function() end
 
 -- Evolver commands tds does not have: named in the error.
 local UNSUPPORTED = {}
-for w in ([[t o O w l K n j J e A a b f k M p Q W y Z z s P D F H h X hessian hessian_seek
-  saddle ritz eigenprobe lanczos hessian_menu move lagrange edgeweed areaweed edge_divide
-  notch dirichlet dirichlet_seek sobolev sobolev_seek delete dissolve pop pop_edge_to_tri
-  pop_tri_to_edge pop_quad_to_quad t1_edgeswap edgeswap raw_vertex_average
+for w in ([[ O      J e A a b f k M p Q W y Z z s P D F H h X hessian hessian_seek
+  saddle ritz eigenprobe lanczos hessian_menu move lagrange   
+   dirichlet dirichlet_seek sobolev sobolev_seek  dissolve pop_edge_to_tri
+  pop_tri_to_edge pop_quad_to_quad t1_edgeswap  raw_vertex_average
   rawest_vertex_average rawv rawestv new_vertex new_edge new_facet new_body vertex_merge
   edge_merge facet_merge facet_crosscut reverse_orientation rebody zoom detorus wrap_vertex 
   addload
@@ -731,7 +756,7 @@ for w in ([[t o O w l K n j J e A a b f k M p Q W y Z z s P D F H h X hessian he
   reset_counts metis kmetis body_metis ometis matrix_inverse matrix_multiply
   exprint show show_expr showq show_trans close_show transforms transform_expr
   display_text delete_text chdir postscript binary_off_file off_file geomview
-  jiggle homothety autopop autochop ribiere check_increase hessian_normal
+  homothety autopop autochop ribiere check_increase hessian_normal
   linear_metric quietgo quietload verbose approximate_curvature runge_kutta
   post_project volgrads_every area_normalization effective_area normal_motion
   hessian_diff ysmp bunch_kaufman sparse_constraints augmented_hessian
@@ -846,6 +871,15 @@ function E.oncollection(name, kind, list)
   elseif name == "vertex_average" then
     if kind ~= "vertex" then fail("vertex_average needs vertices") end
     tds.vertex_average(list)
+  elseif name == "delete" then
+    if kind ~= "edge" and kind ~= "facet" then fail("delete needs edges or facets") end
+    if #list > 0 then tds.delete(list) end
+  elseif name == "pop" then
+    if kind ~= "vertex" then fail("pop " .. kind .. ": not supported yet (pop vertices)") end
+    tds.pop(list)
+  elseif name == "edgeswap" then
+    if kind ~= "edge" then fail("edgeswap needs edges") end
+    tds.edgeswap(list)
   else
     fail(name .. ": not supported yet")
   end

@@ -199,6 +199,41 @@ equiangulate = u
 function V(set) tds.vertex_average(set) end
 vertex_average = V
 
+-- Mesh maintenance (doc/commands.md): each prints Evolver's line and
+-- returns the count. Sets are a handle, a list of handles or an iterator.
+local function list_of(set, what)
+  if type(set) == "function" then
+    local l = {}
+    for h in set do l[#l + 1] = h end
+    return l
+  end
+  if set == nil then error(what .. " needs a set of elements (nil given)", 3) end
+  return set
+end
+local function need(x, what, name)
+  if type(x) ~= "number" then error(("%s: the %s must be a number"):format(name, what), 3) end
+  return x
+end
+function t(len) return tds.edgeweed(need(len, "edge length", "t(len)")) end
+edgeweed = t
+function w(area) return tds.areaweed(need(area, "facet area", "w(area)")) end
+areaweed = w
+function l(len) return tds.edge_divide(need(len, "edge length", "l(len)")) end
+edge_divide = l
+function K(angle) return tds.skinny(need(angle, "angle", "K(angle)")) end
+function n(angle) return tds.notch(need(angle, "angle", "n(angle)")) end
+notch = n
+function delete(set) return tds.delete(list_of(set, "delete")) end
+function o(set)
+  if type(set) == "function" then set = list_of(set) end
+  return tds.pop(set)
+end
+pop = o
+-- j(temp [, seed]): jiggle (temp defaults to Evolver's jiggle_temperature 0.05)
+function j(temp, seed) return tds.jiggle(temp or 0.05, seed) end
+jiggle = j
+function edgeswap(set) return tds.edgeswap(list_of(set, "edgeswap")) end
+
 -- recalc(): after assigning parameters, put boundary vertices where their
 -- parameters say and constrained vertices back on their constraints (g, r
 -- and pg do this first by themselves).

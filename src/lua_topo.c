@@ -1,0 +1,139 @@
+/* lua_topo.c: bindings of the mesh-maintenance commands (topo_edit.h).
+** Each prints the line Evolver prints and returns the count; the prelude
+** gives them Evolver's names (t, w, l, K, n, delete, edgeswap, ...). */
+#include <stdlib.h>
+
+#include "lua_tds.h"
+#include "topo_edit.h"
+
+typedef int (*cut_cmd)(tds_ctx *, tds_surf *, double, int32_t *);
+typedef int (*sel_cmd)(tds_ctx *, tds_surf *, const uint8_t *, int32_t *);
+
+static int cut(lua_State *L, cut_cmd fn, const char *what, const char *fmt) {
+  tds_state *st = TDS_STATE(L);
+  double v = tds_lua_checkfinite(L, 1, what);
+  int32_t n = 0;
+  int rc = fn(&st->ctx, &st->s, v, &n);
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+  tds_printf(&st->ctx, fmt, n);
+  lua_pushinteger(L, n);
+  return 1;
+}
+
+static int on_set(lua_State *L, int kind, sel_cmd fn, const char *fmt) {
+  tds_state *st = TDS_STATE(L);
+  uint8_t *sel = tds_lua_selection(L, st, 1, kind);
+  int32_t n = 0;
+  int rc = fn(&st->ctx, &st->s, sel, &n);
+  free(sel);
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+  tds_printf(&st->ctx, fmt, n);
+  lua_pushinteger(L, n);
+  return 1;
+}
+
+/* tds.edgeweed(len) -> edges collapsed */
+static int l_edgeweed(lua_State *L) {
+  return cut(L, tds_edgeweed, "edge length", "Deleted edges: %d\n");
+}
+/* tds.areaweed(area) -> facets removed */
+static int l_areaweed(lua_State *L) {
+  return cut(L, tds_areaweed, "facet area", "Skinny triangles weeded: %d\n");
+}
+/* tds.edge_divide(len) -> edges split */
+static int l_edge_divide(lua_State *L) {
+  return cut(L, tds_edge_divide, "edge length", "New edges: %d\n");
+}
+/* tds.skinny(angle) -> edges split */
+static int l_skinny(lua_State *L) {
+  return cut(L, tds_skinny, "angle", "New edges: %d\n");
+}
+/* tds.notch(angle) -> edges notched */
+static int l_notch(lua_State *L) {
+  return cut(L, tds_notch, "angle", "Number of edges notched: %d\n");
+}
+/* tds.delete_edges([edges]) -> edges collapsed */
+static int l_delete_edges(lua_State *L) {
+  return on_set(L, TDS_EDGE, tds_delete_edges, "Edges deleted: %d\n");
+}
+/* tds.delete_facets([facets]) -> facets removed */
+static int l_delete_facets(lua_State *L) {
+  return on_set(L, TDS_FACET, tds_delete_facets, "Facets deleted: %d\n");
+}
+/* tds.edgeswap([edges]) -> edges flipped */
+static int l_edgeswap(lua_State *L) {
+  return on_set(L, TDS_EDGE, tds_edgeswap, "Edges swapped: %d\n");
+}
+
+/* tds.pop([vertices]) -> vertices popped */
+static int l_pop(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  uint8_t *sel = tds_lua_selection(L, st, 1, TDS_VERTEX);
+  int32_t n = 0;
+  int rc = tds_pop_vertices(&st->ctx, &st->s, sel, &n);
+  free(sel);
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+  tds_printf(&st->ctx, "Edges popped: 0\nVertices popped: %d\n", n);
+  lua_pushinteger(L, n);
+  return 1;
+}
+
+/* tds.jiggle(temp [, seed]) -> vertices moved. The stream's state lives
+** in the registry ("tds.jiggle_rng", starting at seed 1); a seed restarts
+** it, so `j(0.05, 7)` is the same jiggle every time. */
+static int l_jiggle(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  double temp = tds_lua_checkfinite(L, 1, "temperature");
+  uint64_t rng = 1;
+  if (!lua_isnoneornil(L, 2)) {
+    rng = (uint64_t)luaL_checkinteger(L, 2);
+  } else {
+    lua_getfield(L, LUA_REGISTRYINDEX, "tds.jiggle_rng");
+    if (lua_isinteger(L, -1)) rng = (uint64_t)lua_tointeger(L, -1);
+    lua_pop(L, 1);
+  }
+  int32_t n = 0;
+  int rc = tds_jiggle(&st->ctx, &st->s, temp, &rng, &n);
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+  lua_pushinteger(L, (lua_Integer)rng);
+  lua_setfield(L, LUA_REGISTRYINDEX, "tds.jiggle_rng");
+  lua_pushinteger(L, n);
+  return 1;
+}
+
+/* tds.delete(elements) -> count: an edge or facet handle, or a list of
+** them (all of one kind; the prelude turns iterators into lists). */
+static int l_delete(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  int kind = TDS_EDGE;
+  if (lua_istable(L, 1)) {
+    if (luaL_len(L, 1) == 0) {
+      lua_pushinteger(L, 0);
+      return 1;
+    }
+    lua_rawgeti(L, 1, 1);
+    tds_check_elem(L, st, -1, -1, &kind);
+    lua_pop(L, 1);
+  } else {
+    tds_check_elem(L, st, 1, -1, &kind);
+  }
+  if (kind == TDS_EDGE)
+    return on_set(L, TDS_EDGE, tds_delete_edges, "Edges deleted: %d\n");
+  if (kind == TDS_FACET)
+    return on_set(L, TDS_FACET, tds_delete_facets, "Facets deleted: %d\n");
+  return tds_lua_error(L, "delete works on edges and facets, not %s",
+                       kind == TDS_VERTEX ? "vertices" : "bodies");
+}
+
+void tds_open_topo(lua_State *L, tds_state *st) {
+  static const luaL_Reg fns[] = {
+      {"edgeweed", l_edgeweed},         {"areaweed", l_areaweed},
+      {"edge_divide", l_edge_divide},   {"skinny", l_skinny},
+      {"notch", l_notch},               {"delete_edges", l_delete_edges},
+      {"delete_facets", l_delete_facets}, {"edgeswap", l_edgeswap},
+      {"delete", l_delete},
+      {"pop", l_pop},
+      {"jiggle", l_jiggle},
+      {NULL, NULL}};
+  tds_lua_register(L, st, fns);
+}

@@ -1,0 +1,268 @@
+/* topo_collapse.c: edge collapse and the commands built on it (delete
+** edge, t/edgeweed, delete facet, w/areaweed). */
+#include "topo_edit.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "gather.h"
+#include "geom.h"
+#include "motion.h"
+#include "snap.h"
+#include "vec3.h"
+
+/* Is end v of edge e pinned: fixed, or on other constraints or another
+** boundary than the edge? Global constraints count for every vertex. */
+static int pinned(const tds_surf *s, tds_id v, tds_id e) {
+  const tds_mesh *m = &s->m;
+  tds_cmask gl = tds_surf_global_cons(s);
+  if (m->vflags[v] & TDS_FIXED) return 1;
+  if ((m->vcon[v] & ~gl) != (m->econ[e] & ~gl)) return 1;
+  return m->vbdry[v] != m->ebdry[e];
+}
+
+/* Rank of an edge when two merge: the more constrained survives. */
+static int rank(const tds_mesh *m, tds_id e) {
+  return ((m->eflags[e] & TDS_FIXED) ? 4 : 0) + (m->ebdry[e] != TDS_NONE ? 2 : 0) +
+         (m->econ[e] ? 1 : 0);
+}
+
+/* Move every facet side on edge `from` to edge `to` (same two vertices),
+** flipping the orientation of the references when the edges run opposite
+** ways. */
+static void move_sides(tds_mesh *m, tds_id from, tds_id to) {
+  int same = m->ev[from][0] == m->ev[to][0];
+  while (m->eside[from] != TDS_NONE) {
+    int32_t sd = m->eside[from];
+    tds_id f = sd / 3;
+    int32_t oe[3] = {m->fe[f][0], m->fe[f][1], m->fe[f][2]};
+    int k = sd % 3;
+    oe[k] = TDS_OREF(to, same ? TDS_OREV(oe[k]) : !TDS_OREV(oe[k]));
+    tds_mesh_set_facet(m, f, oe);
+  }
+}
+
+/* Does vertex v still have a live edge? */
+static int has_edge(const tds_mesh *m, tds_id v) {
+  for (tds_id e = 0; e < m->ne; e++)
+    if (tds_alive(m->eflags, e) && (m->ev[e][0] == v || m->ev[e][1] == v)) return 1;
+  return 0;
+}
+
+/* Remove edge d if it lost all its facets (and is not declared bare), and
+** then its ends if they lost all their edges. */
+static void drop_if_bare(tds_mesh *m, tds_id d) {
+  if (!tds_alive(m->eflags, d) || m->eside[d] != TDS_NONE) return;
+  if (m->eflags[d] & TDS_BARE) return;
+  tds_mesh_kill(m, TDS_EDGE, d);
+  for (int j = 0; j < 2; j++) {
+    tds_id v = m->ev[d][j];
+    if (tds_alive(m->vflags, v) && !(m->vflags[v] & TDS_BARE) && !has_edge(m, v))
+      tds_mesh_kill(m, TDS_VERTEX, v);
+  }
+}
+
+/* Two live facets with the same three edges. */
+static int same_edges(const tds_mesh *m, tds_id f, tds_id g) {
+  for (int i = 0; i < 3; i++) {
+    int found = 0;
+    for (int j = 0; j < 3; j++) found |= TDS_OID(m->fe[f][i]) == TDS_OID(m->fe[g][j]);
+    if (!found) return 0;
+  }
+  return 1;
+}
+
+int tds_collapse_edge(tds_surf *s, tds_id e) {
+  tds_mesh *m = &s->m;
+  if (e < 0 || e >= m->ne || !tds_alive(m->eflags, e)) return 0;
+  if (m->eflags[e] & TDS_FIXED) return 0;
+  tds_id t = m->ev[e][0], h = m->ev[e][1];
+  int pt = pinned(s, t, e), ph = pinned(s, h, e);
+  if (pt && ph) return 0;
+  tds_id keep = ph ? h : t, gone = ph ? t : h;
+  /* The edges at either end, whether each comes from `gone` and had
+  ** facets; another edge between the ends would become a loop. */
+  int32_t nat = 0;
+  for (tds_id d = 0; d < m->ne; d++)
+    if (d != e && tds_alive(m->eflags, d) &&
+        (m->ev[d][0] == t || m->ev[d][1] == t || m->ev[d][0] == h || m->ev[d][1] == h)) {
+      int a = m->ev[d][0] == t || m->ev[d][1] == t, b = m->ev[d][0] == h || m->ev[d][1] == h;
+      if (a && b) return 0;
+      nat++;
+    }
+  tds_id *at = malloc((size_t)(nat + 1) * sizeof *at);
+  uint8_t *info = malloc((size_t)nat + 1);
+  if (!at || !info) {
+    free(at);
+    free(info);
+    return -1;
+  }
+  nat = 0;
+  for (tds_id d = 0; d < m->ne; d++)
+    if (d != e && tds_alive(m->eflags, d)) {
+      int g = m->ev[d][0] == gone || m->ev[d][1] == gone;
+      if (!g && m->ev[d][0] != keep && m->ev[d][1] != keep) continue;
+      at[nat] = d;
+      info[nat++] = (uint8_t)(g | (m->eside[d] != TDS_NONE ? 2 : 0));
+    }
+
+  if (!pt && !ph && m->vbdry[keep] == TDS_NONE) {
+    tds_corners C;
+    tds_gather_edge(m, TDS_OREF(e, 0), &C);
+    double x[3];
+    v3_add(x, C.x[0], C.x[1]);
+    v3_scale(x, 0.5);
+    v3_copy(m->x[keep], x);
+    tds_motion_enforce(s, keep);
+    m->coord_gen++;
+  }
+  /* The facets on e go; their other edges merge below. */
+  while (m->eside[e] != TDS_NONE) tds_mesh_kill(m, TDS_FACET, m->eside[e] / 3);
+  tds_mesh_kill(m, TDS_EDGE, e);
+  tds_mesh_kill(m, TDS_VERTEX, gone);
+  for (tds_id f = 0; f < m->nf; f++) {
+    if (!tds_alive(m->fflags, f)) continue;
+    for (int k = 0; k < 3; k++)
+      if (m->fv[f][k] == gone) m->fv[f][k] = keep;
+  }
+  for (int32_t i = 0; i < nat; i++)
+    for (int j = 0; j < 2; j++)
+      if (m->ev[at[i]][j] == gone) m->ev[at[i]][j] = keep;
+  m->topo_gen++;
+  /* Edges that now join keep to the same vertex merge. */
+  for (int32_t i = 0; i < nat; i++) {
+    tds_id d = at[i];
+    if (!tds_alive(m->eflags, d)) continue;
+    tds_id od = m->ev[d][0] == keep ? m->ev[d][1] : m->ev[d][0];
+    for (int32_t j = i + 1; j < nat; j++) {
+      tds_id q = at[j];
+      if (!tds_alive(m->eflags, q)) continue;
+      tds_id oq = m->ev[q][0] == keep ? m->ev[q][1] : m->ev[q][0];
+      if (oq != od) continue;
+      int rd = rank(m, d), rq = rank(m, q);
+      tds_id win = rd != rq ? (rd > rq ? d : q) : ((info[j] & 1) && !(info[i] & 1) ? q : d);
+      tds_id lose = win == d ? q : d;
+      move_sides(m, lose, win);
+      m->eflags[win] |= m->eflags[lose] & TDS_FIXED;
+      info[win == d ? i : j] |= info[win == d ? j : i] & 2;
+      tds_mesh_kill(m, TDS_EDGE, lose);
+      if (lose == d) break;
+    }
+  }
+  /* Facets that now share all three edges enclose nothing: both go. */
+  for (tds_id f = 0; f < m->nf; f++) {
+    if (!tds_alive(m->fflags, f)) continue;
+    if (m->fv[f][0] != keep && m->fv[f][1] != keep && m->fv[f][2] != keep) continue;
+    for (tds_id g = f + 1; g < m->nf; g++) {
+      if (!tds_alive(m->fflags, g) || !same_edges(m, f, g)) continue;
+      tds_id ed[3] = {TDS_OID(m->fe[f][0]), TDS_OID(m->fe[f][1]), TDS_OID(m->fe[f][2])};
+      tds_mesh_kill(m, TDS_FACET, f);
+      tds_mesh_kill(m, TDS_FACET, g);
+      for (int k = 0; k < 3; k++) drop_if_bare(m, ed[k]);
+      break;
+    }
+  }
+  /* Edges at keep that had facets and lost them all (the sides of a lone
+  ** triangle) go, and keep with them if nothing is left. */
+  for (int32_t i = 0; i < nat; i++)
+    if (info[i] & 2) drop_if_bare(m, at[i]);
+  free(at);
+  free(info);
+  m->topo_gen++;
+  return 1;
+}
+
+static double edge_len(const tds_mesh *m, tds_id e) {
+  tds_corners C;
+  tds_gather_edge(m, TDS_OREF(e, 0), &C);
+  double d[3];
+  v3_sub(d, C.x[1], C.x[0]);
+  return v3_norm(d);
+}
+
+static double facet_area(const tds_mesh *m, tds_id f) {
+  tds_corners C;
+  tds_gather_facet(m, f, &C);
+  return geom_area(C.x[0], C.x[1], C.x[2], NULL);
+}
+
+/* Collapse the first collapsible edge of facet f, shortest first: 1 if
+** one went, 0 if none could, -1 out of memory. */
+static int delete_facet(tds_surf *s, tds_id f) {
+  tds_mesh *m = &s->m;
+  tds_id ed[3];
+  double len[3];
+  for (int k = 0; k < 3; k++) {
+    ed[k] = TDS_OID(m->fe[f][k]);
+    len[k] = edge_len(m, ed[k]);
+  }
+  for (int i = 0; i < 3; i++) /* sort three */
+    for (int j = i + 1; j < 3; j++)
+      if (len[j] < len[i]) {
+        double tl = len[i];
+        len[i] = len[j];
+        len[j] = tl;
+        tds_id te = ed[i];
+        ed[i] = ed[j];
+        ed[j] = te;
+      }
+  for (int k = 0; k < 3; k++) {
+    int r = tds_collapse_edge(s, ed[k]);
+    if (r) return r;
+  }
+  return 0;
+}
+
+enum { BY_SEL, BY_LEN, BY_AREA };
+
+/* Run over edges (facets = 0) or facets, collapsing as `how` says. */
+static int weed(tds_ctx *ctx, tds_surf *s, int facets, int how,
+                const uint8_t *sel, double cut, int32_t *n) {
+  tds_mesh *m = &s->m;
+  int32_t cnt = 0, nslot = facets ? m->nf : m->ne;
+  int rc = TDS_OK;
+  for (tds_id i = 0; i < nslot; i++) {
+    if (!tds_alive(facets ? m->fflags : m->eflags, i)) continue;
+    if (how == BY_SEL && sel && !sel[i]) continue;
+    if (how == BY_LEN && !(edge_len(m, i) < cut)) continue;
+    if (how == BY_AREA && !(facet_area(m, i) < cut)) continue;
+    int r = facets ? delete_facet(s, i) : tds_collapse_edge(s, i);
+    if (r < 0) {
+      rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory while deleting");
+      break;
+    }
+    cnt += r;
+  }
+  if (n) *n = cnt;
+  if (rc != TDS_OK) return rc;
+  return tds_surf_update(ctx, s);
+}
+
+static int run(tds_ctx *ctx, tds_surf *s, int facets, int how,
+               const uint8_t *sel, double cut, int32_t *n) {
+  if (how != BY_SEL && !isfinite(cut))
+    return tds_seterr(ctx, TDS_ERANGE, "the cutoff must be a finite number");
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
+  if (rc != TDS_OK) return rc;
+  int32_t cnt = 0;
+  rc = tds_snap_end(ctx, s, &sn, weed(ctx, s, facets, how, sel, cut, &cnt));
+  if (n) *n = rc == TDS_OK ? cnt : 0;
+  return rc;
+}
+
+int tds_delete_edges(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  return run(ctx, s, 0, BY_SEL, sel, 0, n);
+}
+
+int tds_edgeweed(tds_ctx *ctx, tds_surf *s, double len, int32_t *n) {
+  return run(ctx, s, 0, BY_LEN, NULL, len, n);
+}
+
+int tds_delete_facets(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  return run(ctx, s, 1, BY_SEL, sel, 0, n);
+}
+
+int tds_areaweed(tds_ctx *ctx, tds_surf *s, double area, int32_t *n) {
+  return run(ctx, s, 1, BY_AREA, NULL, area, n);
+}

@@ -1,0 +1,85 @@
+/*
+** topo_edit.h: mesh-maintenance commands beyond r, u and V (Evolver's t,
+** w, l, K, n, delete, edgeswap, o, pop_edge_to_tri, pop_tri_to_edge,
+** jiggle).
+**
+** Every command here is all or nothing (a snapshot, snap.h): it checks
+** what it needs, and any failure (out of memory, a non-finite energy
+** afterwards) leaves the surface exactly as it was. Selections `sel` are
+** per-slot flags over the kind the command acts on (NULL: all live
+** elements); elements are visited in id order, as Evolver's generators do.
+** Each command stores the number of elements it acted on in *n (the count
+** Evolver prints). Ids of surviving elements never change.
+*/
+#ifndef TDS_TOPO_EDIT_H
+#define TDS_TOPO_EDIT_H
+
+#include "surf.h"
+
+/* Edge collapse (Evolver's delete edge). Edge e shrinks to a point: its
+** facets vanish, and on each of them the two other edges become one. An
+** end is pinned when it is fixed or its constraints or boundary differ
+** from the edge's; a pinned end stays where it is and the other joins it;
+** with neither pinned the tail survives at the midpoint (projected back
+** onto the edge's constraints). Refused (returns 0, nothing changes) when
+** the edge is dead or fixed, both ends are pinned, or another edge joins
+** the same two vertices. Edges that come to join the same two vertices are
+** merged (the one from the removed end survives unless the other is
+** fixed or on more constraints or a boundary); two facets that come to
+** share all three edges are both removed; edges and vertices left without
+** facets or edges by that are removed. Returns 1 when the edge collapsed.
+** Not a command by itself: no snapshot, no energy update. */
+int tds_collapse_edge(tds_surf *s, tds_id e);
+
+/* delete edge (sel over edges): collapse each selected live edge. */
+int tds_delete_edges(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
+
+/* t / edgeweed: collapse, in id order, each live edge shorter than len at
+** the time it is reached. */
+int tds_edgeweed(tds_ctx *ctx, tds_surf *s, double len, int32_t *n);
+
+/* delete facet (sel over facets): for each selected live facet, collapse
+** the first of its edges that can be collapsed, shortest first. */
+int tds_delete_facets(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
+
+/* w / areaweed: delete facet on each live facet whose area is below
+** `area` when it is reached. */
+int tds_areaweed(tds_ctx *ctx, tds_surf *s, double area, int32_t *n);
+
+/* l / edge_divide: split every live edge longer than len at its midpoint
+** (new edges are not split again), subdividing its facets as r does; it
+** ignores no_refine, as Evolver's l does. */
+int tds_edge_divide(tds_ctx *ctx, tds_surf *s, double len, int32_t *n);
+
+/* K: split the longest edge of every facet whose smallest angle is below
+** `angle` (radians). */
+int tds_skinny(tds_ctx *ctx, tds_surf *s, double angle, int32_t *n);
+
+/* n / notch: for every edge between exactly two facets whose normals make
+** an angle above `angle` (radians), split both facets into three at their
+** centroids. *n: edges notched. */
+int tds_notch(tds_ctx *ctx, tds_surf *s, double angle, int32_t *n);
+
+/* edgeswap (sel over edges): flip each selected edge that can be flipped
+** (tds_flip_ok, and the new edge must not exist yet), whatever the angles. */
+int tds_edgeswap(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
+
+/* o / pop on vertices (sel over vertices): each live vertex that is not
+** fixed, on a constraint or on a boundary, whose edges all have two or more
+** facets, and whose facets form separate cones (joined only at the vertex,
+** as a neck pinched by t) is split into one vertex per cone, at the same
+** place; the cone of its lowest facet keeps the vertex. A vertex whose
+** star is one cone that is not minimal (plane, triple line, tetrahedral
+** point) makes the command fail with "not supported yet for vertex N"
+** (Evolver's general sphere construction is not done), the surface as
+** before. *n: vertices split. */
+int tds_pop_vertices(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
+
+/* j / jiggle: move every vertex that is not fixed or on a boundary by a
+** Gaussian displacement of deviation temp times the mean edge length in
+** each coordinate, then project it back onto its constraints. The
+** random stream is splitmix64 from *rng, which is advanced on success
+** only, so the same seed gives the same jiggle. *n: vertices moved. */
+int tds_jiggle(tds_ctx *ctx, tds_surf *s, double temp, uint64_t *rng, int32_t *n);
+
+#endif

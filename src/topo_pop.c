@@ -1,0 +1,142 @@
+/* topo_pop.c: o / pop on vertices: a vertex where separate cones of
+** facets meet (a pinched neck after t) is split into one vertex per cone. */
+#include "topo_edit.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "snap.h"
+
+/* Union-find root with path halving. */
+static int root(int *p, int i) {
+  while (p[i] != i) i = p[i] = p[p[i]];
+  return i;
+}
+
+/* Classify the star of v: the number of cones (sets of facets joined
+** through edges at v) in *ncone, per-facet cone labels in lab (facets in
+** fl), and whether the star is a minimal cone when it is one piece: all
+** edges at v of valence 2 (a plane), two of valence 3 (a triple line) or
+** four of valence 3 (a tetrahedral point). Returns the facet count, or -1
+** when v is not an interior vertex of the surface (an edge at v has fewer
+** than two facets). */
+static int star(const tds_mesh *m, tds_id v, tds_id *fl, int *lab, int *ncone,
+                int *minimal) {
+  int nf = 0;
+  for (int32_t i = m->vf_start[v]; i < m->vf_start[v + 1]; i++) fl[nf++] = m->vf[i];
+  for (int i = 0; i < nf; i++) lab[i] = i;
+  int n2 = 0, n3 = 0, nother = 0;
+  for (int32_t i = m->ve_start[v]; i < m->ve_start[v + 1]; i++) {
+    tds_id e = TDS_OID(m->ve[i]);
+    int val = tds_edge_valence(m, e);
+    if (val < 2) return -1;
+    n2 += val == 2;
+    n3 += val == 3;
+    nother += val > 3;
+    /* join the facets on e */
+    int first = -1;
+    int32_t h = m->eside[e], sd = h;
+    do {
+      tds_id f = sd / 3;
+      for (int j = 0; j < nf; j++)
+        if (fl[j] == f) {
+          if (first < 0) first = j;
+          else lab[root(lab, j)] = root(lab, first);
+        }
+      sd = m->side_next[sd];
+    } while (sd != h);
+  }
+  int nc = 0;
+  for (int i = 0; i < nf; i++) {
+    lab[i] = root(lab, i);
+    nc += lab[i] == i;
+  }
+  *ncone = nc;
+  *minimal = nother == 0 && (n3 == 0 || n3 == 2 || n3 == 4);
+  return nf;
+}
+
+static int pop(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npop) {
+  tds_mesh *m = &s->m;
+  if (tds_mesh_adjacency(m) != TDS_OK) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+  int32_t nv0 = m->nv, cnt = 0, maxf = 0;
+  for (tds_id v = 0; v < nv0; v++) {
+    int32_t k = m->vf_start[v + 1] - m->vf_start[v];
+    if (k > maxf) maxf = k;
+  }
+  tds_id *fl = malloc((size_t)(maxf + 1) * sizeof *fl);
+  int *lab = malloc((size_t)(maxf + 1) * sizeof *lab);
+  tds_id *copy = malloc((size_t)(maxf + 1) * sizeof *copy);
+  if (!fl || !lab || !copy) {
+    free(fl);
+    free(lab);
+    free(copy);
+    return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+  }
+  int rc = TDS_OK;
+  tds_cmask gl = tds_surf_global_cons(s);
+  /* Splitting v changes only v's own star, so the stars of the vertices
+  ** after it, built once above, stay valid. */
+  for (tds_id v = 0; v < nv0 && rc == TDS_OK; v++) {
+    if (!tds_alive(m->vflags, v) || (sel && !sel[v])) continue;
+    if ((m->vflags[v] & TDS_FIXED) || (m->vcon[v] & ~gl) || m->vbdry[v] != TDS_NONE) continue;
+    int nc = 0, minimal = 0;
+    int nf = star(m, v, fl, lab, &nc, &minimal);
+    if (nf <= 0) continue;
+    if (nc == 1) {
+      if (!minimal) {
+        rc = tds_seterr(ctx, TDS_ERANGE, "not supported yet for vertex %d, a "
+                        "non-minimal cone (tds pops only pinched vertices, where "
+                        "separate cones meet)", v + 1);
+        break;
+      }
+      continue;
+    }
+    if (tds_mesh_room(m, TDS_VERTEX, m->nv + nc) != TDS_OK) {
+      rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory while popping");
+      break;
+    }
+    /* The cone of the first facet keeps v; each other cone gets a copy. */
+    for (int i = 0; i < nf; i++) copy[i] = TDS_NONE;
+    for (int i = 0; i < nf; i++) {
+      int r = lab[i];
+      if (r == lab[0] || copy[r] != TDS_NONE) continue;
+      tds_id w = tds_mesh_add_vertex(m, m->x[v]);
+      m->vflags[w] = m->vflags[v];
+      m->vcon[w] = m->vcon[v];
+      m->vbdry[w] = m->vbdry[v];
+      m->vp[w][0] = m->vp[v][0];
+      m->vp[w][1] = m->vp[v][1];
+      copy[r] = w;
+    }
+    for (int i = 0; i < nf; i++) {
+      tds_id w = copy[lab[i]], f = fl[i];
+      if (w == TDS_NONE) continue;
+      for (int k = 0; k < 3; k++) {
+        if (m->fv[f][k] == v) m->fv[f][k] = w;
+        tds_id e = TDS_OID(m->fe[f][k]);
+        for (int j = 0; j < 2; j++)
+          if (m->ev[e][j] == v) m->ev[e][j] = w;
+      }
+    }
+    m->topo_gen++;
+    cnt++;
+  }
+  free(fl);
+  free(lab);
+  free(copy);
+  if (rc != TDS_OK) return rc;
+  *npop = cnt;
+  return tds_surf_update(ctx, s);
+}
+
+int tds_pop_vertices(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  if (n) *n = 0;
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
+  if (rc != TDS_OK) return rc;
+  int32_t cnt = 0;
+  rc = tds_snap_end(ctx, s, &sn, pop(ctx, s, sel, &cnt));
+  if (n) *n = rc == TDS_OK ? cnt : 0;
+  return rc;
+}
