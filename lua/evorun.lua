@@ -412,6 +412,13 @@ function E.define(name, ty, dims, init)
   rawset(_G, name, E.newvalue(ty, dims, init))
 end
 
+-- define constraint|boundary|quantity TEXT: a datafile declaration added
+-- to the surface (messages at the command's file and line).
+function E.defmodel(text, line)
+  local file = where():match("^(.*):%d+: $")
+  tds.define_text(text, file or "(define)", line)
+end
+
 -- Assignment of v to a variable holding old: a number assigned to an
 -- array sets every element (Evolver's whole-array assignment).
 local function copy(a)
@@ -687,6 +694,11 @@ B.system = function(cmd)
   flush()
   os.execute(cmd)
 end
+B.chdir = function(path)
+  if type(path) ~= "string" then fail("chdir needs a folder name string") end
+  local ok, msg = tds.chdir(path)
+  if not ok then fail(msg) end
+end
 B.shell = function() flush(); os.execute(os.getenv("SHELL") or "/bin/sh") end
 B.help = function() help() end
 B.N = function()
@@ -730,7 +742,7 @@ for w in ([[t o O w l K n j J e A a b f k M p Q W y Z z s P D F H h X hessian he
   logfile keylogfile history pause subcommand breakpoint whereami flush_counts
   reset_counts metis kmetis body_metis ometis matrix_inverse matrix_multiply
   exprint show show_expr showq show_trans close_show transforms transform_expr
-  display_text delete_text chdir postscript binary_off_file off_file geomview
+  display_text delete_text postscript binary_off_file off_file geomview
   jiggle homothety autopop autochop ribiere check_increase hessian_normal
   linear_metric quietgo quietload verbose approximate_curvature runge_kutta
   post_project volgrads_every area_normalization effective_area normal_motion
