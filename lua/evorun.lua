@@ -445,13 +445,15 @@ end
 ---------------------------------------------------------------- quantities
 
 function E.qattr(q, name)
-  local value, target, pressure = tds.quantity_info(q.__quantity)
-  local v = ({ value = value, target = target, pressure = pressure })[name]
+  local value, target, pressure, _, modulus, volconst = tds.quantity_info(q.__quantity)
+  local v = ({ value = value, target = target, pressure = pressure, modulus = modulus,
+               volconst = volconst })[name]
   if v == nil then fail(("quantity %s: attribute '%s' not supported yet"):format(q.__quantity, name)) end
   return v
 end
-function E.setqattr(q, name)
-  fail(("setting %s.%s: not supported yet"):format(q.__quantity, name))
+function E.setqattr(q, name, v)
+  local ok, msg = tds.quantity_set(q.__quantity, name, num(v, name))
+  if not ok then fail(msg) end
 end
 
 ---------------------------------------------------------------- output

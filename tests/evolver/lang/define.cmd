@@ -16,3 +16,10 @@ recalc
 printf "K5 %.12g %.12g %.12g\n", vertex[1].z, total_energy, body[1].volume
 define boundary 3 parameters 1 x1: p1 x2: 0.5 x3: 0.5
 printf "K6 %d\n", 6
+elen.modulus := 0.5
+elen.volconst := 1
+recalc
+printf "K7 %.12g %.12g %.12g %.12g\n", elen.modulus, elen.volconst, elen.value, total_energy
+define quantity fixa fixed = 7 method facet_area global
+fixa.target := 6.5
+printf "K8 %.12g %.12g\n", fixa.target, fixa.value
