@@ -250,8 +250,8 @@ E.fn = {
     if type(v) == "table" then return #v end
     fail("sizeof: expected an array or a string")
   end,
-  valid_constraint = function() fail("valid_constraint: not supported yet") end,
-  valid_boundary = function() fail("valid_boundary: not supported yet") end,
+  valid_constraint = function(n) return tds.declared("constraint", math.floor(num(n))) and 1 or 0 end,
+  valid_boundary = function(n) return tds.declared("boundary", math.floor(num(n))) and 1 or 0 end,
 }
 
 -- Elements, generators and attributes (lua/evoelem.lua).

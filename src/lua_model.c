@@ -265,6 +265,18 @@ static int l_quantity_info(lua_State *L) {
   return 6;
 }
 
+/* tds.declared("constraint"|"boundary", n) -> whether number n is declared */
+static int l_declared(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  static const char *const kinds[] = {"constraint", "boundary", NULL};
+  int kind = luaL_checkoption(L, 1, NULL, kinds);
+  lua_Integer n = luaL_checkinteger(L, 2);
+  int ok = n >= 1 && n <= 1000000000 &&
+           (kind == 0 ? tds_surf_con_slot(&st->s, (int)n) : tds_model_boundary_slot(&st->s, (int)n)) >= 0;
+  lua_pushboolean(L, ok);
+  return 1;
+}
+
 /* tds.quantity_set(name, attr, value): set the target, modulus or volconst
 ** of a named quantity (Evolver's `qname.target := 3.12`); true, or nil and
 ** a message. */
@@ -298,6 +310,7 @@ void tds_open_model(lua_State *L, tds_state *st) {
                                  {"quantity", l_quantity},
                                  {"quantity_info", l_quantity_info},
                                  {"quantity_set", l_quantity_set},
+                                 {"declared", l_declared},
                                  {NULL, NULL}};
   tds_lua_register(L, st, fns);
 }

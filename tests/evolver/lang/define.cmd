@@ -23,3 +23,4 @@ printf "K7 %.12g %.12g %.12g %.12g\n", elen.modulus, elen.volconst, elen.value, 
 define quantity fixa fixed = 7 method facet_area global
 fixa.target := 6.5
 printf "K8 %.12g %.12g\n", fixa.target, fixa.value
+printf "K9 %d %d %d %d %d\n", valid_constraint(8), valid_constraint(10), valid_boundary(3), valid_boundary(1), valid_constraint(-2)
