@@ -409,7 +409,8 @@ function P:postfix()
     return ("E.agg(%s, %s, function(%s) %s return %s end end)"):format(q(w), g.arr, g.var, cond, asnum(v, vk)), "n"
   end
   if (w == "is_defined" or w == "sizeof" or w == "valid_element" or w == "valid_constraint"
-      or w == "valid_boundary") and self:isop("(", 1) then
+      or w == "valid_boundary" or w == "matrix_inverse" or w == "matrix_multiply"
+      or w == "matrix_determinant") and self:isop("(", 1) then
     self:next(); self:next()
     if w == "valid_element" then
       local kt = self:next()
