@@ -322,8 +322,8 @@ int tds_datafile_define(tds_ctx *ctx, tds_surf *s, const char *name, int line,
                 df_describe(d.p, b, sizeof b));
   if (rc < 0) rc = -rc;
   df_lex_free(&d.lx);
-  free(d.faces);
-  free(d.oe);
+  tds_free(&ctx->alloc, d.faces);
+  tds_free(&ctx->alloc, d.oe);
   if (rc != TDS_OK) {
     undefine(s, had, nquant0, nbdry0);
     return rc;
