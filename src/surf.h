@@ -105,9 +105,12 @@ typedef struct tds_surf {
   double energy, area;
 } tds_surf;
 
-/* Initialise an empty surface with Evolver's defaults. */
+/* Initialise an empty surface with Evolver's defaults. Its allocator is
+** s->m.alloc (zero: the C library); set it before anything is added, to
+** the hook of the contexts the surface will be used with (tds.h). */
 void tds_surf_init(tds_surf *s);
-/* Release everything the surface owns. */
+/* Release everything the surface owns; it is empty afterwards and keeps
+** its allocator. */
 void tds_surf_free(tds_surf *s);
 
 /* Recompute energy, area and body volumes (fills s->energy, s->area,
