@@ -552,11 +552,11 @@ function P:block_until_brace()
   local parts = {}
   self.depth = self.depth + 1
   while true do
-    while self:acceptop(";") do end
+    while self:acceptop(";") or self:acceptop(":") do end -- Evolver takes a stray ':' as ';'
     if self:isop("}") then break end
     if self:peek().t == "eof" then self:err("'{' not closed by '}'") end
     parts[#parts + 1] = self:statement()
-    if not (self:isop(";") or self:isop("}")) then
+    if not (self:isop(";") or self:isop("}") or self:isop(":")) then
       local t = self:peek()
       if not t.nl then self:err("expected ';' or '}' after a command, found " .. self:desc()) end
     end
@@ -1196,7 +1196,7 @@ function M.translate(text, line0)
       unit = nil
     end
     while true do
-      while p:acceptop(";") do end
+      while p:acceptop(";") or p:acceptop(":") do end
       if p:peek().t == "eof" then
         if p:peek().lexerr then close(); p:err("") end
         break
@@ -1205,7 +1205,7 @@ function M.translate(text, line0)
       unit = unit or {}
       unit[#unit + 1] = p:statement()
       local t = p:peek()
-      if not (t.t == "eof" or t.nl or p:isop(";")) then
+      if not (t.t == "eof" or t.nl or p:isop(";") or p:isop(":")) then
         p:err("expected ';' or a new line after a command, found " .. p:desc(t))
       end
     end
