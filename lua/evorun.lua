@@ -917,8 +917,8 @@ B.convert_to_quantities = function() end
 local UNSUPPORTED = {}
 for w in ([[ O      J e A a b f k M p Q W y Z z s P D F H h X hessian hessian_seek
   saddle ritz eigenprobe lanczos hessian_menu move lagrange   
-   dirichlet dirichlet_seek sobolev sobolev_seek  dissolve pop_edge_to_tri
-  pop_tri_to_edge pop_quad_to_quad t1_edgeswap  raw_vertex_average
+   dirichlet dirichlet_seek sobolev sobolev_seek  dissolve
+  pop_quad_to_quad t1_edgeswap  raw_vertex_average
   rawest_vertex_average rawv rawestv new_vertex new_edge new_facet new_body vertex_merge
   edge_merge facet_merge facet_crosscut reverse_orientation rebody zoom detorus wrap_vertex 
   addload
@@ -1044,6 +1044,12 @@ function E.oncollection(name, kind, list)
   elseif name == "delete" then
     if kind ~= "edge" and kind ~= "facet" then fail("delete needs edges or facets") end
     if #list > 0 then tds.delete(list) end
+  elseif name == "pop_edge_to_tri" then
+    if kind ~= "edge" then fail("pop_edge_to_tri needs edges") end
+    tds.pop_edge_to_tri(list)
+  elseif name == "pop_tri_to_edge" then
+    if kind ~= "facet" then fail("pop_tri_to_edge needs facets") end
+    tds.pop_tri_to_edge(list)
   elseif name == "pop" then
     if kind ~= "vertex" then fail("pop " .. kind .. ": not supported yet (pop vertices)") end
     tds.pop(list)

@@ -101,6 +101,14 @@ static int l_jiggle(lua_State *L) {
   return 1;
 }
 
+/* tds.pop_edge_to_tri([edges]), tds.pop_tri_to_edge([facets]) -> count */
+static int l_pop_edge_to_tri(lua_State *L) {
+  return on_set(L, TDS_EDGE, tds_pop_edge_to_tri, "Edges popped to triangles: %d\n");
+}
+static int l_pop_tri_to_edge(lua_State *L) {
+  return on_set(L, TDS_FACET, tds_pop_tri_to_edge, "Triangles popped to edges: %d\n");
+}
+
 /* tds.delete(elements) -> count: an edge or facet handle, or a list of
 ** them (all of one kind; the prelude turns iterators into lists). */
 static int l_delete(lua_State *L) {
@@ -134,6 +142,7 @@ void tds_open_topo(lua_State *L, tds_state *st) {
       {"delete", l_delete},
       {"pop", l_pop},
       {"jiggle", l_jiggle},
+      {"pop_edge_to_tri", l_pop_edge_to_tri}, {"pop_tri_to_edge", l_pop_tri_to_edge},
       {NULL, NULL}};
   tds_lua_register(L, st, fns);
 }

@@ -82,4 +82,20 @@ int tds_pop_vertices(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
 ** only, so the same seed gives the same jiggle. *n: vertices moved. */
 int tds_jiggle(tds_ctx *ctx, tds_surf *s, double temp, uint64_t *rng, int32_t *n);
 
+/* pop_edge_to_tri (sel over edges): each edge of valence 3 between two
+** free tetrahedral points (four triple edges each, all other edges of
+** valence 2), whose other triple edges have no common far ends, becomes a
+** small triangle between the bodies beyond its ends (a foam T1 move):
+** the edge collapses, and the point becomes three vertices a quarter of
+** the edge's length from it, joined by three new triple edges and the
+** new facet. *n: edges transformed. Volumes change by the swept amount;
+** g brings bodies with targets back. */
+int tds_pop_edge_to_tri(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
+
+/* pop_tri_to_edge (sel over facets): the inverse: a facet whose edges are
+** triple edges and whose corners are free tetrahedral points, between two
+** different bodies, collapses to a point that opens into a short triple
+** edge across, joining the two bodies' sides. *n: facets transformed. */
+int tds_pop_tri_to_edge(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
+
 #endif

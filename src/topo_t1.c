@@ -1,0 +1,443 @@
+/* topo_t1.c: the foam T1 moves pop_edge_to_tri and pop_tri_to_edge.
+**
+** Both go through one vertex: pop_edge_to_tri collapses the edge
+** between two tetrahedral points (topo_collapse.c) and expands the
+** resulting vertex, where six triple edges meet, into a triangle;
+** pop_tri_to_edge collapses the triangle and expands the vertex into an
+** edge. The expansion works on the fans of facets at the vertex (facets
+** joined through its edges of valence 2, bounded by two triple edges):
+** each triple edge goes to one of the new vertices; a fan whose two ends
+** go to the same new vertex follows them; a fan whose ends go to
+** different ones P and Q follows P and gains a facet (P, u, Q) on the
+** edge P-Q, where u is the far end of the triple edge at Q. Each edge is
+** done under its own snapshot, so one that does not fit the pattern is
+** skipped with the surface as before. */
+#include "topo_edit.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "motion.h"
+#include "snap.h"
+#include "vec3.h"
+
+static int root(int *p, int i) {
+  while (p[i] != i) i = p[i] = p[p[i]];
+  return i;
+}
+
+static int32_t oref_from(const tds_mesh *m, tds_id e, tds_id from) {
+  return TDS_OREF(e, m->ev[e][0] == from ? 0 : 1);
+}
+
+/* Edge between new vertices p and q among conn[0..nc-1], or TDS_NONE. */
+static tds_id conn_edge(const tds_mesh *m, const tds_id *conn, int nc, tds_id p, tds_id q) {
+  for (int i = 0; i < nc; i++) {
+    tds_id e = conn[i];
+    if ((m->ev[e][0] == p && m->ev[e][1] == q) || (m->ev[e][0] == q && m->ev[e][1] == p)) return e;
+  }
+  return TDS_NONE;
+}
+
+#define MAXF 256
+
+/* Expand vertex v: triple edge te[i] goes to new vertex tv[i]; conn are
+** the edges among new vertices. TDS_OK, or TDS_ETOPO when the star is
+** not fans bounded by two listed triple edges each. Room for nt new edges
+** and facets must be reserved. */
+static int expand(tds_mesh *m, tds_id v, int nt, const tds_id *te, const tds_id *tv,
+                  const tds_id *conn, int nc) {
+  tds_id fl[MAXF];
+  int lab[MAXF], nf = 0;
+  for (tds_id f = 0; f < m->nf; f++)
+    if (tds_alive(m->fflags, f) && (m->fv[f][0] == v || m->fv[f][1] == v || m->fv[f][2] == v)) {
+      if (nf == MAXF) return TDS_ETOPO;
+      fl[nf] = f;
+      lab[nf] = nf;
+      nf++;
+    }
+  /* join facets through non-triple edges at v */
+  for (int i = 0; i < nf; i++)
+    for (int k = 0; k < 3; k++) {
+      tds_id e = TDS_OID(m->fe[fl[i]][k]);
+      if (m->ev[e][0] != v && m->ev[e][1] != v) continue;
+      int triple = 0;
+      for (int t = 0; t < nt; t++) triple |= te[t] == e;
+      if (triple) continue;
+      for (int j = 0; j < nf; j++)
+        if (j != i)
+          for (int q = 0; q < 3; q++)
+            if (TDS_OID(m->fe[fl[j]][q]) == e) lab[root(lab, j)] = root(lab, i);
+    }
+  for (int i = 0; i < nf; i++) lab[i] = root(lab, i);
+  /* the two triple edges bounding each fan */
+  int endx[MAXF], endy[MAXF], yfacet[MAXF];
+  for (int i = 0; i < nf; i++) endx[i] = endy[i] = yfacet[i] = -1;
+  for (int i = 0; i < nf; i++)
+    for (int k = 0; k < 3; k++)
+      for (int t = 0; t < nt; t++)
+        if (TDS_OID(m->fe[fl[i]][k]) == te[t]) {
+          int r = lab[i];
+          if (endx[r] < 0) endx[r] = t;
+          else if (endx[r] != t && endy[r] < 0) { endy[r] = t; yfacet[r] = i; }
+          else if (endx[r] != t && endy[r] != t) return TDS_ETOPO;
+        }
+  for (int i = 0; i < nf; i++)
+    if (lab[i] == i && (endx[i] < 0 || endy[i] < 0)) return TDS_ETOPO;
+  for (int i = 0; i < nf; i++) {
+    int r = lab[i];
+    if (tv[endx[r]] != tv[endy[r]] &&
+        conn_edge(m, conn, nc, tv[endx[r]], tv[endy[r]]) == TDS_NONE)
+      return TDS_ETOPO;
+  }
+  /* Checked: move everything. Inner edges and facets follow their fan's
+  ** x end; triple edges their own target. */
+  for (int i = 0; i < nf; i++) {
+    tds_id f = fl[i], P = tv[endx[lab[i]]];
+    for (int k = 0; k < 3; k++) {
+      if (m->fv[f][k] == v) m->fv[f][k] = P;
+      tds_id e = TDS_OID(m->fe[f][k]);
+      int triple = 0;
+      for (int t = 0; t < nt; t++) triple |= te[t] == e;
+      if (!triple)
+        for (int j = 0; j < 2; j++)
+          if (m->ev[e][j] == v) m->ev[e][j] = P;
+    }
+  }
+  for (int t = 0; t < nt; t++)
+    for (int j = 0; j < 2; j++)
+      if (m->ev[te[t]][j] == v) m->ev[te[t]][j] = tv[t];
+  /* fans whose ends part: the facet on y takes a new edge to P, and a new
+  ** facet (P, u, Q) closes the gap */
+  for (int r = 0; r < nf; r++) {
+    if (lab[r] != r) continue;
+    tds_id P = tv[endx[r]], Q = tv[endy[r]];
+    if (P == Q) continue;
+    tds_id f = fl[yfacet[r]], y = te[endy[r]];
+    int k = 0;
+    while (TDS_OID(m->fe[f][k]) != y) k++;
+    int32_t oy = m->fe[f][k];
+    tds_id u = m->ev[y][0] == Q ? m->ev[y][1] : m->ev[y][0];
+    tds_id pq = conn_edge(m, conn, nc, P, Q);
+    int32_t oe[3] = {m->fe[f][0], m->fe[f][1], m->fe[f][2]};
+    int32_t g3[3];
+    tds_id n;
+    if (tds_oe_tail(m, oy) == u) { /* f runs u -> Q: now u -> P */
+      n = tds_mesh_add_edge(m, u, P);
+      oe[k] = TDS_OREF(n, 0);
+      g3[0] = TDS_OREF(n, 1);          /* P -> u */
+      g3[1] = oy;                      /* u -> Q */
+      g3[2] = oref_from(m, pq, Q);     /* Q -> P */
+    } else {                           /* f runs Q -> u: now P -> u */
+      n = tds_mesh_add_edge(m, P, u);
+      oe[k] = TDS_OREF(n, 0);
+      g3[0] = oy;                      /* Q -> u */
+      g3[1] = TDS_OREF(n, 1);          /* u -> P */
+      g3[2] = oref_from(m, pq, P);     /* P -> Q */
+    }
+    m->eflags[n] = m->fflags[f] & TDS_FIXED;
+    m->econ[n] = m->fcon[f];
+    tds_mesh_set_facet(m, f, oe);
+    tds_id g = tds_mesh_add_facet(m, g3);
+    m->fflags[g] = m->fflags[f];
+    m->fcon[g] = m->fcon[f];
+    m->ften[g] = m->ften[f];
+    m->fcolor[g] = m->fcolor[f];
+    m->fb[g][0] = m->fb[f][0];
+    m->fb[g][1] = m->fb[f][1];
+    m->forig[g] = m->forig[f] != TDS_NONE ? m->forig[f] : f;
+  }
+  tds_mesh_kill(m, TDS_VERTEX, v);
+  m->topo_gen++;
+  return TDS_OK;
+}
+
+/* Triple edges at v other than `not` (up to 4), and whether every other
+** edge at v has valence 2: a tetrahedral point. */
+static int tetra(const tds_mesh *m, tds_id v, tds_id not, tds_id *t3) {
+  int n3 = 0, nt = 0;
+  for (tds_id e = 0; e < m->ne; e++) {
+    if (!tds_alive(m->eflags, e) || (m->ev[e][0] != v && m->ev[e][1] != v)) continue;
+    int val = tds_edge_valence(m, e);
+    if (val == 3) {
+      if (n3 == 4) return 0;
+      if (e != not) t3[nt++] = e;
+      n3++;
+    } else if (val != 2) {
+      return 0;
+    }
+  }
+  return n3 == 4;
+}
+
+static int free_vertex(const tds_surf *s, tds_id v) {
+  const tds_mesh *m = &s->m;
+  return !(m->vflags[v] & TDS_FIXED) && !(m->vcon[v] & ~tds_surf_global_cons(s)) &&
+         m->vbdry[v] == TDS_NONE;
+}
+
+static tds_id far_end(const tds_mesh *m, tds_id e, tds_id v) {
+  return m->ev[e][0] == v ? m->ev[e][1] : m->ev[e][0];
+}
+
+/* Bodies on the facets around edge e contain b? */
+static int around_has(const tds_mesh *m, tds_id e, tds_id b) {
+  int32_t h = m->eside[e], sd = h;
+  if (h == TDS_NONE) return 0;
+  do {
+    tds_id f = sd / 3;
+    if (m->fb[f][0] == b || m->fb[f][1] == b) return 1;
+    sd = m->side_next[sd];
+  } while (sd != h);
+  return 0;
+}
+
+/* Bodies on the facets around edge e (distinct, up to 8); count. */
+static int bodies_around(const tds_mesh *m, tds_id e, tds_id *out) {
+  int n = 0;
+  int32_t h = m->eside[e], sd = h;
+  if (h == TDS_NONE) return 0;
+  do {
+    tds_id f = sd / 3;
+    for (int q = 0; q < 2; q++) {
+      int dup = 0;
+      for (int z = 0; z < n; z++) dup |= out[z] == m->fb[f][q];
+      if (!dup && n < 8) out[n++] = m->fb[f][q];
+    }
+    sd = m->side_next[sd];
+  } while (sd != h);
+  return n;
+}
+
+/* The body around all three triple edges t[0..2]: the one beyond their
+** common vertex; -2 if there is none or more than one. */
+static tds_id common_body(const tds_mesh *m, const tds_id *t) {
+  tds_id bs[8], found = -2;
+  int nb = bodies_around(m, t[0], bs);
+  for (int z = 0; z < nb; z++)
+    if (around_has(m, t[1], bs[z]) && around_has(m, t[2], bs[z])) {
+      if (found != -2) return -2;
+      found = bs[z];
+    }
+  return found;
+}
+
+/* One edge to a triangle; 1 done, 0 not applicable, <0 error code. */
+static int edge_to_tri(tds_surf *s, tds_id e, int dry) {
+  tds_mesh *m = &s->m;
+  if (!tds_alive(m->eflags, e) || (m->eflags[e] & TDS_FIXED) || m->econ[e] ||
+      m->ebdry[e] != TDS_NONE || tds_edge_valence(m, e) != 3)
+    return 0;
+  tds_id a = m->ev[e][0], b = m->ev[e][1], ta[4], tb[4];
+  if (!free_vertex(s, a) || !free_vertex(s, b) || !tetra(m, a, e, ta) || !tetra(m, b, e, tb))
+    return 0;
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      if (far_end(m, ta[i], a) == far_end(m, tb[j], b)) return 0;
+  tds_id D = common_body(m, ta), E = common_body(m, tb);
+  if (D == -2 || E == -2 || D == E) return 0;
+  if (dry) return 1;
+  double xa[3], xb[3], dab[3];
+  v3_copy(xa, m->x[a]);
+  v3_copy(xb, m->x[b]);
+  v3_sub(dab, xa, xb);
+  double len = v3_norm(dab);
+  if (tds_mesh_room(m, TDS_VERTEX, m->nv + 3) || tds_mesh_room(m, TDS_EDGE, m->ne + 12) ||
+      tds_mesh_room(m, TDS_FACET, m->nf + 8))
+    return TDS_ENOMEM;
+  int r = tds_collapse_edge(s, e);
+  if (r <= 0) return r < 0 ? TDS_ENOMEM : 0;
+  tds_id v = tds_alive(m->vflags, a) ? a : b;
+  /* The six triple edges at v now (merges may have renamed some): D's
+  ** side and E's side, each D-side one paired with the E-side one whose
+  ** walls hold the same two other bodies (a wall W_k of the old edge). */
+  tds_id td[3], tE[3];
+  int nd = 0, ne = 0;
+  for (tds_id d = 0; d < m->ne; d++) {
+    if (!tds_alive(m->eflags, d) || (m->ev[d][0] != v && m->ev[d][1] != v)) continue;
+    if (tds_edge_valence(m, d) != 3) continue;
+    int hd = around_has(m, d, D), he = around_has(m, d, E);
+    if (hd && !he && nd < 3) td[nd++] = d;
+    else if (he && !hd && ne < 3) tE[ne++] = d;
+    else return TDS_ETOPO;
+  }
+  if (nd != 3 || ne != 3) return TDS_ETOPO;
+  tds_id p[3], te[6], tv[6], conn[3];
+  int used[3] = {0, 0, 0};
+  for (int k = 0; k < 3; k++) {
+    tds_id bs[8];
+    int nb = bodies_around(m, td[k], bs), best = -1;
+    for (int j = 0; j < 3 && best < 0; j++) {
+      if (used[j]) continue;
+      int common = 0;
+      for (int z = 0; z < nb; z++) common += bs[z] != D && around_has(m, tE[j], bs[z]);
+      if (common == 2) best = j;
+    }
+    if (best < 0) return TDS_ETOPO;
+    used[best] = 1;
+    /* the new vertex toward the far ends of the pair, a quarter of the
+    ** edge's length from the collapse point */
+    p[k] = tds_mesh_add_vertex(m, m->x[v]);
+    m->vcon[p[k]] = m->vcon[v];
+    te[2 * k] = td[k];
+    te[2 * k + 1] = tE[best];
+    tv[2 * k] = tv[2 * k + 1] = p[k];
+    double dir[3], q[3];
+    v3_add(q, m->x[far_end(m, td[k], v)], m->x[far_end(m, tE[best], v)]);
+    v3_scale(q, 0.5);
+    v3_sub(dir, q, m->x[v]);
+    double dn = v3_norm(dir);
+    if (dn > 0) v3_scale(dir, 0.25 * len / dn);
+    v3_add(m->x[p[k]], m->x[v], dir);
+  }
+  for (int k = 0; k < 3; k++) conn[k] = tds_mesh_add_edge(m, p[k], p[(k + 1) % 3]);
+  int rc = expand(m, v, 6, te, tv, conn, 3);
+  if (rc != TDS_OK) return rc;
+  int32_t t3[3] = {TDS_OREF(conn[0], 0), TDS_OREF(conn[1], 0), TDS_OREF(conn[2], 0)};
+  tds_id T = tds_mesh_add_facet(m, t3);
+  double n[3], u1[3], u2[3];
+  v3_sub(u1, m->x[p[1]], m->x[p[0]]);
+  v3_sub(u2, m->x[p[2]], m->x[p[0]]);
+  v3_cross(n, u1, u2);
+  /* the normal points out of the front body; D lies beyond a */
+  int toward_d = v3_dot(n, dab) > 0;
+  m->fb[T][0] = toward_d ? E : D;
+  m->fb[T][1] = toward_d ? D : E;
+  for (int k = 0; k < 3; k++) tds_motion_enforce(s, p[k]);
+  m->coord_gen++;
+  return 1;
+}
+
+/* One triangle to an edge; 1 done, 0 not applicable, <0 error. */
+static int tri_to_edge(tds_surf *s, tds_id f, int dry) {
+  tds_mesh *m = &s->m;
+  if (!tds_alive(m->fflags, f)) return 0;
+  tds_id D = m->fb[f][1], E = m->fb[f][0]; /* normal points into D */
+  if (D == E) return 0;
+  tds_id pv[3], tx[3][4], x[3], y[3];
+  for (int k = 0; k < 3; k++) {
+    tds_id e = TDS_OID(m->fe[f][k]);
+    if ((m->eflags[e] & TDS_FIXED) || m->econ[e] || m->ebdry[e] != TDS_NONE ||
+        tds_edge_valence(m, e) != 3)
+      return 0;
+    pv[k] = m->fv[f][k];
+    if (!free_vertex(s, pv[k]) || !tetra(m, pv[k], TDS_NONE, tx[k])) return 0;
+    /* the two triple edges off the triangle: x toward D, y toward E */
+    x[k] = y[k] = TDS_NONE;
+    for (int i = 0; i < 4; i++) {
+      tds_id t = tx[k][i];
+      int onf = 0;
+      for (int q = 0; q < 3; q++) onf |= TDS_OID(m->fe[f][q]) == t;
+      if (onf) continue;
+      int hd = around_has(m, t, D), he = around_has(m, t, E);
+      if (hd && !he) x[k] = t;
+      else if (he && !hd) y[k] = t;
+    }
+    if (x[k] == TDS_NONE || y[k] == TDS_NONE) return 0;
+  }
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++)
+      if (i != j && (far_end(m, x[i], pv[i]) == far_end(m, x[j], pv[j]) ||
+                     far_end(m, y[i], pv[i]) == far_end(m, y[j], pv[j]) ||
+                     far_end(m, x[i], pv[i]) == far_end(m, y[j], pv[j])))
+        return 0;
+  if (dry) return 1;
+  double c[3] = {0, 0, 0}, nrm[3], u1[3], u2[3];
+  for (int k = 0; k < 3; k++) v3_add(c, c, m->x[pv[k]]);
+  v3_scale(c, 1.0 / 3);
+  v3_sub(u1, m->x[pv[1]], m->x[pv[0]]);
+  v3_sub(u2, m->x[pv[2]], m->x[pv[0]]);
+  v3_cross(nrm, u1, u2);
+  double size = sqrt(v3_norm(nrm));
+  if (tds_mesh_room(m, TDS_VERTEX, m->nv + 2) || tds_mesh_room(m, TDS_EDGE, m->ne + 6) ||
+      tds_mesh_room(m, TDS_FACET, m->nf + 6))
+    return TDS_ENOMEM;
+  /* collapse the triangle: one edge, then what is left of it */
+  tds_id e0 = TDS_OID(m->fe[f][0]);
+  int r = tds_collapse_edge(s, e0);
+  if (r <= 0) return r < 0 ? TDS_ENOMEM : TDS_ETOPO;
+  tds_id left = TDS_NONE;
+  for (tds_id e = 0; e < m->ne && left == TDS_NONE; e++) {
+    if (!tds_alive(m->eflags, e)) continue;
+    int hit = 0;
+    for (int k = 0; k < 3; k++) hit += tds_alive(m->vflags, pv[k]) && (m->ev[e][0] == pv[k] || m->ev[e][1] == pv[k]);
+    if (hit == 2) left = e;
+  }
+  if (left == TDS_NONE) return TDS_ETOPO;
+  r = tds_collapse_edge(s, left);
+  if (r <= 0) return r < 0 ? TDS_ENOMEM : TDS_ETOPO;
+  tds_id v = TDS_NONE;
+  for (int k = 0; k < 3; k++)
+    if (tds_alive(m->vflags, pv[k])) v = pv[k];
+  v3_copy(m->x[v], c);
+  /* the new edge a-b across, a on the D side */
+  v3_scale(nrm, 0.5 * size / v3_norm(nrm));
+  double xa[3], xb[3];
+  v3_add(xa, c, nrm);
+  v3_sub(xb, c, nrm);
+  tds_id a = tds_mesh_add_vertex(m, xa), b = tds_mesh_add_vertex(m, xb);
+  tds_id ab = tds_mesh_add_edge(m, a, b);
+  /* the triple edges at v now (merges may have renamed some): D's side
+  ** goes to a, E's to b */
+  tds_id te[6], tv[6];
+  int nt = 0;
+  for (tds_id d = 0; d < m->ne; d++) {
+    if (d == ab || !tds_alive(m->eflags, d) || (m->ev[d][0] != v && m->ev[d][1] != v)) continue;
+    if (tds_edge_valence(m, d) != 3) continue;
+    int hd = around_has(m, d, D), he = around_has(m, d, E);
+    if (nt == 6 || hd == he) return TDS_ETOPO;
+    te[nt] = d;
+    tv[nt++] = hd ? a : b;
+  }
+  if (nt != 6) return TDS_ETOPO;
+  int rc = expand(m, v, 6, te, tv, &ab, 1);
+  if (rc != TDS_OK) return rc;
+  tds_motion_enforce(s, a);
+  tds_motion_enforce(s, b);
+  m->coord_gen++;
+  return 1;
+}
+
+typedef int (*one_fn)(tds_surf *, tds_id, int);
+
+/* Each selected element under its own snapshot: one that does not fit
+** is put back and skipped. */
+static int each(tds_ctx *ctx, tds_surf *s, int kind, const uint8_t *sel, one_fn fn,
+                int32_t *n) {
+  int32_t cnt = 0, nslot = kind == TDS_EDGE ? s->m.ne : s->m.nf;
+  for (tds_id i = 0; i < nslot; i++) {
+    if ((sel && !sel[i]) || fn(s, i, 1) != 1) continue;
+    tds_snap sn;
+    int rc = tds_snap_take(ctx, s, &sn);
+    if (rc != TDS_OK) return rc;
+    int r = fn(s, i, 0);
+    if (r == 1) {
+      tds_snap_free(&sn);
+      cnt++;
+    } else {
+      tds_snap_restore(s, &sn);
+      if (r == TDS_ENOMEM) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+    }
+  }
+  *n = cnt;
+  return tds_surf_update(ctx, s);
+}
+
+static int run(tds_ctx *ctx, tds_surf *s, int kind, const uint8_t *sel, one_fn fn, int32_t *n) {
+  if (n) *n = 0;
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
+  if (rc != TDS_OK) return rc;
+  int32_t cnt = 0;
+  rc = tds_snap_end(ctx, s, &sn, each(ctx, s, kind, sel, fn, &cnt));
+  if (n) *n = rc == TDS_OK ? cnt : 0;
+  return rc;
+}
+
+int tds_pop_edge_to_tri(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  return run(ctx, s, TDS_EDGE, sel, edge_to_tri, n);
+}
+
+int tds_pop_tri_to_edge(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  return run(ctx, s, TDS_FACET, sel, tri_to_edge, n);
+}
