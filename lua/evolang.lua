@@ -122,7 +122,7 @@ local STMT = {}
 for w in ([[if while do for foreach return break continue abort local procedure
   function define print printf binary_printf errprintf eprint list set unset fix unfix refine
   equiangulate vertex_average delete dissolve pop edgeswap pop_edge_to_tri pop_tri_to_edge
-  read exec]]):gmatch("%S+") do
+  reverse_orientation read exec]]):gmatch("%S+") do
   STMT[w] = true
 end
 
@@ -1166,7 +1166,7 @@ local function oncollection(name)
   end
 end
 for _, w in ipairs { "refine", "equiangulate", "vertex_average", "delete", "dissolve", "pop", "edgeswap",
-                     "pop_edge_to_tri", "pop_tri_to_edge" } do
+                     "pop_edge_to_tri", "pop_tri_to_edge", "reverse_orientation" } do
   P["s_" .. w] = oncollection(w)
 end
 

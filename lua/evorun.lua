@@ -917,10 +917,10 @@ B.convert_to_quantities = function() end
 local UNSUPPORTED = {}
 for w in ([[ O      J e A a b f k M p Q W y Z z s P D F H h X hessian hessian_seek
   saddle ritz eigenprobe lanczos hessian_menu move lagrange   
-   dirichlet dirichlet_seek sobolev sobolev_seek  dissolve
+   dirichlet dirichlet_seek sobolev sobolev_seek
   pop_quad_to_quad t1_edgeswap  raw_vertex_average
   rawest_vertex_average rawv rawestv new_vertex new_edge new_facet new_body vertex_merge
-  edge_merge facet_merge facet_crosscut reverse_orientation rebody zoom detorus wrap_vertex 
+  edge_merge facet_merge facet_crosscut rebody zoom detorus wrap_vertex 
   addload
   logfile keylogfile history pause subcommand breakpoint whereami flush_counts
   reset_counts metis kmetis body_metis ometis
@@ -1050,6 +1050,11 @@ function E.oncollection(name, kind, list)
   elseif name == "pop_tri_to_edge" then
     if kind ~= "facet" then fail("pop_tri_to_edge needs facets") end
     tds.pop_tri_to_edge(list)
+  elseif name == "dissolve" then
+    if #list > 0 then tds.dissolve(list) end
+  elseif name == "reverse_orientation" then
+    if kind ~= "edge" and kind ~= "facet" then fail("reverse_orientation needs edges or facets") end
+    if #list > 0 then tds.reverse_orientation(list) end
   elseif name == "pop" then
     if kind ~= "vertex" then fail("pop " .. kind .. ": not supported yet (pop vertices)") end
     tds.pop(list)

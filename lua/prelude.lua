@@ -231,6 +231,8 @@ end
 pop = o
 function pop_edge_to_tri(set) return tds.pop_edge_to_tri(list_of(set, "pop_edge_to_tri")) end
 function pop_tri_to_edge(set) return tds.pop_tri_to_edge(list_of(set, "pop_tri_to_edge")) end
+function dissolve(set) return tds.dissolve(list_of(set, "dissolve")) end
+function reverse_orientation(set) return tds.reverse_orientation(list_of(set, "reverse_orientation")) end
 -- j(temp [, seed]): jiggle (temp defaults to Evolver's jiggle_temperature 0.05)
 function j(temp, seed) return tds.jiggle(temp or 0.05, seed) end
 jiggle = j

@@ -109,6 +109,60 @@ static int l_pop_tri_to_edge(lua_State *L) {
   return on_set(L, TDS_FACET, tds_pop_tri_to_edge, "Triangles popped to edges: %d\n");
 }
 
+/* Kind of the first element of argument 1 (a handle or a list). */
+static int arg_kind(lua_State *L, tds_state *st) {
+  int kind = -1;
+  if (lua_istable(L, 1)) {
+    if (luaL_len(L, 1) == 0) return -1;
+    lua_rawgeti(L, 1, 1);
+    tds_check_elem(L, st, -1, -1, &kind);
+    lua_pop(L, 1);
+  } else {
+    tds_check_elem(L, st, 1, -1, &kind);
+  }
+  return kind;
+}
+
+static const char *const kind_plural[] = {"Vertices", "Edges", "Facets", "Bodies"};
+
+/* tds.dissolve(elements) -> count */
+static int l_dissolve(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  int kind = arg_kind(L, st);
+  if (kind < 0) {
+    lua_pushinteger(L, 0);
+    return 1;
+  }
+  uint8_t *sel = tds_lua_selection(L, st, 1, kind);
+  int32_t n = 0;
+  int rc = tds_dissolve(&st->ctx, &st->s, kind, sel, &n);
+  free(sel);
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+  if (n) tds_printf(&st->ctx, "%s dissolved: %d\n", kind_plural[kind], n);
+  lua_pushinteger(L, n);
+  return 1;
+}
+
+/* tds.reverse_orientation(edges or facets) -> count */
+static int l_reverse(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  int kind = arg_kind(L, st);
+  if (kind < 0) {
+    lua_pushinteger(L, 0);
+    return 1;
+  }
+  if (kind != TDS_EDGE && kind != TDS_FACET)
+    return tds_lua_error(L, "reverse_orientation works on edges and facets");
+  uint8_t *sel = tds_lua_selection(L, st, 1, kind);
+  int32_t n = 0;
+  int rc = tds_reverse_orientation(&st->ctx, &st->s, kind, sel, &n);
+  free(sel);
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+  tds_printf(&st->ctx, "%s reversed: %d\n", kind_plural[kind], n);
+  lua_pushinteger(L, n);
+  return 1;
+}
+
 /* tds.delete(elements) -> count: an edge or facet handle, or a list of
 ** them (all of one kind; the prelude turns iterators into lists). */
 static int l_delete(lua_State *L) {
@@ -142,6 +196,7 @@ void tds_open_topo(lua_State *L, tds_state *st) {
       {"delete", l_delete},
       {"pop", l_pop},
       {"jiggle", l_jiggle},
+      {"dissolve", l_dissolve},         {"reverse_orientation", l_reverse},
       {"pop_edge_to_tri", l_pop_edge_to_tri}, {"pop_tri_to_edge", l_pop_tri_to_edge},
       {NULL, NULL}};
   tds_lua_register(L, st, fns);

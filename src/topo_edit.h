@@ -98,4 +98,18 @@ int tds_pop_edge_to_tri(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *
 ** edge across, joining the two bodies' sides. *n: facets transformed. */
 int tds_pop_tri_to_edge(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
 
+/* dissolve (kind, sel): remove elements without closing the gap, as if
+** their lines were erased from the datafile: only vertices without edges,
+** edges without facets, facets on at most one body (or the same body on
+** both sides; the body is left open) and bodies no facet refers to.
+** Others are skipped silently, as in Evolver. *n: elements removed. */
+int tds_dissolve(tds_ctx *ctx, tds_surf *s, int kind, const uint8_t *sel, int32_t *n);
+
+/* reverse_orientation (edges or facets): a facet runs the other way round
+** and swaps its front and back bodies (volumes unchanged); an edge swaps
+** its ends, its facets' references follow, and its constraint integrals
+** keep their value. *n: elements reversed. */
+int tds_reverse_orientation(tds_ctx *ctx, tds_surf *s, int kind, const uint8_t *sel,
+                            int32_t *n);
+
 #endif

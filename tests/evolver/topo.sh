@@ -25,7 +25,7 @@ mkdump() {
 # run NAME DUMP TOL CMDS: CMDS (printing K lines) in both from DUMP.
 run() {
   name=$1 dmp=$tmp/$2.dmp tol=$3 cmds=$4
-  [ -z "$2" ] && dmp=$EXAMPLES/cat.fe
+  case $2 in /*) dmp=$2 ;; esac
   evolver_run "$dmp" "$cmds" | grep '^K' > "$tmp/ev.k"
   printf '%s\n' "$cmds" > "$tmp/c.cmd"
   cp "$dmp" "$tmp/run.fe"
@@ -71,4 +71,11 @@ run octa/l octag 1e-12 "l 1.2; $P"
 
 # The catenoid tutorial from the datafile: the neck pinches (t), pops (o)
 # and the two caps converge to the inscribed 12-gons, area 6*RMAX^2.
-run cat/tutorial-converge "" 1e-8 "r; u; g 120; t 0.05; o; g 5; $C"
+run cat/tutorial-converge "$EXAMPLES/cat.fe" 1e-8 "r; u; g 120; t 0.05; o; g 5; $C"
+
+# dissolve and reverse_orientation on the cube: counts, and volumes and
+# energies unchanged by reversing (1e-12; `g` after it would compare line
+# searches, not the reversal).
+V='recalc; printf "K %d %d %d %.15g %.15g\n", vertex_count, edge_count, facet_count, total_energy, body[1].volume'
+run cube/dissolve "$EXAMPLES/cube.fe" 1e-12 "dissolve facet[1]; dissolve edges; dissolve vertices; $P; dissolve facet where id < 5; dissolve edge; dissolve vertex; $P"
+run cube/reverse "$EXAMPLES/cube.fe" 1e-12 "r; reverse_orientation facet where id < 20; reverse_orientation edge where id < 30; $V"
