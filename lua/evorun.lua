@@ -430,7 +430,10 @@ function E.getv(name, cur)
   if v == nil and cur and E.has_extra(cur, low) then return E.attr(cur, low) end
   if v == nil and tds.quantity_info(low) ~= nil then return { __quantity = low } end
   if v == nil then fail(("undefined variable '%s'"):format(name)) end
-  if type(v) == "function" then fail(("'%s' is a command, not a value"):format(name)) end
+  if type(v) == "function" then
+    if name == "new_body" then E.touch(); return v() end -- Evolver writes it without ()
+    fail(("'%s' is a command, not a value"):format(name))
+  end
   if type(v) == "boolean" then return v and 1.0 or 0.0 end
   return v
 end
@@ -919,7 +922,7 @@ for w in ([[ O      J e A a b f k M p Q W y Z z s P D F H h X hessian hessian_se
   saddle ritz eigenprobe lanczos hessian_menu move lagrange   
    dirichlet dirichlet_seek sobolev sobolev_seek
   pop_quad_to_quad t1_edgeswap  raw_vertex_average
-  rawest_vertex_average rawv rawestv new_vertex new_edge new_facet new_body vertex_merge
+  rawest_vertex_average rawv rawestv vertex_merge
   edge_merge facet_merge facet_crosscut rebody zoom detorus wrap_vertex 
   addload
   logfile keylogfile history pause subcommand breakpoint whereami flush_counts

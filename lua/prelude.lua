@@ -233,6 +233,29 @@ function pop_edge_to_tri(set) return tds.pop_edge_to_tri(list_of(set, "pop_edge_
 function pop_tri_to_edge(set) return tds.pop_tri_to_edge(list_of(set, "pop_tri_to_edge")) end
 function dissolve(set) return tds.dissolve(list_of(set, "dissolve")) end
 function reverse_orientation(set) return tds.reverse_orientation(list_of(set, "reverse_orientation")) end
+-- new_vertex(x, y, z), new_edge(tail, head), new_facet(e1, e2, e3, ...)
+-- (signed edge ids that chain head to tail), new_body(): Evolver's
+-- element constructors; each declares the element at the next free id
+-- and returns that id.
+local function next_id(kind)
+  local i, last = 0, 0
+  while true do
+    local id = tds.next(kind, i)
+    if not id then return last + 1 end
+    last, i = id, id
+  end
+end
+local function construct(kind, entry)
+  local id = next_id(kind)
+  local ok, err = pcall(({ [tds.vertex] = vertices, [tds.edge] = edges, [tds.facet] = faces,
+                           [tds.body] = bodies })[kind], { [id] = entry })
+  if not ok then error(err, 3) end
+  return id
+end
+function new_vertex(x, y, z) return construct(tds.vertex, { x, y, z }) end
+function new_edge(t, h) return construct(tds.edge, { t, h }) end
+function new_facet(...) return construct(tds.facet, { ... }) end
+function new_body() return construct(tds.body, {}) end
 -- j(temp [, seed]): jiggle (temp defaults to Evolver's jiggle_temperature 0.05)
 function j(temp, seed) return tds.jiggle(temp or 0.05, seed) end
 jiggle = j

@@ -90,11 +90,11 @@ int tds_collapse_edge(tds_surf *s, tds_id e) {
       if (a && b) return 0;
       nat++;
     }
-  tds_id *at = malloc((size_t)(nat + 1) * sizeof *at);
-  uint8_t *info = malloc((size_t)nat + 1);
+  tds_id *at = tds_malloc(&m->alloc, (size_t)(nat + 1) * sizeof *at);
+  uint8_t *info = tds_malloc(&m->alloc, (size_t)nat + 1);
   if (!at || !info) {
-    free(at);
-    free(info);
+    tds_free(&m->alloc, at);
+    tds_free(&m->alloc, info);
     return -1;
   }
   nat = 0;
@@ -166,8 +166,8 @@ int tds_collapse_edge(tds_surf *s, tds_id e) {
   ** triangle) go, and keep with them if nothing is left. */
   for (int32_t i = 0; i < nat; i++)
     if (info[i] & 2) drop_if_bare(m, at[i]);
-  free(at);
-  free(info);
+  tds_free(&m->alloc, at);
+  tds_free(&m->alloc, info);
   m->topo_gen++;
   return 1;
 }

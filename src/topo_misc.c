@@ -11,7 +11,7 @@ static int dissolve(tds_ctx *ctx, tds_surf *s, int kind, const uint8_t *sel, int
   uint8_t *used = NULL;
   if (kind == TDS_VERTEX || kind == TDS_BODY) {
     int32_t ns = kind == TDS_VERTEX ? m->nv : m->nb;
-    used = calloc((size_t)ns + 1, 1);
+    used = tds_calloc(&m->alloc, (size_t)ns + 1, 1);
     if (!used) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
     if (kind == TDS_VERTEX) {
       for (tds_id e = 0; e < m->ne; e++)
@@ -42,7 +42,7 @@ static int dissolve(tds_ctx *ctx, tds_surf *s, int kind, const uint8_t *sel, int
     tds_mesh_kill(m, kind, i);
     cnt++;
   }
-  free(used);
+  tds_free(&m->alloc, used);
   *n = cnt;
   return tds_surf_update(ctx, s);
 }

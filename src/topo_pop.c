@@ -64,13 +64,13 @@ static int pop(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npop) {
     int32_t k = m->vf_start[v + 1] - m->vf_start[v];
     if (k > maxf) maxf = k;
   }
-  tds_id *fl = malloc((size_t)(maxf + 1) * sizeof *fl);
-  int *lab = malloc((size_t)(maxf + 1) * sizeof *lab);
-  tds_id *copy = malloc((size_t)(maxf + 1) * sizeof *copy);
+  tds_id *fl = tds_malloc(&m->alloc, (size_t)(maxf + 1) * sizeof *fl);
+  int *lab = tds_malloc(&m->alloc, (size_t)(maxf + 1) * sizeof *lab);
+  tds_id *copy = tds_malloc(&m->alloc, (size_t)(maxf + 1) * sizeof *copy);
   if (!fl || !lab || !copy) {
-    free(fl);
-    free(lab);
-    free(copy);
+    tds_free(&m->alloc, fl);
+    tds_free(&m->alloc, lab);
+    tds_free(&m->alloc, copy);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   }
   int rc = TDS_OK;
@@ -122,9 +122,9 @@ static int pop(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npop) {
     m->topo_gen++;
     cnt++;
   }
-  free(fl);
-  free(lab);
-  free(copy);
+  tds_free(&m->alloc, fl);
+  tds_free(&m->alloc, lab);
+  tds_free(&m->alloc, copy);
   if (rc != TDS_OK) return rc;
   *npop = cnt;
   return tds_surf_update(ctx, s);

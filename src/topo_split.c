@@ -163,14 +163,14 @@ static double min_angle(const tds_mesh *m, tds_id f, int *klong) {
 static int skinny(tds_ctx *ctx, tds_surf *s, double angle, int32_t *n) {
   tds_mesh *m = &s->m;
   int32_t nf0 = m->nf, cnt = 0;
-  uint8_t *done = calloc((size_t)nf0 + 1, 1);
+  uint8_t *done = tds_calloc(&m->alloc, (size_t)nf0 + 1, 1);
   if (!done) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   for (tds_id f = 0; f < nf0; f++) {
     int k = 0;
     if (done[f] || !tds_alive(m->fflags, f) || !(min_angle(m, f, &k) < angle)) continue;
     tds_id e = TDS_OID(m->fe[f][k]);
     if (room_for_split(m, tds_edge_valence(m, e)) != TDS_OK) {
-      free(done);
+      tds_free(&m->alloc, done);
       return tds_seterr(ctx, TDS_ENOMEM, "out of memory while splitting edges");
     }
     for (int32_t sd = m->eside[e], i = 0; sd != TDS_NONE && (i == 0 || sd != m->eside[e]); sd = m->side_next[sd], i++)
@@ -178,7 +178,7 @@ static int skinny(tds_ctx *ctx, tds_surf *s, double angle, int32_t *n) {
     split_one(s, e);
     cnt++;
   }
-  free(done);
+  tds_free(&m->alloc, done);
   *n = cnt;
   if (cnt) m->coord_gen++;
   return tds_surf_update(ctx, s);
@@ -275,7 +275,7 @@ static double crease(const tds_mesh *m, tds_id e, tds_id *fa, tds_id *fb) {
 static int notch(tds_ctx *ctx, tds_surf *s, double angle, int32_t *n) {
   tds_mesh *m = &s->m;
   int32_t nf = m->nf, cnt = 0, nsplit = 0;
-  uint8_t *mark = calloc((size_t)nf + 1, 1);
+  uint8_t *mark = tds_calloc(&m->alloc, (size_t)nf + 1, 1);
   if (!mark) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   for (tds_id e = 0; e < m->ne; e++) {
     tds_id a = 0, b = 0;
@@ -287,12 +287,12 @@ static int notch(tds_ctx *ctx, tds_surf *s, double angle, int32_t *n) {
   if (tds_mesh_reserve(m, TDS_VERTEX, m->nv + nsplit) ||
       tds_mesh_reserve(m, TDS_EDGE, m->ne + 3 * nsplit) ||
       tds_mesh_reserve(m, TDS_FACET, nf + 2 * nsplit)) {
-    free(mark);
+    tds_free(&m->alloc, mark);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory while notching");
   }
   for (tds_id f = 0; f < nf; f++)
     if (mark[f]) split_centre(s, f);
-  free(mark);
+  tds_free(&m->alloc, mark);
   if (n) *n = cnt;
   if (cnt) m->coord_gen++;
   return tds_surf_update(ctx, s);

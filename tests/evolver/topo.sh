@@ -79,3 +79,5 @@ run cat/tutorial-converge "$EXAMPLES/cat.fe" 1e-8 "r; u; g 120; t 0.05; o; g 5; 
 V='recalc; printf "K %d %d %d %.15g %.15g\n", vertex_count, edge_count, facet_count, total_energy, body[1].volume'
 run cube/dissolve "$EXAMPLES/cube.fe" 1e-12 "dissolve facet[1]; dissolve edges; dissolve vertices; $P; dissolve facet where id < 5; dissolve edge; dissolve vertex; $P"
 run cube/reverse "$EXAMPLES/cube.fe" 1e-12 "r; reverse_orientation facet where id < 20; reverse_orientation edge where id < 30; $V"
+# new_vertex, new_edge, new_facet, new_body: the ids they return.
+run cube/new "$EXAMPLES/cube.fe" 0 'aa := new_vertex(2,2,2); bb := new_vertex(3,2,2); cc := new_vertex(2,3,2); e1 := new_edge(aa,bb); e2 := new_edge(bb,cc); e3 := new_edge(cc,aa); ff := new_facet(e1,e2,e3); bd := new_body; printf "K %d %d %d %d %d %d %d %d\n", aa, cc, e1, e3, ff, bd, vertex_count, facet_count'
