@@ -1,0 +1,415 @@
+/* newton.c: Newton steps, inertia probes, moves and saddle (newton.h);
+** ritz is in newton_eig.c. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "eval.h"
+#include "fixq.h"
+#include "motion.h"
+#include "newton_int.h"
+#include "recalc.h"
+#include "snap.h"
+#include "vec3.h"
+
+/* Bring the constrained quantities to their targets by Newton steps along
+** their gradients (the restoring motion of `g`): until within 1e-12
+** relative, or the error stops shrinking (rounding), or maxit steps.
+** Leaves s->energy and s->area at the final positions. TDS_OK or
+** TDS_ENUM. */
+static int project_quantities(tds_ctx *ctx, tds_surf *s, int maxit) {
+  tds_mesh *m = &s->m;
+  tds_fixq fq = {0};
+  int rc = tds_fixq_build(ctx, s, &fq);
+  if (rc != TDS_OK) return rc;
+  double (*rest)[3] = tds_calloc((size_t)m->nv + 1, sizeof *rest);
+  if (!rest) {
+    tds_fixq_free(&fq);
+    return tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory");
+  }
+  double prev = INFINITY;
+  for (int it = 0;; it++) {
+    tds_eval_out out = {.fq = fq.nq ? &fq : NULL};
+    if ((rc = tds_eval(ctx, s, &out)) != TDS_OK) break;
+    s->energy = out.energy;
+    s->area = out.area;
+    double worst = 0;
+    for (int32_t q = 0; q < fq.nq; q++) {
+      double tol = 1e-12 * (fabs(fq.target[q]) > 0 ? fabs(fq.target[q]) : 1);
+      double err = fabs(fq.target[q] - fq.value[q]) / tol;
+      if (!(err <= worst)) worst = err;
+    }
+    if (!isfinite(worst)) {
+      rc = tds_seterr(ctx, TDS_ENUM, "a constrained quantity is not finite after the step");
+      break;
+    }
+    if (worst <= 1 || (worst < 1e4 && worst > 0.5 * prev) || it == maxit) break;
+    prev = worst;
+    for (tds_id v = 0; v < m->nv; v++)
+      for (int32_t i = fq.start[v]; i < fq.start[v + 1]; i++) tds_motion_project(s, v, fq.g[i]);
+    if ((rc = tds_fixq_restore(ctx, &fq, m->nv, rest)) != TDS_OK) break;
+    for (tds_id v = 0; v < m->nv; v++) {
+      if (!tds_vertex_free(s, v)) continue;
+      double x[3], p[2] = {m->vp[v][0], m->vp[v][1]};
+      v3_copy(x, m->x[v]);
+      tds_motion_apply(s, v, x, p, rest[v]);
+    }
+    m->coord_gen++;
+    if (it + 1 == maxit) { /* the energy where it stops */
+      tds_eval_out o2 = {.fq = NULL};
+      if ((rc = tds_eval(ctx, s, &o2)) != TDS_OK) break;
+      s->energy = o2.energy;
+      s->area = o2.area;
+      break;
+    }
+  }
+  free(rest);
+  tds_fixq_free(&fq);
+  return rc;
+}
+
+/* Store the multiplier of the q-th constrained quantity (fixq order). */
+static void set_mult(tds_surf *s, int32_t q, double v) {
+  tds_ctx c;
+  tds_ctx_init(&c);
+  tds_fixq fq = {0};
+  if (tds_fixq_build(&c, s, &fq) != TDS_OK) return;
+  if (q < fq.nq) {
+    if (fq.qbody[q] != TDS_NONE) s->m.bpressure[fq.qbody[q]] = v;
+    else s->quant[fq.qquant[q]].pressure = v;
+  }
+  tds_fixq_free(&fq);
+}
+
+/* Positions at the start of a command. */
+typedef struct start {
+  double (*x0)[3], (*p0)[2];
+} start;
+
+static int start_take(tds_ctx *ctx, const tds_surf *s, start *st) {
+  size_t nv = (size_t)s->m.nv + 1;
+  st->x0 = malloc(nv * sizeof *st->x0);
+  st->p0 = malloc(nv * sizeof *st->p0);
+  if (!st->x0 || !st->p0) {
+    free(st->x0);
+    free(st->p0);
+    return tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory");
+  }
+  if (s->m.nv) {
+    memcpy(st->x0, s->m.x, (size_t)s->m.nv * sizeof *st->x0);
+    memcpy(st->p0, s->m.vp, (size_t)s->m.nv * sizeof *st->p0);
+  }
+  return TDS_OK;
+}
+
+static void start_free(start *st) {
+  free(st->x0);
+  free(st->p0);
+}
+
+/* Place every vertex at its start moved by t * (sum of w_j mv_j) (onto
+** its level sets), then proj restoring steps of the quantities towards
+** their targets: Evolver's hessian makes one (the step's linearised
+** constraint leaves a second-order error, which one more Newton step
+** takes to fourth order); 10 bring them to target. The energy (NAN if
+** it failed) is returned. */
+static double place_p(tds_ctx *ctx, tds_surf *s, const start *st, const tds_nsys *n,
+                      const double *w, double t, int proj) {
+  tds_mesh *m = &s->m;
+  int bad = 0;
+  int32_t j = 0;
+  for (tds_id v = 0; v < m->nv; v++) {
+    if (!tds_vertex_free(s, v)) continue;
+    double d[3] = {0, 0, 0};
+    for (; j < n->m && n->vert[j] == v; j++) v3_axpy(d, t * w[j], n->mv[j]);
+    if (tds_motion_apply(s, v, st->x0[v], st->p0[v], d) != TDS_OK) bad = 1;
+  }
+  m->coord_gen++;
+  if (bad) return NAN;
+  if (proj ? project_quantities(ctx, s, proj) : tds_surf_update(ctx, s)) return NAN;
+  return isfinite(s->energy) ? s->energy : (double)NAN;
+}
+
+/* The Newton step's placement: one restoring step. */
+static double place(tds_ctx *ctx, tds_surf *s, const start *st, const tds_nsys *n,
+                    const double *w, double t) {
+  return place_p(ctx, s, st, n, w, t, 1);
+}
+
+/* Least energy along t in (0, tmax]: the energy at tmax, then halving
+** while it helps, then a parabola through the three best points (the
+** kind of search `g` does). Returns t, leaves the surface there, *E its
+** energy. */
+static double seek(tds_ctx *ctx, tds_surf *s, const start *st, const tds_nsys *n,
+                   const double *w, double E0, double tmax, double *E) {
+  double ts[64], es[64];
+  int k = 0;
+  ts[k] = 0;
+  es[k++] = E0;
+  double t = tmax, e = place(ctx, s, st, n, w, t);
+  ts[k] = t;
+  es[k++] = e;
+  /* shrink while the energy is not below the start, or keeps falling */
+  while (k < 40) {
+    double t2 = t / 2, e2 = place(ctx, s, st, n, w, t2);
+    ts[k] = t2;
+    es[k++] = e2;
+    if (isfinite(e) && e < E0 && !(e2 < e)) break;
+    t = t2;
+    e = e2;
+    if (t < 1e-12 * tmax) break;
+  }
+  /* best point, and a parabola through it and its neighbours in t */
+  int b = 0;
+  for (int i = 1; i < k; i++)
+    if (es[i] < es[b]) b = i;
+  double tb = ts[b], eb = es[b];
+  double lo = -1, elo = 0, hi = -1, ehi = 0;
+  for (int i = 0; i < k; i++) {
+    if (!isfinite(es[i])) continue;
+    if (ts[i] < tb && (lo < 0 || ts[i] > lo)) lo = ts[i], elo = es[i];
+    if (ts[i] > tb && (hi < 0 || ts[i] < hi)) hi = ts[i], ehi = es[i];
+  }
+  if (lo >= 0 && hi >= 0) {
+    double d1 = (eb - elo) / (tb - lo), d2 = (ehi - eb) / (hi - tb);
+    double curv = (d2 - d1) / (hi - lo);
+    if (curv > 0) { /* the minimiser of the parabola through the three */
+      double num = (tb - lo) * (tb - lo) * (eb - ehi) - (tb - hi) * (tb - hi) * (eb - elo);
+      double den = (tb - lo) * (eb - ehi) - (tb - hi) * (eb - elo);
+      double tp = den != 0 ? tb - 0.5 * num / den : tb;
+      if (tp > lo && tp < hi && tp <= tmax) {
+        double ep = place(ctx, s, st, n, w, tp);
+        if (ep < eb) {
+          *E = ep;
+          return tp;
+        }
+      }
+    }
+  }
+  *E = place(ctx, s, st, n, w, tb);
+  return tb;
+}
+
+/* Factor the bordered system at shift c; *index: negative eigenvalues of
+** H - c M on the constraints. */
+static int factor(tds_ctx *ctx, const tds_nsys *n, double c, tds_la **f, tds_inertia *in) {
+  tds_spmat K = {0};
+  int rc = tds_nsys_kkt(ctx, n, c, &K);
+  if (rc == TDS_OK) rc = tds_la_factor(ctx, &K, f);
+  tds_spmat_free(&K);
+  if (rc != TDS_OK) return rc;
+  *in = tds_la_inertia(*f);
+  in->neg -= n->nq;
+  in->pos -= n->nq;
+  if (in->neg < 0 || in->pos < 0) { /* dependent constraint gradients */
+    tds_la_free(*f);
+    *f = NULL;
+    return tds_seterr(ctx, TDS_ENUM, "hessian: the constraints' gradients are dependent "
+                      "(a volume or quantity cannot be held)");
+  }
+  return TDS_OK;
+}
+
+int tds_newton_probe(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double c,
+                     tds_inertia *in) {
+  if (!isfinite(c)) return tds_seterr(ctx, TDS_ERANGE, "eigenprobe: the probe value is not finite");
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
+  if (rc != TDS_OK) return rc;
+  tds_nsys n;
+  rc = tds_nsys_build(ctx, s, o, &n);
+  if (rc == TDS_OK) {
+    tds_la *f = NULL;
+    rc = factor(ctx, &n, c, &f, in);
+    tds_la_free(f);
+    tds_nsys_free(&n);
+  }
+  /* nothing moves; the pressures computed are kept */
+  if (rc == TDS_OK) {
+    tds_snap_free(&sn);
+    return rc;
+  }
+  return tds_snap_end(ctx, s, &sn, rc);
+}
+
+int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double seekmax,
+                    int32_t *index) {
+  if (seekmax < 0 || !isfinite(seekmax))
+    return tds_seterr(ctx, TDS_ERANGE, "hessian_seek: the largest scale must be positive and finite");
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
+  if (rc != TDS_OK) return rc;
+  if ((rc = tds_recalc_if_stale(ctx, s)) != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
+  tds_nsys n;
+  tds_la *f = NULL;
+  double *w = NULL;
+  start st = {0};
+  rc = tds_nsys_build(ctx, s, o, &n);
+  if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
+  tds_inertia in = {0};
+  rc = factor(ctx, &n, 0, &f, &in);
+  if (rc == TDS_OK && in.zero)
+    rc = tds_seterr(ctx, TDS_ENUM, "hessian: the Hessian is singular (%d zero eigenvalues; "
+                    "try hessian_normal on, or fix the free directions)", (int)in.zero);
+  if (rc == TDS_OK) {
+    w = calloc((size_t)(n.m + n.nq) + 1, sizeof *w);
+    if (!w) rc = tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory");
+  }
+  if (rc == TDS_OK) {
+    for (int32_t j = 0; j < n.m; j++) w[j] = -n.grad[j];
+    for (int32_t q = 0; q < n.nq; q++) w[n.m + q] = n.target[q] - n.value[q];
+    rc = tds_la_solve(ctx, f, w, 0);
+  }
+  if (rc == TDS_OK) rc = start_take(ctx, s, &st);
+  double E = NAN, t = 1;
+  if (rc == TDS_OK) {
+    if (seekmax > 0) t = seek(ctx, s, &st, &n, w, n.energy, seekmax, &E);
+    else E = place(ctx, s, &st, &n, w, 1);
+    if (!isfinite(E))
+      rc = tds_seterr(ctx, TDS_ENUM, "hessian: the step gives a non-finite energy");
+  }
+  if (rc == TDS_OK) /* the new multipliers: H w + A y = -(grad E - A mult) */
+    for (int32_t q = 0; q < n.nq; q++) set_mult(s, q, n.mult[q] - t * w[n.m + q]);
+  start_free(&st);
+  free(w);
+  tds_la_free(f);
+  tds_nsys_free(&n);
+  if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
+  s->energy = E;
+  s->iterations++;
+  if (index) *index = in.neg;
+  if (in.neg) tds_printf(ctx, "WARNING: Hessian not positive definite. Index: %d \n", (int)in.neg);
+  if (seekmax > 0)
+    tds_printf(ctx, "%3d. area: %#17.15g energy: %#17.15g  scale: %g\n", 1, s->area, s->energy, t);
+  else
+    tds_printf(ctx, "%3d. area: %#17.15g energy: %#17.15g\n", 1, s->area, s->energy);
+  tds_snap_free(&sn);
+  return TDS_OK;
+}
+
+/* The unknowns' amounts of a displacement per vertex: w_j = dx_j . vec[v]
+** (a vertex's unknowns move it along directions orthonormal in space). */
+static void amounts(const tds_nsys *n, const double (*vec)[3], double *w) {
+  for (int32_t j = 0; j < n->m; j++) w[j] = v3_dot(n->dx[j], vec[n->vert[j]]);
+}
+
+/* Least energy along t w, t of either sign: from t0, doubling while the
+** energy falls (up to tmax), then a parabola through the last three.
+** Leaves the surface at the best t found (0: where it started) and
+** returns that t. */
+static double expand(tds_ctx *ctx, tds_surf *s, const start *st, const tds_nsys *n,
+                     const double *w, double E0, double t0, double tmax, double *E) {
+  double bt = 0, bE = E0;
+  for (int sign = -1; sign <= 1; sign += 2) {
+    double tp = 0, ep = E0, t = t0, e;
+    double t1 = 0, e1 = E0; /* the point before tp */
+    for (;;) {
+      e = place(ctx, s, st, n, w, sign * t);
+      if (!(e < ep)) break;
+      t1 = tp, e1 = ep, tp = t, ep = e;
+      if (t >= tmax) break;
+      t = fmin(2 * t, tmax);
+    }
+    if (tp > 0 && isfinite(e) && e > ep) { /* parabola through (t1, tp, t) */
+      double num = (tp - t1) * (tp - t1) * (ep - e) - (tp - t) * (tp - t) * (ep - e1);
+      double den = (tp - t1) * (ep - e) - (tp - t) * (ep - e1);
+      double tq = den != 0 ? tp - 0.5 * num / den : tp;
+      if (tq > t1 && tq < t) {
+        double eq = place(ctx, s, st, n, w, sign * tq);
+        if (eq < ep) tp = tq, ep = eq;
+      }
+    }
+    if (tp > 0 && ep < bE) bE = ep, bt = sign * tp;
+  }
+  *E = place(ctx, s, st, n, w, bt);
+  return bt;
+}
+
+int tds_newton_move(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, const double (*vec)[3],
+                    int32_t nv, double t) {
+  if (!isfinite(t)) return tds_seterr(ctx, TDS_ERANGE, "move: the step is not finite");
+  if (!vec || nv != s->m.nv)
+    return tds_seterr(ctx, TDS_ERANGE, "move: there is no eigenvector of this surface "
+                      "(run ritz first; the surface has changed since)");
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
+  if (rc != TDS_OK) return rc;
+  tds_nsys n;
+  start st = {0};
+  double *w = NULL;
+  rc = tds_nsys_build(ctx, s, o, &n);
+  if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
+  rc = start_take(ctx, s, &st);
+  if (rc == TDS_OK && !(w = calloc((size_t)n.m + 1, sizeof *w)))
+    rc = tds_seterr(ctx, TDS_ENOMEM, "move: out of memory");
+  if (rc == TDS_OK) {
+    amounts(&n, vec, w);
+    if (!isfinite(place(ctx, s, &st, &n, w, t)))
+      rc = tds_seterr(ctx, TDS_ENUM, "move: the energy is not finite after the move");
+  }
+  free(w);
+  start_free(&st);
+  tds_nsys_free(&n);
+  if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
+  tds_snap_free(&sn);
+  return TDS_OK;
+}
+
+int tds_newton_saddle(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double maxscale,
+                      double *lowest, int *moved) {
+  *moved = 0;
+  if (!isfinite(maxscale)) return tds_seterr(ctx, TDS_ERANGE, "saddle: the scale is not finite");
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
+  if (rc != TDS_OK) return rc;
+  if ((rc = tds_recalc_if_stale(ctx, s)) != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
+  tds_inertia in;
+  double val = 0;
+  int32_t got = 0;
+  int iters;
+  double (*vec)[3] = tds_calloc((size_t)s->m.nv + 1, sizeof *vec);
+  if (!vec) return tds_snap_end(ctx, s, &sn, tds_seterr(ctx, TDS_ENOMEM, "saddle: out of memory"));
+  rc = tds_newton_ritz(ctx, s, o, NAN, 1, &val, &got, &in, vec, &iters);
+  if (rc == TDS_OK && got == 0) rc = tds_seterr(ctx, TDS_ERANGE, "saddle: nothing can move");
+  if (rc != TDS_OK) {
+    free(vec);
+    return tds_snap_end(ctx, s, &sn, rc);
+  }
+  *lowest = val;
+  if (val >= 0) {
+    tds_printf(ctx, "Lowest eigenvalue %.15g. Not a saddle point.\n", val);
+    free(vec);
+    tds_snap_free(&sn);
+    return TDS_OK;
+  }
+  tds_printf(ctx, "Lowest eigenvalue %.15g\n", val);
+  tds_nsys n;
+  start st = {0};
+  double *w = NULL, E = NAN, t = 0;
+  rc = tds_nsys_build(ctx, s, o, &n);
+  if (rc == TDS_OK) {
+    rc = start_take(ctx, s, &st);
+    if (rc == TDS_OK && !(w = calloc((size_t)n.m + 1, sizeof *w)))
+      rc = tds_seterr(ctx, TDS_ENOMEM, "saddle: out of memory");
+    if (rc == TDS_OK) {
+      amounts(&n, (const double(*)[3])vec, w);
+      /* the largest displacement of a vertex at t = 1 sets the scales */
+      double big = 0;
+      for (int32_t j = 0; j < n.m; j++) big = fmax(big, fabs(w[j]));
+      double t0 = big > 0 ? 1e-4 / big : 1e-4, tmax = maxscale > 0 ? maxscale : 1e3 * t0;
+      t = expand(ctx, s, &st, &n, w, n.energy, fmin(t0, tmax), tmax, &E);
+      if (!isfinite(E)) rc = tds_seterr(ctx, TDS_ENUM, "saddle: the energy is not finite");
+    }
+    tds_nsys_free(&n);
+  }
+  free(w);
+  start_free(&st);
+  free(vec);
+  if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
+  *moved = t != 0;
+  s->energy = E;
+  tds_printf(ctx, "%3d. area: %#17.15g energy: %#17.15g  scale: %g\n", 1, s->area, s->energy,
+             fabs(t));
+  tds_snap_free(&sn);
+  return TDS_OK;
+}
