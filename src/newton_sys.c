@@ -23,29 +23,83 @@ void tds_nsys_free(tds_nsys *n) {
   memset(n, 0, sizeof *n);
 }
 
-/* Per vertex slot: the area normal (sum of its facets' area vectors),
-** the number of triple-junction edges at it and their direction (each
-** signed to agree with the first). */
+/* Per vertex slot: the normal, the number of triple-junction edges at
+** it and their direction (each signed to agree with the first).
+**
+** The normal is the area-weighted sum of the facets' unit normals, each
+** facet's sign chosen to agree with the vertex's dominant normal
+** direction (the leading eigenvector of sum area n n^T). On a smooth,
+** consistently oriented surface this is the plain sum of the facets'
+** area vectors, which is the volume gradient; where the facets around a
+** vertex fold over (a crumpled mesh, inconsistent orientations) it still
+** points across the sheet, as Evolver's hessian normal does. */
 typedef struct vnorm {
   double an[3];
+  double P[3][3];       /* sum area n n^T */
   double td[3];
   int nt, nf, bent;     /* bent: two triple edges not along one line */
 } vnorm;
+
+/* Area vector (length = area) of live facet f. */
+static void facet_vec(const tds_mesh *m, tds_id f, double c[3]) {
+  const tds_id *fv = m->fv[f];
+  double a[3], b[3];
+  v3_sub(a, m->x[fv[1]], m->x[fv[0]]);
+  v3_sub(b, m->x[fv[2]], m->x[fv[0]]);
+  v3_cross(c, a, b);
+  v3_scale(c, 0.5);
+}
 
 static void vertex_normals(const tds_mesh *m, vnorm *vn) {
   memset(vn, 0, (size_t)m->nv * sizeof *vn);
   for (tds_id f = 0; f < m->nf; f++) {
     if (m->fflags[f] & TDS_DEAD) continue;
-    const tds_id *fv = m->fv[f];
-    double a[3], b[3], c[3];
-    v3_sub(a, m->x[fv[1]], m->x[fv[0]]);
-    v3_sub(b, m->x[fv[2]], m->x[fv[0]]);
-    v3_cross(c, a, b);
+    double c[3];
+    facet_vec(m, f, c);
+    double A = v3_norm(c);
     for (int k = 0; k < 3; k++) {
-      v3_axpy(vn[fv[k]].an, 0.5, c);
-      vn[fv[k]].nf++;
+      vnorm *w = &vn[m->fv[f][k]];
+      v3_add(w->an, w->an, c);
+      w->nf++;
+      if (A > 0)
+        for (int i = 0; i < 3; i++)
+          for (int j = 0; j < 3; j++) w->P[i][j] += c[i] * c[j] / A;
     }
   }
+  /* the dominant direction: power iteration from the plain sum */
+  double (*ref)[3] = malloc(((size_t)m->nv + 1) * sizeof *ref);
+  if (!ref) return; /* the plain sums stay: still a usable normal */
+  for (tds_id v = 0; v < m->nv; v++) {
+    vnorm *w = &vn[v];
+    double r[3];
+    v3_copy(r, w->an);
+    if (!(v3_norm(r) > 1e-12 * (w->P[0][0] + w->P[1][1] + w->P[2][2]))) {
+      int big = 0;
+      for (int i = 1; i < 3; i++)
+        if (w->P[i][i] > w->P[big][big]) big = i;
+      for (int i = 0; i < 3; i++) r[i] = w->P[i][big];
+    }
+    for (int it = 0; it < 100; it++) {
+      double t[3];
+      for (int i = 0; i < 3; i++) t[i] = w->P[i][0] * r[0] + w->P[i][1] * r[1] + w->P[i][2] * r[2];
+      double l = v3_norm(t);
+      if (!(l > 0)) break;
+      v3_scale(t, 1 / l);
+      v3_copy(r, t);
+    }
+    v3_copy(ref[v], r);
+    memset(w->an, 0, sizeof w->an);
+  }
+  for (tds_id f = 0; f < m->nf; f++) {
+    if (m->fflags[f] & TDS_DEAD) continue;
+    double c[3];
+    facet_vec(m, f, c);
+    for (int k = 0; k < 3; k++) {
+      tds_id v = m->fv[f][k];
+      v3_axpy(vn[v].an, v3_dot(c, ref[v]) < 0 ? -1 : 1, c);
+    }
+  }
+  free(ref);
   for (tds_id e = 0; e < m->ne; e++) {
     if (m->eflags[e] & TDS_DEAD) continue;
     if (tds_edge_valence(m, e) < 3) continue;
