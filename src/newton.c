@@ -210,6 +210,39 @@ static int factor(tds_ctx *ctx, const tds_nsys *n, double c, tds_la **f, tds_ine
   return TDS_OK;
 }
 
+/* A singular system (motions that do not change the energy to second
+** order, as translations with hessian_normal off) is solved with its
+** null directions left out, when it is consistent: the residual of the
+** solution below 1e-8 of the right-hand side, so the step is the Newton
+** step up to those directions. Otherwise it is refused. */
+static int singular_solve(tds_ctx *ctx, const tds_nsys *n, tds_la *f, double *b, int32_t zero) {
+  int32_t N = n->m + n->nq;
+  double *b0 = malloc(((size_t)N + 1) * sizeof *b0), *r = malloc(((size_t)N + 1) * sizeof *r);
+  tds_spmat K = {0};
+  int rc = b0 && r ? TDS_OK : tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory");
+  if (rc == TDS_OK) {
+    memcpy(b0, b, (size_t)N * sizeof *b0);
+    rc = tds_nsys_kkt(ctx, n, 0, &K);
+  }
+  if (rc == TDS_OK) rc = tds_la_solve(ctx, f, b, 1);
+  if (rc == TDS_OK) {
+    tds_spmat_mulv(&K, b, r);
+    double res = 0, nb = 0;
+    for (int32_t i = 0; i < N; i++) {
+      res = fmax(res, fabs(r[i] - b0[i]));
+      nb = fmax(nb, fabs(b0[i]));
+    }
+    if (!(res <= 1e-8 * nb))
+      rc = tds_seterr(ctx, TDS_ENUM, "hessian: the Hessian is singular (%d zero eigenvalues) and "
+                      "the step has no solution; try hessian_normal on, or fix the free "
+                      "directions", (int)zero);
+  }
+  tds_spmat_free(&K);
+  free(b0);
+  free(r);
+  return rc;
+}
+
 int tds_newton_probe(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double c,
                      tds_inertia *in) {
   if (!isfinite(c)) return tds_seterr(ctx, TDS_ERANGE, "eigenprobe: the probe value is not finite");
@@ -248,9 +281,6 @@ int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
   if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
   tds_inertia in = {0};
   rc = factor(ctx, &n, 0, &f, &in);
-  if (rc == TDS_OK && in.zero)
-    rc = tds_seterr(ctx, TDS_ENUM, "hessian: the Hessian is singular (%d zero eigenvalues; "
-                    "try hessian_normal on, or fix the free directions)", (int)in.zero);
   if (rc == TDS_OK) {
     w = calloc((size_t)(n.m + n.nq) + 1, sizeof *w);
     if (!w) rc = tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory");
@@ -258,7 +288,7 @@ int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
   if (rc == TDS_OK) {
     for (int32_t j = 0; j < n.m; j++) w[j] = -n.grad[j];
     for (int32_t q = 0; q < n.nq; q++) w[n.m + q] = n.target[q] - n.value[q];
-    rc = tds_la_solve(ctx, f, w, 0);
+    rc = in.zero ? singular_solve(ctx, &n, f, w, in.zero) : tds_la_solve(ctx, f, w, 0);
   }
   if (rc == TDS_OK) rc = start_take(ctx, s, &st);
   double E = NAN, t = 1;
