@@ -444,8 +444,7 @@ int tds_newton_saddle(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, doubl
   if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
   *moved = t != 0;
   s->energy = E;
-  tds_printf(ctx, "%3d. area: %#17.15g energy: %#17.15g  scale: %g\n", 1, s->area, s->energy,
-             fabs(t));
+  tds_printf(ctx, "stepsize %g\n1. area: %#17.15g energy: %#17.15g \n", t, s->area, s->energy);
   tds_snap_free(&sn);
   return TDS_OK;
 }
