@@ -324,8 +324,8 @@ export, mark = tds.export, tds.mark
 tds.props.vertex.gauss_curvature = function(h) return tds.vertex_gauss_curvature(h) end
 
 -- Newton steps and Hessian eigenvalues (doc/newton.md; src/lua_newton.c).
-function hessian() return (tds.hessian()) end
-function hessian_seek(maxscale) return (tds.hessian_seek(maxscale)) end
+function hessian() return tds.hessian() end
+function hessian_seek(maxscale) return tds.hessian_seek(maxscale) end
 function saddle(maxscale) return tds.saddle(maxscale) end
 function eigenprobe(c) return tds.eigenprobe(c or 0) end
 function ritz(shift, n) return tds.ritz(shift or 0, n or 5) end

@@ -53,7 +53,7 @@ static int l_hessian_seek(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   nstate *ns = get_ns(L);
   double mx = lua_isnoneornil(L, 1) ? 1 : tds_lua_checkfinite(L, 1, "hessian_seek scale");
-  if (!(mx > 0)) return tds_lua_error(L, "hessian_seek: the largest scale must be positive, not %g", mx);
+  if (!(mx > 0)) return tds_lua_error(L, "hessian_seek: the largest scale must be positive, not %f", mx);
   int32_t index = 0;
   check_rc(L, st, tds_newton_step(&st->ctx, &st->s, &ns->o, mx, &index));
   lua_pushnumber(L, st->s.energy);
@@ -66,7 +66,7 @@ static int l_saddle(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   nstate *ns = get_ns(L);
   double mx = lua_isnoneornil(L, 1) ? 0 : tds_lua_checkfinite(L, 1, "saddle scale");
-  if (mx < 0) return tds_lua_error(L, "saddle: the largest scale must not be negative, not %g", mx);
+  if (mx < 0) return tds_lua_error(L, "saddle: the largest scale must not be negative, not %f", mx);
   double low = 0;
   int moved = 0;
   check_rc(L, st, tds_newton_saddle(&st->ctx, &st->s, &ns->o, mx, &low, &moved));
@@ -188,7 +188,7 @@ static int l_setting(lua_State *L) {
   default:
     if (set) {
       double x = tds_lua_checkfinite(L, 2, "linear_metric_mix");
-      if (x < 0 || x > 1) return tds_lua_error(L, "linear_metric_mix must be in [0, 1], not %g", x);
+      if (x < 0 || x > 1) return tds_lua_error(L, "linear_metric_mix must be in [0, 1], not %f", x);
       ns->o.metric_mix = x;
     }
     lua_pushnumber(L, ns->o.metric_mix);
