@@ -85,7 +85,10 @@ static void vertex_normals(const tds_mesh *m, vnorm *vn) {
       double l = v3_norm(t);
       if (!(l > 0)) break;
       v3_scale(t, 1 / l);
+      double dr[3];
+      v3_sub(dr, t, r);
       v3_copy(r, t);
+      if (it > 0 && v3_dot(dr, dr) < 1e-30) break; /* converged */
     }
     v3_copy(ref[v], r);
     memset(w->an, 0, sizeof w->an);
