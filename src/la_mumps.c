@@ -13,6 +13,7 @@
 #define USE_COMM_WORLD (-987654)
 
 struct tds_la {
+  tds_alloc alloc;       /* of this and the arrays (the ctx's) */
   DMUMPS_STRUC_C id;
   int32_t n;
   MUMPS_INT *irn, *jcn;
@@ -26,10 +27,11 @@ void tds_la_free(tds_la *f) {
     f->id.job = -2;
     dmumps_c(&f->id);
   }
-  free(f->irn);
-  free(f->jcn);
-  free(f->a);
-  free(f);
+  tds_free(&f->alloc, f->irn);
+  tds_free(&f->alloc, f->jcn);
+  tds_free(&f->alloc, f->a);
+  tds_alloc al = f->alloc;
+  tds_free(&al, f);
 }
 
 /* MUMPS says nothing on its own output units. */
@@ -46,17 +48,18 @@ int tds_la_factor(tds_ctx *ctx, const tds_spmat *A, tds_la **out) {
     return tds_seterr(ctx, TDS_ERANGE, "la: the matrix must be square and symmetric (upper)");
   int32_t n = A->nrow;
   int64_t nnz = A->colptr[n];
-  tds_la *f = calloc(1, sizeof *f);
+  tds_la *f = tds_calloc(&ctx->alloc, 1, sizeof *f);
   if (!f) return tds_seterr(ctx, TDS_ENOMEM, "la: out of memory");
+  f->alloc = ctx->alloc;
   f->id.instance_number = -1;
   f->n = n;
   if (n == 0) {
     *out = f;
     return TDS_OK;
   }
-  f->irn = malloc((size_t)(nnz + 1) * sizeof *f->irn);
-  f->jcn = malloc((size_t)(nnz + 1) * sizeof *f->jcn);
-  f->a = malloc((size_t)(nnz + 1) * sizeof *f->a);
+  f->irn = tds_malloc(&ctx->alloc, (size_t)(nnz + 1) * sizeof *f->irn);
+  f->jcn = tds_malloc(&ctx->alloc, (size_t)(nnz + 1) * sizeof *f->jcn);
+  f->a = tds_malloc(&ctx->alloc, (size_t)(nnz + 1) * sizeof *f->a);
   if (!f->irn || !f->jcn || !f->a) {
     tds_la_free(f);
     return tds_seterr(ctx, TDS_ENOMEM, "la: out of memory");

@@ -22,7 +22,7 @@ static int project_quantities(tds_ctx *ctx, tds_surf *s, int maxit) {
   tds_fixq fq = {0};
   int rc = tds_fixq_build(ctx, s, &fq);
   if (rc != TDS_OK) return rc;
-  double (*rest)[3] = tds_calloc((size_t)m->nv + 1, sizeof *rest);
+  double (*rest)[3] = tds_calloc(&ctx->alloc, (size_t)m->nv + 1, sizeof *rest);
   if (!rest) {
     tds_fixq_free(&fq);
     return tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory");
@@ -63,7 +63,7 @@ static int project_quantities(tds_ctx *ctx, tds_surf *s, int maxit) {
       break;
     }
   }
-  free(rest);
+  tds_free(&ctx->alloc, rest);
   tds_fixq_free(&fq);
   return rc;
 }
@@ -83,16 +83,18 @@ static void set_mult(tds_surf *s, int32_t q, double v) {
 
 /* Positions at the start of a command. */
 typedef struct start {
+  tds_alloc alloc;
   double (*x0)[3], (*p0)[2];
 } start;
 
 static int start_take(tds_ctx *ctx, const tds_surf *s, start *st) {
+  st->alloc = ctx->alloc;
   size_t nv = (size_t)s->m.nv + 1;
-  st->x0 = malloc(nv * sizeof *st->x0);
-  st->p0 = malloc(nv * sizeof *st->p0);
+  st->x0 = tds_malloc(&ctx->alloc, nv * sizeof *st->x0);
+  st->p0 = tds_malloc(&ctx->alloc, nv * sizeof *st->p0);
   if (!st->x0 || !st->p0) {
-    free(st->x0);
-    free(st->p0);
+    tds_free(&ctx->alloc, st->x0);
+    tds_free(&ctx->alloc, st->p0);
     return tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory");
   }
   if (s->m.nv) {
@@ -103,8 +105,8 @@ static int start_take(tds_ctx *ctx, const tds_surf *s, start *st) {
 }
 
 static void start_free(start *st) {
-  free(st->x0);
-  free(st->p0);
+  tds_free(&st->alloc, st->x0);
+  tds_free(&st->alloc, st->p0);
 }
 
 /* Place every vertex at its start moved by t * (sum of w_j mv_j) (onto
@@ -219,7 +221,7 @@ static int factor(tds_ctx *ctx, const tds_nsys *n, double c, tds_la **f, tds_ine
 ** the Newton step up to those directions. Otherwise it is refused. */
 static int singular_solve(tds_ctx *ctx, const tds_nsys *n, tds_la *f, double *b, int32_t zero) {
   int32_t N = n->m + n->nq;
-  double *b0 = malloc(((size_t)N + 1) * sizeof *b0), *r = malloc(((size_t)N + 1) * sizeof *r);
+  double *b0 = tds_malloc(&ctx->alloc, ((size_t)N + 1) * sizeof *b0), *r = tds_malloc(&ctx->alloc, ((size_t)N + 1) * sizeof *r);
   tds_spmat K = {0};
   int rc = b0 && r ? TDS_OK : tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory");
   if (rc == TDS_OK) {
@@ -244,8 +246,8 @@ static int singular_solve(tds_ctx *ctx, const tds_nsys *n, tds_la *f, double *b,
                       "directions", (int)zero);
   }
   tds_spmat_free(&K);
-  free(b0);
-  free(r);
+  tds_free(&ctx->alloc, b0);
+  tds_free(&ctx->alloc, r);
   return rc;
 }
 
@@ -288,7 +290,7 @@ int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
   tds_inertia in = {0};
   rc = factor(ctx, &n, 0, &f, &in);
   if (rc == TDS_OK) {
-    w = calloc((size_t)(n.m + n.nq) + 1, sizeof *w);
+    w = tds_calloc(&ctx->alloc, (size_t)(n.m + n.nq) + 1, sizeof *w);
     if (!w) rc = tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory");
   }
   if (rc == TDS_OK) {
@@ -307,7 +309,7 @@ int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
   if (rc == TDS_OK) /* the new multipliers: H w + A y = -(grad E - A mult) */
     for (int32_t q = 0; q < n.nq; q++) set_mult(s, q, n.mult[q] - t * w[n.m + q]);
   start_free(&st);
-  free(w);
+  tds_free(&ctx->alloc, w);
   tds_la_free(f);
   tds_nsys_free(&n);
   if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
@@ -376,14 +378,14 @@ int tds_newton_move(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, const d
   rc = tds_nsys_build(ctx, s, o, &n);
   if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
   rc = start_take(ctx, s, &st);
-  if (rc == TDS_OK && !(w = calloc((size_t)n.m + 1, sizeof *w)))
+  if (rc == TDS_OK && !(w = tds_calloc(&ctx->alloc, (size_t)n.m + 1, sizeof *w)))
     rc = tds_seterr(ctx, TDS_ENOMEM, "move: out of memory");
   if (rc == TDS_OK) {
     amounts(&n, vec, w);
     if (!isfinite(place(ctx, s, &st, &n, w, t)))
       rc = tds_seterr(ctx, TDS_ENUM, "move: the energy is not finite after the move");
   }
-  free(w);
+  tds_free(&ctx->alloc, w);
   start_free(&st);
   tds_nsys_free(&n);
   if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
@@ -403,18 +405,18 @@ int tds_newton_saddle(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, doubl
   double val = 0;
   int32_t got = 0;
   int iters;
-  double (*vec)[3] = tds_calloc((size_t)s->m.nv + 1, sizeof *vec);
+  double (*vec)[3] = tds_calloc(&ctx->alloc, (size_t)s->m.nv + 1, sizeof *vec);
   if (!vec) return tds_snap_end(ctx, s, &sn, tds_seterr(ctx, TDS_ENOMEM, "saddle: out of memory"));
   rc = tds_newton_ritz(ctx, s, o, NAN, 1, &val, &got, &in, vec, &iters);
   if (rc == TDS_OK && got == 0) rc = tds_seterr(ctx, TDS_ERANGE, "saddle: nothing can move");
   if (rc != TDS_OK) {
-    free(vec);
+    tds_free(&ctx->alloc, vec);
     return tds_snap_end(ctx, s, &sn, rc);
   }
   *lowest = val;
   if (val >= 0) {
     tds_printf(ctx, "Lowest eigenvalue %.15g. Not a saddle point.\n", val);
-    free(vec);
+    tds_free(&ctx->alloc, vec);
     tds_snap_free(&sn);
     return TDS_OK;
   }
@@ -425,7 +427,7 @@ int tds_newton_saddle(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, doubl
   rc = tds_nsys_build(ctx, s, o, &n);
   if (rc == TDS_OK) {
     rc = start_take(ctx, s, &st);
-    if (rc == TDS_OK && !(w = calloc((size_t)n.m + 1, sizeof *w)))
+    if (rc == TDS_OK && !(w = tds_calloc(&ctx->alloc, (size_t)n.m + 1, sizeof *w)))
       rc = tds_seterr(ctx, TDS_ENOMEM, "saddle: out of memory");
     if (rc == TDS_OK) {
       amounts(&n, (const double(*)[3])vec, w);
@@ -438,9 +440,9 @@ int tds_newton_saddle(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, doubl
     }
     tds_nsys_free(&n);
   }
-  free(w);
+  tds_free(&ctx->alloc, w);
   start_free(&st);
-  free(vec);
+  tds_free(&ctx->alloc, vec);
   if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
   *moved = t != 0;
   s->energy = E;

@@ -134,18 +134,18 @@ int tds_newton_ritz(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
   if (nn == 0) goto done;
   int p = nn + (nn < 8 ? 8 : nn);
   if (p > dim) p = dim;
-  X = malloc((size_t)m * p * sizeof *X);
-  Y = malloc((size_t)m * p * sizeof *Y);
-  MX = malloc((size_t)m * p * sizeof *MX);
-  rhs = malloc(((size_t)m + n.nq + 1) * sizeof *rhs);
-  G = malloc((size_t)p * p * sizeof *G);
-  th = malloc((size_t)p * sizeof *th);
-  prev = malloc((size_t)p * sizeof *prev);
-  row = malloc((size_t)p * sizeof *row);
-  lam = malloc((size_t)p * sizeof *lam);
-  ord = malloc((size_t)p * sizeof *ord);
+  X = tds_malloc(&ctx->alloc, (size_t)m * p * sizeof *X);
+  Y = tds_malloc(&ctx->alloc, (size_t)m * p * sizeof *Y);
+  MX = tds_malloc(&ctx->alloc, (size_t)m * p * sizeof *MX);
+  rhs = tds_malloc(&ctx->alloc, ((size_t)m + n.nq + 1) * sizeof *rhs);
+  G = tds_malloc(&ctx->alloc, (size_t)p * p * sizeof *G);
+  th = tds_malloc(&ctx->alloc, (size_t)p * sizeof *th);
+  prev = tds_malloc(&ctx->alloc, (size_t)p * sizeof *prev);
+  row = tds_malloc(&ctx->alloc, (size_t)p * sizeof *row);
+  lam = tds_malloc(&ctx->alloc, (size_t)p * sizeof *lam);
+  ord = tds_malloc(&ctx->alloc, (size_t)p * sizeof *ord);
   int lwork = 8 * p + 64;
-  work = malloc((size_t)lwork * sizeof *work);
+  work = tds_malloc(&ctx->alloc, (size_t)lwork * sizeof *work);
   if (!X || !Y || !MX || !rhs || !G || !th || !prev || !work || !row || !lam || !ord) {
     rc = tds_seterr(ctx, TDS_ENOMEM, "ritz: out of memory");
     goto done;
@@ -217,17 +217,17 @@ int tds_newton_ritz(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
   }
 done:
   tds_la_free(f);
-  free(X);
-  free(Y);
-  free(MX);
-  free(rhs);
-  free(G);
-  free(th);
-  free(prev);
-  free(work);
-  free(row);
-  free(lam);
-  free(ord);
+  tds_free(&ctx->alloc, X);
+  tds_free(&ctx->alloc, Y);
+  tds_free(&ctx->alloc, MX);
+  tds_free(&ctx->alloc, rhs);
+  tds_free(&ctx->alloc, G);
+  tds_free(&ctx->alloc, th);
+  tds_free(&ctx->alloc, prev);
+  tds_free(&ctx->alloc, work);
+  tds_free(&ctx->alloc, row);
+  tds_free(&ctx->alloc, lam);
+  tds_free(&ctx->alloc, ord);
   tds_nsys_free(&n);
   if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
   tds_snap_free(&sn);

@@ -7,6 +7,7 @@
 #include "newton.h"
 
 typedef struct tds_nsys {
+  tds_alloc alloc;      /* of the arrays (the ctx's) */
   int32_t m, nq;
   int32_t *vert;        /* unknown -> vertex slot */
   double (*mv)[3];      /* unknown -> motion-space vector of a unit amount */

@@ -10,13 +10,13 @@
 #include "vec3.h"
 
 void tds_nsys_free(tds_nsys *n) {
-  free(n->vert);
-  free(n->mv);
-  free(n->dx);
-  free(n->grad);
-  free(n->value);
-  free(n->target);
-  free(n->mult);
+  tds_free(&n->alloc, n->vert);
+  tds_free(&n->alloc, n->mv);
+  tds_free(&n->alloc, n->dx);
+  tds_free(&n->alloc, n->grad);
+  tds_free(&n->alloc, n->value);
+  tds_free(&n->alloc, n->target);
+  tds_free(&n->alloc, n->mult);
   tds_spmat_free(&n->H);
   tds_spmat_free(&n->A);
   tds_spmat_free(&n->M);
@@ -50,7 +50,7 @@ static void facet_vec(const tds_mesh *m, tds_id f, double c[3]) {
   v3_scale(c, 0.5);
 }
 
-static void vertex_normals(const tds_mesh *m, vnorm *vn) {
+static void vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
   memset(vn, 0, (size_t)m->nv * sizeof *vn);
   for (tds_id f = 0; f < m->nf; f++) {
     if (m->fflags[f] & TDS_DEAD) continue;
@@ -67,7 +67,7 @@ static void vertex_normals(const tds_mesh *m, vnorm *vn) {
     }
   }
   /* the dominant direction: power iteration from the plain sum */
-  double (*ref)[3] = malloc(((size_t)m->nv + 1) * sizeof *ref);
+  double (*ref)[3] = tds_malloc(al, ((size_t)m->nv + 1) * sizeof *ref);
   if (!ref) return; /* the plain sums stay: still a usable normal */
   for (tds_id v = 0; v < m->nv; v++) {
     vnorm *w = &vn[v];
@@ -102,7 +102,7 @@ static void vertex_normals(const tds_mesh *m, vnorm *vn) {
       v3_axpy(vn[v].an, v3_dot(c, ref[v]) < 0 ? -1 : 1, c);
     }
   }
-  free(ref);
+  tds_free(al, ref);
   for (tds_id e = 0; e < m->ne; e++) {
     if (m->eflags[e] & TDS_DEAD) continue;
     if (tds_edge_valence(m, e) < 3) continue;
@@ -219,10 +219,11 @@ static int nomem(tds_ctx *ctx) { return tds_seterr(ctx, TDS_ENOMEM, "hessian: ou
 
 int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys *out) {
   memset(out, 0, sizeof *out);
+  out->alloc = ctx->alloc;
   const tds_mesh *m = &s->m;
   tds_hess h = {0};
   tds_hess_red r = {0};
-  tds_sptrip t = {0};
+  tds_sptrip t = {.alloc = ctx->alloc};
   vnorm *vn = NULL;
   int32_t *rk = NULL, *ustart = NULL;
   double (*W)[3][3] = NULL;
@@ -231,12 +232,12 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
   if (rc == TDS_OK) rc = tds_hess_reduce(ctx, s, &h, &r);
   if (rc != TDS_OK) goto fail;
   int32_t nvm = r.nvm;
-  vn = malloc(((size_t)m->nv + 1) * sizeof *vn);
-  W = malloc(((size_t)nvm + 1) * sizeof *W);
-  ustart = malloc(((size_t)nvm + 1) * sizeof *ustart);
-  rk = malloc(((size_t)r.m + 1) * sizeof *rk);
+  vn = tds_malloc(&ctx->alloc, ((size_t)m->nv + 1) * sizeof *vn);
+  W = tds_malloc(&ctx->alloc, ((size_t)nvm + 1) * sizeof *W);
+  ustart = tds_malloc(&ctx->alloc, ((size_t)nvm + 1) * sizeof *ustart);
+  rk = tds_malloc(&ctx->alloc, ((size_t)r.m + 1) * sizeof *rk);
   if (!vn || !W || !ustart || !rk) goto nomem;
-  vertex_normals(m, vn);
+  vertex_normals(&ctx->alloc, m, vn);
   ustart[0] = 0;
   for (int32_t k = 0; k < nvm; k++) {
     int d = r.start[k + 1] - r.start[k];
@@ -247,15 +248,15 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
   int32_t mm = out->m = ustart[nvm];
   out->nq = h.nq;
   out->energy = h.energy;
-  out->vert = malloc(((size_t)mm + 1) * sizeof *out->vert);
-  out->mv = calloc((size_t)mm + 1, sizeof *out->mv);
-  out->dx = calloc((size_t)mm + 1, sizeof *out->dx);
-  out->grad = calloc((size_t)mm + 1, sizeof *out->grad);
-  out->value = calloc((size_t)h.nq + 1, sizeof *out->value);
-  out->target = calloc((size_t)h.nq + 1, sizeof *out->target);
+  out->vert = tds_malloc(&ctx->alloc, ((size_t)mm + 1) * sizeof *out->vert);
+  out->mv = tds_calloc(&ctx->alloc, (size_t)mm + 1, sizeof *out->mv);
+  out->dx = tds_calloc(&ctx->alloc, (size_t)mm + 1, sizeof *out->dx);
+  out->grad = tds_calloc(&ctx->alloc, (size_t)mm + 1, sizeof *out->grad);
+  out->value = tds_calloc(&ctx->alloc, (size_t)h.nq + 1, sizeof *out->value);
+  out->target = tds_calloc(&ctx->alloc, (size_t)h.nq + 1, sizeof *out->target);
   if (!out->vert || !out->mv || !out->dx || !out->grad || !out->value || !out->target)
     goto nomem;
-  out->mult = calloc((size_t)h.nq + 1, sizeof *out->mult);
+  out->mult = tds_calloc(&ctx->alloc, (size_t)h.nq + 1, sizeof *out->mult);
   if (!out->mult) goto nomem;
   for (int32_t q = 0; q < h.nq; q++) {
     out->value[q] = h.value[q];
@@ -299,7 +300,7 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
     if (tds_sptrip_add(&t, j, j, 0)) goto nomem;
   if (tds_spmat_from_trip(&t, 1, &out->H)) goto nomem;
   tds_sptrip_free(&t);
-  t = (tds_sptrip){.nrow = mm, .ncol = h.nq};
+  t = (tds_sptrip){.nrow = mm, .ncol = h.nq, .alloc = ctx->alloc};
   for (int32_t q = 0; q < h.nq; q++)
     for (int32_t e = r.A.colptr[q]; e < r.A.colptr[q + 1]; e++) {
       int32_t i = r.A.rowind[e], k = rk[i];
@@ -311,9 +312,9 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
   if (tds_spmat_from_trip(&t, 0, &out->A)) goto nomem;
   tds_sptrip_free(&t);
   if (o->linear_metric) {
-    t = (tds_sptrip){.nrow = mm, .ncol = mm};
+    t = (tds_sptrip){.nrow = mm, .ncol = mm, .alloc = ctx->alloc};
     double mix = o->metric_mix;
-    int32_t *vk = malloc(((size_t)m->nv + 1) * sizeof *vk);
+    int32_t *vk = tds_malloc(&ctx->alloc, ((size_t)m->nv + 1) * sizeof *vk);
     if (!vk) goto nomem;
     for (tds_id v = 0; v < m->nv; v++) vk[v] = h.vidx[v] < 0 ? -1 : h.vidx[v] / 3;
     for (tds_id f = 0; f < m->nf; f++) {
@@ -334,20 +335,20 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
               if (p > q || (x != y && p == q)) continue;
               double v = wgt * v3_dot(out->dx[p], out->dx[q]);
               if (v != 0 && tds_sptrip_add(&t, p, q, v)) {
-                free(vk);
+                tds_free(&ctx->alloc, vk);
                 goto nomem;
               }
             }
         }
     }
-    free(vk);
+    tds_free(&ctx->alloc, vk);
     if (tds_spmat_from_trip(&t, 1, &out->M)) goto nomem;
     tds_sptrip_free(&t);
   }
-  free(vn);
-  free(W);
-  free(ustart);
-  free(rk);
+  tds_free(&ctx->alloc, vn);
+  tds_free(&ctx->alloc, W);
+  tds_free(&ctx->alloc, ustart);
+  tds_free(&ctx->alloc, rk);
   tds_hess_red_free(&r);
   tds_hess_free(&h);
   return TDS_OK;
@@ -355,10 +356,10 @@ nomem:
   rc = nomem(ctx);
 fail:
   tds_sptrip_free(&t);
-  free(vn);
-  free(W);
-  free(ustart);
-  free(rk);
+  tds_free(&ctx->alloc, vn);
+  tds_free(&ctx->alloc, W);
+  tds_free(&ctx->alloc, ustart);
+  tds_free(&ctx->alloc, rk);
   tds_hess_red_free(&r);
   tds_hess_free(&h);
   tds_nsys_free(out);
@@ -367,7 +368,7 @@ fail:
 
 int tds_nsys_kkt(tds_ctx *ctx, const tds_nsys *n, double c, tds_spmat *K) {
   int32_t mm = n->m;
-  tds_sptrip t = {.nrow = mm + n->nq, .ncol = mm + n->nq};
+  tds_sptrip t = {.nrow = mm + n->nq, .ncol = mm + n->nq, .alloc = ctx->alloc};
   for (int32_t j = 0; j < mm; j++)
     for (int32_t e = n->H.colptr[j]; e < n->H.colptr[j + 1]; e++)
       if (tds_sptrip_add(&t, n->H.rowind[e], j, n->H.val[e])) goto nomem;
