@@ -673,6 +673,7 @@ local TOGGLE_MSG = {
   big_endian = "big_endian %s. (was %s)",
   hessian_normal = "hessian_normal %s. (was %s)",
   linear_metric = "Linear interpolation metric with Hessian %s.(was %s)",
+  hessian_diff = "hessian_diff %s. (was %s)",
 }
 
 -- Byte order of binary_printf: "<" little endian (Evolver's default on
@@ -685,7 +686,9 @@ local function toggle_get(name)
   if name == "gravity" then local _, on = tds.gravity(); return on end
   if name == "little_endian" then return endian == "<" end
   if name == "big_endian" then return endian == ">" end
-  if name == "hessian_normal" or name == "linear_metric" then return tds.hessian_setting(name) end
+  if name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff" then
+    return tds.hessian_setting(name)
+  end
 end
 local function toggle_set(name, on)
   if name == "conj_grad" then tds.setting("conj_grad", on)
@@ -693,7 +696,9 @@ local function toggle_set(name, on)
   elseif name == "gravity" then local g = tds.gravity(); tds.gravity(g, on)
   elseif name == "little_endian" then endian = on and "<" or ">"
   elseif name == "big_endian" then endian = on and ">" or "<"
-  elseif name == "hessian_normal" or name == "linear_metric" then tds.hessian_setting(name, on) end
+  elseif name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff" then
+    tds.hessian_setting(name, on)
+  end
 end
 
 -- binary_printf: Evolver's binary formats (%c one byte, %d two-byte and
@@ -932,7 +937,7 @@ for w in ([[t o O w l K n j J e A a b f k M p Q W y Z z s P D F H h X
   jiggle homothety autopop autochop ribiere check_increase
   quietgo quietload verbose approximate_curvature runge_kutta
   post_project volgrads_every area_normalization effective_area normal_motion
-  hessian_diff ysmp bunch_kaufman sparse_constraints augmented_hessian
+  ysmp bunch_kaufman sparse_constraints augmented_hessian
   torus_filled kusner conf_edge normal_curvature boundary_curvature
   show_all_quantities interp_bdry_param break_after_warning break_on_warning
   itdebug memdebug debug estimate extrapolate set_body_target quantity]]):gmatch("%S+") do UNSUPPORTED[w] = true end

@@ -172,7 +172,7 @@ static int l_eigenvector(lua_State *L) {
 /* tds.hessian_setting(name [, value]) -> value */
 static int l_setting(lua_State *L) {
   static const char *const names[] = {"hessian_normal", "linear_metric", "linear_metric_mix",
-                                      NULL};
+                                      "hessian_diff", NULL};
   nstate *ns = get_ns(L);
   int which = luaL_checkoption(L, 1, NULL, names);
   int set = !lua_isnone(L, 2);
@@ -184,6 +184,10 @@ static int l_setting(lua_State *L) {
   case 1:
     if (set) ns->o.linear_metric = lua_toboolean(L, 2);
     lua_pushboolean(L, ns->o.linear_metric);
+    break;
+  case 3:
+    if (set) ns->o.diff = lua_toboolean(L, 2);
+    lua_pushboolean(L, ns->o.diff);
     break;
   default:
     if (set) {

@@ -40,6 +40,7 @@ typedef struct tds_newton_opts {
   int normal;           /* hessian_normal */
   int linear_metric;    /* M as above instead of the identity */
   double metric_mix;    /* linear_metric_mix, 0 .. 1 */
+  int diff;             /* hessian_diff: H by central differences */
 } tds_newton_opts;
 
 /* One Newton step (Evolver's hessian): solve K [w; y] = [-grad; target -

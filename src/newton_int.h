@@ -28,6 +28,11 @@ void tds_nsys_free(tds_nsys *n);
 /* The bordered K - c [M 0; 0 0] (upper CSC). */
 int tds_nsys_kkt(tds_ctx *ctx, const tds_nsys *n, double c, tds_spmat *K);
 
+/* hessian_diff: replace h->H's values by central differences of the
+** Lagrangian's gradient (multipliers h->mult), keeping its pattern
+** (newton_diff.c). The positions are restored exactly. */
+int tds_hess_diff(tds_ctx *ctx, tds_surf *s, tds_hess *h);
+
 /* y = M x (the identity when M is empty). */
 void tds_nsys_metric(const tds_nsys *n, const double *x, double *y);
 

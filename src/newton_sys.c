@@ -229,6 +229,7 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
   double (*W)[3][3] = NULL;
   int rc = need_pressures(ctx, s) ? tds_pressures(ctx, s) : TDS_OK;
   if (rc == TDS_OK) rc = tds_hess_assemble(ctx, s, NULL, &h);
+  if (rc == TDS_OK && o->diff) rc = tds_hess_diff(ctx, s, &h);
   if (rc == TDS_OK) rc = tds_hess_reduce(ctx, s, &h, &r);
   if (rc != TDS_OK) goto fail;
   int32_t nvm = r.nvm;
