@@ -42,23 +42,25 @@ static int l_hessian(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   nstate *ns = get_ns(L);
   int32_t index = 0;
-  check_rc(L, st, tds_newton_step(&st->ctx, &st->s, &ns->o, 0, &index));
+  check_rc(L, st, tds_newton_step(&st->ctx, &st->s, &ns->o, 0, &index, NULL));
   lua_pushnumber(L, st->s.energy);
   lua_pushinteger(L, index);
   return 2;
 }
 
-/* tds.hessian_seek([maxscale = 1]) -> energy, scale */
+/* tds.hessian_seek([maxscale = 1]) -> energy, scale, index */
 static int l_hessian_seek(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   nstate *ns = get_ns(L);
   double mx = lua_isnoneornil(L, 1) ? 1 : tds_lua_checkfinite(L, 1, "hessian_seek scale");
   if (!(mx > 0)) return tds_lua_error(L, "hessian_seek: the largest scale must be positive, not %f", mx);
   int32_t index = 0;
-  check_rc(L, st, tds_newton_step(&st->ctx, &st->s, &ns->o, mx, &index));
+  double t = 0;
+  check_rc(L, st, tds_newton_step(&st->ctx, &st->s, &ns->o, mx, &index, &t));
   lua_pushnumber(L, st->s.energy);
+  lua_pushnumber(L, t);
   lua_pushinteger(L, index);
-  return 2;
+  return 3;
 }
 
 /* tds.saddle([maxscale]) -> lowest eigenvalue, moved */

@@ -139,47 +139,48 @@ static double place(tds_ctx *ctx, tds_surf *s, const start *st, const tds_nsys *
 }
 
 /* Least energy along t in (0, tmax]: the energy at tmax, then halving
-** while it helps, then a parabola through the three best points (the
-** kind of search `g` does). Returns t, leaves the surface there, *E its
-** energy. */
+** while that lowers it (or the energy is not below the start), then the
+** parabola through the best sample and its neighbours (t = 0 among them)
+** when its vertex is inside and lower. Leaves the surface at the t
+** returned, *E its energy. */
 static double seek(tds_ctx *ctx, tds_surf *s, const start *st, const tds_nsys *n,
                    const double *w, double E0, double tmax, double *E) {
-  double ts[64], es[64];
+  double ts[48], es[48];
   int k = 0;
   ts[k] = 0;
   es[k++] = E0;
   double t = tmax, e = place(ctx, s, st, n, w, t);
   ts[k] = t;
   es[k++] = e;
-  /* shrink while the energy is not below the start, or keeps falling */
-  while (k < 40) {
+  while (k < 44 && t > 1e-12 * tmax) {
     double t2 = t / 2, e2 = place(ctx, s, st, n, w, t2);
     ts[k] = t2;
     es[k++] = e2;
     if (isfinite(e) && e < E0 && !(e2 < e)) break;
     t = t2;
     e = e2;
-    if (t < 1e-12 * tmax) break;
   }
-  /* best point, and a parabola through it and its neighbours in t */
-  int b = 0;
+  /* sort by t (insertion: few points) */
+  for (int a = 1; a < k; a++)
+    for (int b = a; b > 0 && ts[b] < ts[b - 1]; b--) {
+      double x = ts[b], y = es[b];
+      ts[b] = ts[b - 1], es[b] = es[b - 1];
+      ts[b - 1] = x, es[b - 1] = y;
+    }
+  int best = 0;
   for (int i = 1; i < k; i++)
-    if (es[i] < es[b]) b = i;
-  double tb = ts[b], eb = es[b];
-  double lo = -1, elo = 0, hi = -1, ehi = 0;
-  for (int i = 0; i < k; i++) {
-    if (!isfinite(es[i])) continue;
-    if (ts[i] < tb && (lo < 0 || ts[i] > lo)) lo = ts[i], elo = es[i];
-    if (ts[i] > tb && (hi < 0 || ts[i] < hi)) hi = ts[i], ehi = es[i];
-  }
-  if (lo >= 0 && hi >= 0) {
-    double d1 = (eb - elo) / (tb - lo), d2 = (ehi - eb) / (hi - tb);
-    double curv = (d2 - d1) / (hi - lo);
-    if (curv > 0) { /* the minimiser of the parabola through the three */
-      double num = (tb - lo) * (tb - lo) * (eb - ehi) - (tb - hi) * (tb - hi) * (eb - elo);
-      double den = (tb - lo) * (eb - ehi) - (tb - hi) * (eb - elo);
-      double tp = den != 0 ? tb - 0.5 * num / den : tb;
-      if (tp > lo && tp < hi && tp <= tmax) {
+    if (es[i] < es[best]) best = i;
+  double tb = ts[best], eb = es[best];
+  int c = best == 0 ? 1 : best == k - 1 ? k - 2 : best; /* middle of three */
+  if (k >= 3 && isfinite(es[c - 1]) && isfinite(es[c]) && isfinite(es[c + 1])) {
+    double t0 = ts[c - 1], t1 = ts[c], t2 = ts[c + 1];
+    double e0 = es[c - 1], e1 = es[c], e2 = es[c + 1];
+    double num = (t1 - t0) * (t1 - t0) * (e1 - e2) - (t1 - t2) * (t1 - t2) * (e1 - e0);
+    double den = (t1 - t0) * (e1 - e2) - (t1 - t2) * (e1 - e0);
+    double d1 = (e1 - e0) / (t1 - t0), d2 = (e2 - e1) / (t2 - t1);
+    if (den != 0 && d2 > d1) { /* convex: a minimum */
+      double tp = t1 - 0.5 * num / den;
+      if (tp > 0 && tp <= tmax && tp != tb) {
         double ep = place(ctx, s, st, n, w, tp);
         if (ep < eb) {
           *E = ep;
@@ -188,7 +189,7 @@ static double seek(tds_ctx *ctx, tds_surf *s, const start *st, const tds_nsys *n
       }
     }
   }
-  *E = place(ctx, s, st, n, w, tb);
+  *E = tb > 0 ? place(ctx, s, st, n, w, tb) : place(ctx, s, st, n, w, 0);
   return tb;
 }
 
@@ -274,7 +275,7 @@ int tds_newton_probe(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double
 }
 
 int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double seekmax,
-                    int32_t *index) {
+                    int32_t *index, double *scale) {
   if (seekmax < 0 || !isfinite(seekmax))
     return tds_seterr(ctx, TDS_ERANGE, "hessian_seek: the largest scale must be positive and finite");
   tds_snap sn;
@@ -316,6 +317,7 @@ int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
   s->energy = E;
   s->iterations++;
   if (index) *index = in.neg;
+  if (scale) *scale = t;
   if (in.neg) tds_printf(ctx, "WARNING: Hessian not positive definite. Index: %d \n", (int)in.neg);
   if (seekmax > 0)
     tds_printf(ctx, "%3d. area: %#17.15g energy: %#17.15g  scale: %g\n", 1, s->area, s->energy, t);

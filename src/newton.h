@@ -50,9 +50,10 @@ typedef struct tds_newton_opts {
 ** positive definite, "WARNING: Hessian not positive definite. Index: n".
 ** With seek > 0 (hessian_seek), the step is scaled by the t in (0, seek]
 ** that minimises the energy along it (the line search of `g`) and the
-** line shows the scale. *index (if not NULL) gets the index. */
+** line shows the scale. *index (if not NULL) gets the index, *scale (if
+** not NULL) the step's multiple of the Newton step (1 for hessian). */
 int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double seek,
-                    int32_t *index);
+                    int32_t *index, double *scale);
 
 /* Inertia of H - c M on the constraints (eigenprobe c), and the number of
 ** unknowns. Prints nothing. */
