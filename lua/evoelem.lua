@@ -52,6 +52,7 @@ function E.live(h) return true end
 -- needs it and dropped whenever the topology may have changed (E.touch:
 -- around every top-level command, after commands and Lua calls).
 local adj
+local USER -- user attributes, see userattr
 local function adjacency()
   if adj then return adj end
   local a = { efacets = {}, vedges = {}, vfacets = {}, bfacets = {} }
@@ -70,7 +71,7 @@ local function adjacency()
   adj = a
   return a
 end
-function E.touch() adj = nil end
+function E.touch() adj = nil; USER = nil end
 
 -- Elements around an element (sub-element generators).
 local function around(x, kind)
@@ -144,14 +145,72 @@ function E.subelem(h, kind, i)
   return x
 end
 
--- Extra attributes defined at run time: extra[kind][name] = { type, dim, vals }.
-local extra = { vertex = {}, edge = {}, facet = {}, body = {}, facetedge = {} }
+-- User attributes (define kind attribute ...) are columns of tds's
+-- attribute registry (src/attr.h), shared with Lua (vertex[1].weight) and
+-- datafiles. USER[kind][name] = { type =, dims = } caches what
+-- tds.attributes reports; E.touch drops it.
+local function userattr(kind, name)
+  if not USER then
+    USER = {}
+    for k, n in pairs(KINDNUM) do
+      local t = {}
+      for _, a in ipairs(tds.attributes(n)) do if a.user then t[a.name] = a end end
+      USER[k] = t
+    end
+  end
+  return USER[kind] and USER[kind][name]
+end
 
 function E.defattr(kind, name, ty, dims)
-  if extra[kind][name] then return end
   local d = {}
-  for i, n in ipairs(dims) do d[i] = math.floor(num(n)) end
-  extra[kind][name] = { type = ty, dims = d, vals = {} }
+  for i, n in ipairs(dims) do d[i] = num(n) end
+  local ok, err = pcall(tds.define_attribute, kind, name, ty, d)
+  USER = nil
+  if not ok then fail(tostring(err):gsub("^.-:%d+: ", "")) end
+end
+
+-- An array attribute as an Evolver array: a proxy whose elements read and
+-- write the element's values (a[i], #a, nested for several dimensions).
+local function aproxy(h, name, dims, path)
+  local d = #path + 1
+  return setmetatable({}, {
+    __len = function() return dims[d] end,
+    __index = function(_, i)
+      i = math.tointeger(i)
+      if not i or i < 1 or i > dims[d] then return nil end
+      local p = { table.unpack(path) }
+      p[#p + 1] = i
+      if d < #dims then return aproxy(h, name, dims, p) end
+      local t = h[name]
+      for _, k in ipairs(p) do t = t[k] end
+      return t + 0.0
+    end,
+    __newindex = function(_, i, v)
+      local root = h[name]
+      local t = root
+      for _, k in ipairs(path) do t = t[k] end
+      t[i] = num(v)
+      local ok, err = pcall(function() h[name] = root end)
+      if not ok then fail(tostring(err):gsub("^.-:%d+: ", "")) end
+    end,
+  })
+end
+
+local function setuser(h, name, u, v)
+  if u.dims then
+    if type(v) ~= "table" then -- a number assigned to an array sets every element
+      local function fill(d)
+        local t = {}
+        for i = 1, u.dims[d] do t[i] = d < #u.dims and fill(d + 1) or num(v) end
+        return t
+      end
+      v = fill(1)
+    end
+  else
+    v = num(v)
+  end
+  local ok, err = pcall(function() h[name] = v end)
+  if not ok then fail(tostring(err):gsub("^.-:%d+: ", "")) end
 end
 
 local function vec(x)
@@ -226,14 +285,10 @@ function E.attr(o, name)
   if not isel(o) then fail(("'.%s' needs an element, got %s"):format(name, type(o))) end
   if name == "x" or name == "y" or name == "z" then return ATTR[name](o) end
   local h, rev = unwrap(o)
-  local x = extra[kindof(h)][name]
-  if x then
-    local v = x.vals[h.id]
-    if v == nil then
-      if #x.dims > 0 then v = E.newvalue(x.type, x.dims); x.vals[h.id] = v
-      else v = 0.0 end
-    end
-    return v
+  local u = userattr(kindof(h), name)
+  if u then
+    if u.dims then return aproxy(h, name, u.dims, {}) end
+    return h[name] + 0.0
   end
   local f = ATTR[name]
   if f then return f(h, rev) end
@@ -271,8 +326,8 @@ function E.setattr(h, name, v, fromset)
   if not isel(h) then fail(("cannot set '%s' of a %s"):format(name, type(h))) end
   h = unwrap(h)
   local k = kindof(h)
-  local x = extra[k][name]
-  if x then x.vals[h.id] = v; return end
+  local u = userattr(k, name)
+  if u then return setuser(h, name, u, v == true and 1 or v) end
   if name == "fixed" or name == "no_refine" or name == "bare" or name == "nodisplay" or name == "no_display" then
     if name == "no_display" then name = "nodisplay" end
     h[name] = E.truth(v == true and 1 or v)
@@ -307,7 +362,7 @@ function E.unsetattr(h, name, v)
     h.constraints = out
   elseif (name == "target" or name == "volume") and k == "body" then h.target = nil
   elseif name == "pressure" and k == "body" then h.pressure = nil
-  elseif extra[k][name] then extra[k][name].vals[h.id] = nil
+  elseif userattr(k, name) then h[name] = nil
   else fail(("unset %s %s: not supported"):format(k, name)) end
 end
 
@@ -368,7 +423,7 @@ function E.histogram(log, list, f)
 end
 
 
-function E.has_extra(h, name) return E.isel(h) and extra[kindof(h)][name] ~= nil end
+function E.has_extra(h, name) return E.isel(h) and userattr(kindof(h), name) ~= nil end
 
 -- list GEN in Evolver's layout.
 local COLOR_NAME = { [-1] = "clear", [0] = "black", "blue", "green", "cyan", "red", "magenta",
@@ -394,7 +449,7 @@ function E.list(h, kind, first)
     local ids = {}
     for i, e in ipairs(h.edges) do ids[i] = tostring(e) end
     local flags = (h.fixed and " fixed " or "") .. (h.tension ~= 1 and ("  density %g "):format(h.tension) or "")
-      .. (h.color ~= 0 and (" color " .. (COLOR_NAME[h.color] or tostring(h.color)) .. " ") or "")
+      .. (h.color ~= 15 and (" color " .. (COLOR_NAME[h.color] or tostring(h.color)) .. " ") or "")
       .. (h.no_refine and " no_refine " or "")
     E.out(("%3d   %s%s /*area %g*/\n"):format(h.id, table.concat(ids, " "), flags, h.area))
   elseif kind == "body" then
