@@ -145,20 +145,28 @@ function E.subelem(h, kind, i)
   return x
 end
 
--- User attributes (define kind attribute ...) are columns of tds's
--- attribute registry (src/attr.h), shared with Lua (vertex[1].weight) and
--- datafiles. USER[kind][name] = { type =, dims = } caches what
--- tds.attributes reports; E.touch drops it.
-local function userattr(kind, name)
+-- Element attributes come from tds's attribute registry (src/attr.h);
+-- user attributes (define kind attribute ...) are columns of it, shared
+-- with Lua (vertex[1].weight) and datafiles. USER[kind][name] = { type =,
+-- user =, dims = } caches what tds.attributes reports, aliases included;
+-- E.touch drops it.
+local function attrinfo(kind, name)
   if not USER then
     USER = {}
     for k, n in pairs(KINDNUM) do
       local t = {}
-      for _, a in ipairs(tds.attributes(n)) do if a.user then t[a.name] = a end end
+      for _, a in ipairs(tds.attributes(n)) do
+        t[a.name] = a
+        for al in (a.alias or ""):gmatch("%S+") do t[al] = a end
+      end
       USER[k] = t
     end
   end
   return USER[kind] and USER[kind][name]
+end
+local function userattr(kind, name)
+  local a = attrinfo(kind, name)
+  return a and a.user and a
 end
 
 function E.defattr(kind, name, ty, dims)
@@ -233,9 +241,6 @@ end
 local ATTR = {
   id = function(h) return h.id + 0.0 end,
   oid = function(h, rev) return (rev and -h.id or h.id) + 0.0 end,
-  fixed = function(h) return h.fixed and 1.0 or 0.0 end,
-  no_refine = function(h) return h.no_refine and 1.0 or 0.0 end,
-  bare = function(h) return h.bare and 1.0 or 0.0 end,
   frontbody = function(h) local b = h.frontbody; return b and b.id + 0.0 or 0.0 end,
   backbody = function(h) local b = h.backbody; return b and b.id + 0.0 or 0.0 end,
   target = function(h) return (h.target or 0) + 0.0 end,
@@ -328,8 +333,8 @@ function E.setattr(h, name, v, fromset)
   local k = kindof(h)
   local u = userattr(k, name)
   if u then return setuser(h, name, u, v == true and 1 or v) end
-  if name == "fixed" or name == "no_refine" or name == "bare" or name == "nodisplay" or name == "no_display" then
-    if name == "no_display" then name = "nodisplay" end
+  local info = attrinfo(k, name)
+  if info and info.type == "boolean" then -- flags: fixed, no_refine, bare, nodisplay ...
     h[name] = E.truth(v == true and 1 or v)
   elseif name == "constraint" then
     local n = math.floor(num(v))
@@ -354,7 +359,8 @@ end
 function E.unsetattr(h, name, v)
   h = unwrap(h)
   local k = kindof(h)
-  if name == "fixed" or name == "no_refine" or name == "bare" then h[name] = false
+  local info = attrinfo(k, name)
+  if info and info.type == "boolean" then h[name] = false
   elseif name == "constraint" then
     local cs, out = h.constraints or {}, {}
     local n = v and math.floor(num(v))

@@ -74,6 +74,7 @@ typedef struct tds_attr {
   int col;             /* -1 for built-in rows */
   int ndim;
   const int32_t *dim;
+  size_t off;          /* built-in rows over one mesh column: its offset */
 } tds_attr;
 
 /* A user attribute's storage: `size` doubles per element slot, grown with

@@ -2,6 +2,7 @@
 ** bodies, one row each (attr.h). The order of the TDS_AT_FE rows is the
 ** order dump writes them in. Setters see values already checked against
 ** the row's type (tds_attr_check) and keep the rules of the attribute. */
+#include <stddef.h>
 #include <string.h>
 
 #include "attr.h"
@@ -30,6 +31,17 @@ static int one(double *v, int *n, double x) {
   v[0] = x;
   *n = 1;
   return TDS_OK;
+}
+
+/* Rows whose value is one element of a mesh column (a->off: its offset in
+** tds_mesh) of doubles or of int16_t (colours). */
+static int get_dcol(GETTER_ARGS) {
+  UNUSED(ctx);
+  return one(v, n, (*(double **)((char *)&s->m + a->off))[id]);
+}
+static int get_scol(GETTER_ARGS) {
+  UNUSED(ctx);
+  return one(v, n, (*(int16_t **)((char *)&s->m + a->off))[id]);
 }
 
 /* ---- generic kinds of rows ---- */
@@ -152,22 +164,32 @@ static int v_valence(GETTER_ARGS) {
   return one(v, n, s->m.ve_start[id + 1] - s->m.ve_start[id]);
 }
 
-#define FLAGROW(k, nm, al, fal, bit, io) \
-  {nm, al, NULL, fal, k, TDS_AT_FLAG, 1, io, bit, 0, get_flag, set_flag, NULL, -1, 0, NULL}
-#define RO(k, nm, ty, sz, fn) \
-  {nm, NULL, NULL, NULL, k, ty, sz, 0, 0, 0, fn, NULL, NULL, -1, 0, NULL}
+/* A row: fields not given are 0/NULL (no alias, not in datafiles, no
+** setter, dumped when not the default). */
+#define ROW(...) {.col = -1, __VA_ARGS__}
+#define FLAGROW(k, nm, al, fal, bit, io_)                                          \
+  ROW(.name = nm, .alias = al, .fe_alias = fal, .kind = k, .type = TDS_AT_FLAG, .size = 1, \
+      .io = io_, .flag = bit, .get = get_flag, .set = set_flag)
+#define RO(k, nm, ty, sz, fn) ROW(.name = nm, .kind = k, .type = ty, .size = sz, .get = fn)
 #define FE_DECL (TDS_AT_FE | TDS_AT_DECL)
+#define OFF(field) offsetof(tds_mesh, field)
 
 static const tds_attr vertex_rows[] = {
-    {"x", NULL, NULL, NULL, TDS_VERTEX, TDS_AT_REAL, 1, 0, 0, 0, vx_get, vx_set, NULL, -1, 0, NULL},
-    {"y", NULL, NULL, NULL, TDS_VERTEX, TDS_AT_REAL, 1, 0, 0, 0, vx_get, vx_set, NULL, -1, 0, NULL},
-    {"z", NULL, NULL, NULL, TDS_VERTEX, TDS_AT_REAL, 1, 0, 0, 0, vx_get, vx_set, NULL, -1, 0, NULL},
-    {"p1", NULL, NULL, NULL, TDS_VERTEX, TDS_AT_REAL, 1, 0, 0, 0, vp_get, vp_set, NULL, -1, 0, NULL},
-    {"p2", NULL, NULL, NULL, TDS_VERTEX, TDS_AT_REAL, 1, 0, 0, 0, vp_get, vp_set, NULL, -1, 0, NULL},
-    {"boundary", NULL, NULL, NULL, TDS_VERTEX, TDS_AT_BDRY, 1, FE_DECL, 0, 0, get_bdry, NULL,
-     NULL, -1, 0, NULL},
-    {"constraints", "constraint", NULL, "constraint", TDS_VERTEX, TDS_AT_CONS, TDS_MAX_CON,
-     FE_DECL, 0, 0, get_cons, vcon_set, NULL, -1, 0, NULL},
+    ROW(.name = "x", .kind = TDS_VERTEX, .type = TDS_AT_REAL, .size = 1, .get = vx_get,
+        .set = vx_set),
+    ROW(.name = "y", .kind = TDS_VERTEX, .type = TDS_AT_REAL, .size = 1, .get = vx_get,
+        .set = vx_set),
+    ROW(.name = "z", .kind = TDS_VERTEX, .type = TDS_AT_REAL, .size = 1, .get = vx_get,
+        .set = vx_set),
+    ROW(.name = "p1", .kind = TDS_VERTEX, .type = TDS_AT_REAL, .size = 1, .get = vp_get,
+        .set = vp_set),
+    ROW(.name = "p2", .kind = TDS_VERTEX, .type = TDS_AT_REAL, .size = 1, .get = vp_get,
+        .set = vp_set),
+    ROW(.name = "boundary", .kind = TDS_VERTEX, .type = TDS_AT_BDRY, .size = 1, .io = FE_DECL,
+        .get = get_bdry),
+    ROW(.name = "constraints", .alias = "constraint", .fe_alias = "constraint",
+        .kind = TDS_VERTEX, .type = TDS_AT_CONS, .size = TDS_MAX_CON, .io = FE_DECL,
+        .get = get_cons, .set = vcon_set),
     FLAGROW(TDS_VERTEX, "fixed", NULL, NULL, TDS_FIXED, FE_DECL),
     FLAGROW(TDS_VERTEX, "bare", NULL, NULL, TDS_BARE, FE_DECL),
     RO(TDS_VERTEX, "valence", TDS_AT_INT, 1, v_valence),
@@ -191,21 +213,11 @@ static int e_valence(GETTER_ARGS) {
   UNUSED(a);
   return one(v, n, tds_edge_valence(&s->m, id));
 }
-static int e_tension_get(GETTER_ARGS) {
-  UNUSED(ctx);
-  UNUSED(a);
-  return one(v, n, s->m.eten[id]);
-}
 static int e_tension_set(SETTER_ARGS) {
   UNUSED(a);
   if (!n) return tds_seterr(ctx, TDS_ERANGE, "edge %d: tension cannot be unset", id + 1);
   s->m.eten[id] = v[0];
   return TDS_OK;
-}
-static int e_color_get(GETTER_ARGS) {
-  UNUSED(ctx);
-  UNUSED(a);
-  return one(v, n, s->m.ecolor[id]);
 }
 static int e_color_set(SETTER_ARGS) {
   UNUSED(ctx);
@@ -227,18 +239,20 @@ static const tds_attr edge_rows[] = {
     RO(TDS_EDGE, "tail", TDS_AT_VERTEX, 1, e_end),
     RO(TDS_EDGE, "head", TDS_AT_VERTEX, 1, e_end),
     RO(TDS_EDGE, "valence", TDS_AT_INT, 1, e_valence),
-    {"constraints", "constraint", NULL, "constraint", TDS_EDGE, TDS_AT_CONS, TDS_MAX_CON,
-     FE_DECL, 0, 0, get_cons, econ_set, NULL, -1, 0, NULL},
-    {"boundary", NULL, NULL, NULL, TDS_EDGE, TDS_AT_BDRY, 1, FE_DECL, 0, 0, get_bdry, NULL,
-     NULL, -1, 0, NULL},
+    ROW(.name = "constraints", .alias = "constraint", .fe_alias = "constraint", .kind = TDS_EDGE,
+        .type = TDS_AT_CONS, .size = TDS_MAX_CON, .io = FE_DECL, .get = get_cons,
+        .set = econ_set),
+    ROW(.name = "boundary", .kind = TDS_EDGE, .type = TDS_AT_BDRY, .size = 1, .io = FE_DECL,
+        .get = get_bdry),
     FLAGROW(TDS_EDGE, "fixed", NULL, NULL, TDS_FIXED, FE_DECL),
     FLAGROW(TDS_EDGE, "no_refine", NULL, "norefine", TDS_NO_REFINE, FE_DECL),
     FLAGROW(TDS_EDGE, "bare", NULL, NULL, TDS_BARE, FE_DECL),
     FLAGROW(TDS_EDGE, "noncontent", NULL, NULL, TDS_NONCONTENT, FE_DECL),
-    {"tension", "density", NULL, "density", TDS_EDGE, TDS_AT_REAL, 1, FE_DECL, 0, 0,
-     e_tension_get, e_tension_set, NULL, -1, 0, NULL},
-    {"color", NULL, NULL, "colour", TDS_EDGE, TDS_AT_COLOR, 1, FE_DECL, 0, 0, e_color_get,
-     e_color_set, NULL, -1, 0, NULL},
+    ROW(.name = "tension", .alias = "density", .fe_alias = "density", .kind = TDS_EDGE,
+        .type = TDS_AT_REAL, .size = 1, .io = FE_DECL, .get = get_dcol, .set = e_tension_set,
+        .off = OFF(eten)),
+    ROW(.name = "color", .fe_alias = "colour", .kind = TDS_EDGE, .type = TDS_AT_COLOR, .size = 1,
+        .io = FE_DECL, .get = get_scol, .set = e_color_set, .off = OFF(ecolor)),
 };
 
 /* ---- facets ---- */
@@ -250,22 +264,12 @@ static int f_area(GETTER_ARGS) {
   tds_gather_facet(&s->m, id, &C);
   return one(v, n, geom_area(C.x[0], C.x[1], C.x[2], NULL));
 }
-static int f_tension_get(GETTER_ARGS) {
-  UNUSED(ctx);
-  UNUSED(a);
-  return one(v, n, s->m.ften[id]);
-}
 static int f_tension_set(SETTER_ARGS) {
   UNUSED(a);
   if (!n) return tds_seterr(ctx, TDS_ERANGE, "facet %d: tension cannot be unset", id + 1);
   s->m.ften[id] = v[0];
   s->m.topo_gen++; /* equiangulation and pg compare facet tensions */
   return TDS_OK;
-}
-static int f_color_get(GETTER_ARGS) {
-  UNUSED(ctx);
-  UNUSED(a);
-  return one(v, n, s->m.fcolor[id]);
 }
 static int f_color_set(SETTER_ARGS) {
   UNUSED(ctx);
@@ -327,20 +331,23 @@ static const tds_attr facet_rows[] = {
     RO(TDS_FACET, "original", TDS_AT_INT, 1, f_original),
     RO(TDS_FACET, "vertices", TDS_AT_VERTEX, 3, f_vertices),
     RO(TDS_FACET, "edges", TDS_AT_INT, 3, f_edges),
-    {"frontbody", NULL, NULL, NULL, TDS_FACET, TDS_AT_BODY, 1, 0, 0, 0, f_body_get, f_body_set,
-     NULL, -1, 0, NULL},
-    {"backbody", NULL, NULL, NULL, TDS_FACET, TDS_AT_BODY, 1, 0, 0, 0, f_body_get, f_body_set,
-     NULL, -1, 0, NULL},
-    {"constraints", "constraint", NULL, "constraint", TDS_FACET, TDS_AT_CONS, TDS_MAX_CON,
-     FE_DECL, 0, 0, get_cons, fcon_set, NULL, -1, 0, NULL},
+    ROW(.name = "frontbody", .kind = TDS_FACET, .type = TDS_AT_BODY, .size = 1,
+        .get = f_body_get, .set = f_body_set),
+    ROW(.name = "backbody", .kind = TDS_FACET, .type = TDS_AT_BODY, .size = 1, .get = f_body_get,
+        .set = f_body_set),
+    ROW(.name = "constraints", .alias = "constraint", .fe_alias = "constraint",
+        .kind = TDS_FACET, .type = TDS_AT_CONS, .size = TDS_MAX_CON, .io = FE_DECL,
+        .get = get_cons, .set = fcon_set),
     FLAGROW(TDS_FACET, "fixed", NULL, NULL, TDS_FIXED, FE_DECL),
     FLAGROW(TDS_FACET, "no_refine", NULL, "norefine", TDS_NO_REFINE, FE_DECL),
     FLAGROW(TDS_FACET, "nodisplay", "no_display", "no_display", TDS_NODISPLAY, FE_DECL),
     FLAGROW(TDS_FACET, "noncontent", NULL, NULL, TDS_NONCONTENT, FE_DECL),
-    {"tension", "density", NULL, "density", TDS_FACET, TDS_AT_REAL, 1, FE_DECL, 0, 1,
-     f_tension_get, f_tension_set, NULL, -1, 0, NULL},
-    {"color", NULL, NULL, "colour frontcolor", TDS_FACET, TDS_AT_COLOR, 1, FE_DECL, 0, 15,
-     f_color_get, f_color_set, NULL, -1, 0, NULL},
+    ROW(.name = "tension", .alias = "density", .fe_alias = "density", .kind = TDS_FACET,
+        .type = TDS_AT_REAL, .size = 1, .io = FE_DECL, .dflt = 1, .get = get_dcol,
+        .set = f_tension_set, .off = OFF(ften)),
+    ROW(.name = "color", .fe_alias = "colour frontcolor", .kind = TDS_FACET,
+        .type = TDS_AT_COLOR, .size = 1, .io = FE_DECL, .dflt = 15, .get = get_scol,
+        .set = f_color_set, .off = OFF(fcolor)),
 };
 
 /* ---- bodies ----
@@ -371,11 +378,6 @@ static int b_target_set(SETTER_ARGS) {
   }
   return TDS_OK;
 }
-static int b_pressure_get(GETTER_ARGS) {
-  UNUSED(ctx);
-  UNUSED(a);
-  return one(v, n, s->m.bpressure[id]);
-}
 static int b_pressure_set(SETTER_ARGS) {
   UNUSED(ctx);
   UNUSED(a);
@@ -401,11 +403,6 @@ static int b_lagrange_set(SETTER_ARGS) {
 static int b_target_dumped(const tds_surf *s, tds_id id) {
   return (s->m.bflags[id] & TDS_TARGET) != 0;
 }
-static int b_volconst_get(GETTER_ARGS) {
-  UNUSED(ctx);
-  UNUSED(a);
-  return one(v, n, s->m.bvolconst[id]);
-}
 static int b_volconst_set(SETTER_ARGS) {
   UNUSED(ctx);
   UNUSED(a);
@@ -417,11 +414,6 @@ static int b_volconst_set(SETTER_ARGS) {
 }
 static int b_volconst_dumped(const tds_surf *s, tds_id id) {
   return (s->m.bflags[id] & TDS_VOLCONST) || s->m.bvolconst[id] != 0;
-}
-static int b_density_get(GETTER_ARGS) {
-  UNUSED(ctx);
-  UNUSED(a);
-  return one(v, n, s->m.bdensity[id]);
 }
 /* Evolver: declaring any density, even 0, turns gravity on. */
 static int b_density_set(SETTER_ARGS) {
@@ -436,18 +428,22 @@ static int b_density_dumped(const tds_surf *s, tds_id id) {
 }
 
 static const tds_attr body_rows[] = {
-    {"volume", NULL, NULL, NULL, TDS_BODY, TDS_AT_REAL, 1, TDS_AT_DECL, 0, 0, b_volume, b_target_set,
-     NULL, -1, 0, NULL},
-    {"target", NULL, "volume", NULL, TDS_BODY, TDS_AT_REAL, 1, TDS_AT_FE, 0, 0, b_target_get,
-     b_target_set, b_target_dumped, -1, 0, NULL},
-    {"lagrange_multiplier", NULL, NULL, NULL, TDS_BODY, TDS_AT_REAL, 1, TDS_AT_FE, 0, 0,
-     b_pressure_get, b_lagrange_set, b_target_dumped, -1, 0, NULL},
-    {"pressure", NULL, NULL, NULL, TDS_BODY, TDS_AT_REAL, 1, FE_DECL, 0, 0, b_pressure_get,
-     b_pressure_set, b_pressure_dumped, -1, 0, NULL},
-    {"volconst", NULL, NULL, NULL, TDS_BODY, TDS_AT_REAL, 1, FE_DECL, 0, 0, b_volconst_get,
-     b_volconst_set, b_volconst_dumped, -1, 0, NULL},
-    {"density", NULL, NULL, NULL, TDS_BODY, TDS_AT_REAL, 1, FE_DECL, 0, 0, b_density_get,
-     b_density_set, b_density_dumped, -1, 0, NULL},
+    ROW(.name = "volume", .kind = TDS_BODY, .type = TDS_AT_REAL, .size = 1, .io = TDS_AT_DECL,
+        .get = b_volume, .set = b_target_set),
+    ROW(.name = "target", .fe = "volume", .kind = TDS_BODY, .type = TDS_AT_REAL, .size = 1,
+        .io = TDS_AT_FE, .get = b_target_get, .set = b_target_set, .dumped = b_target_dumped),
+    ROW(.name = "lagrange_multiplier", .kind = TDS_BODY, .type = TDS_AT_REAL, .size = 1,
+        .io = TDS_AT_FE, .get = get_dcol, .set = b_lagrange_set, .dumped = b_target_dumped,
+        .off = OFF(bpressure)),
+    ROW(.name = "pressure", .kind = TDS_BODY, .type = TDS_AT_REAL, .size = 1, .io = FE_DECL,
+        .get = get_dcol, .set = b_pressure_set, .dumped = b_pressure_dumped,
+        .off = OFF(bpressure)),
+    ROW(.name = "volconst", .kind = TDS_BODY, .type = TDS_AT_REAL, .size = 1, .io = FE_DECL,
+        .get = get_dcol, .set = b_volconst_set, .dumped = b_volconst_dumped,
+        .off = OFF(bvolconst)),
+    ROW(.name = "density", .kind = TDS_BODY, .type = TDS_AT_REAL, .size = 1, .io = FE_DECL,
+        .get = get_dcol, .set = b_density_set, .dumped = b_density_dumped,
+        .off = OFF(bdensity)),
 };
 
 #define N(a) ((int)(sizeof a / sizeof *a))

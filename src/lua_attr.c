@@ -90,7 +90,7 @@ static int one_value(lua_State *L, const tds_attr *a, int i, double *v, int *n,
         return 1;
       }
     }
-    if (!lua_isinteger(L, i)) {
+    if (t != LUA_TNUMBER) {
       lua_pushfstring(L, "%s: %s must be a body or a body id, not a %s", what, a->name,
                       lua_kind(L, i));
       return 0;
@@ -223,7 +223,8 @@ static int l_define_attribute(lua_State *L) {
 }
 
 /* tds.attributes(kind): a list of { name =, type =, settable =, user =,
-** dims = {...} (arrays) } in registry order. */
+** alias = (other spellings, blank-separated), dims = {...} (arrays) } in
+** registry order. */
 static int l_attributes(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   int kind = (int)luaL_checkinteger(L, 1);
@@ -242,6 +243,10 @@ static int l_attributes(lua_State *L) {
     lua_setfield(L, -2, "settable");
     lua_pushboolean(L, (a.io & TDS_AT_USER) != 0);
     lua_setfield(L, -2, "user");
+    if (a.alias) {
+      lua_pushstring(L, a.alias);
+      lua_setfield(L, -2, "alias");
+    }
     if (a.ndim) {
       lua_createtable(L, a.ndim, 0);
       for (int d = 0; d < a.ndim; d++) {
