@@ -149,12 +149,25 @@ static void defines(out *o, const tds_surf *s) {
     }
 }
 
-static void header(out *o, const tds_surf *s) {
-  FILE *f = o->f;
+/* The gravity constant; G = 0 when gravity is off but bodies have a
+** density (the body lines carry it, and Evolver turns gravity on then). */
+static void gravity(out *o, const tds_surf *s) {
   const tds_mesh *m = &s->m;
   int density = 0;
   for (tds_id b = 0; b < m->nb; b++)
     if (tds_alive(m->bflags, b) && m->bdensity[b] != 0) density = 1;
+  if (!s->gravity_on && density) {
+    fputs("// gravity was off: G = 0 keeps the bodies' densities without energy\n"
+          "GRAVITY_CONSTANT 0\n", o->f);
+  } else {
+    fputs("GRAVITY_CONSTANT", o->f);
+    num(o, s->gravity, "gravity_constant", 0);
+    fputc('\n', o->f);
+  }
+}
+
+static void header(out *o, const tds_surf *s) {
+  FILE *f = o->f;
   for (int i = 0; i < s->npar; i++) {
     fprintf(f, "PARAMETER %s =", s->parname[i]);
     num(o, s->parval[i], "parameter", i + 1);
@@ -162,14 +175,7 @@ static void header(out *o, const tds_surf *s) {
   }
   if (s->npar) fputc('\n', f);
   defines(o, s);
-  if (!s->gravity_on && density)
-    fputs("// gravity was off: G = 0 keeps the bodies' densities without energy\n"
-          "GRAVITY_CONSTANT 0\n", f);
-  else {
-    fputs("GRAVITY_CONSTANT", f);
-    num(o, s->gravity, "gravity_constant", 0);
-    fputc('\n', f);
-  }
+  gravity(o, s);
   if (s->gap_constant != 1) {
     fputs("GAP_CONSTANT", f);
     num(o, s->gap_constant, "gap_constant", 0);
@@ -333,29 +339,40 @@ static void elements(out *o, tds_surf *s) {
   }
 }
 
-int tds_datafile_dump(tds_ctx *ctx, tds_surf *s, const char *path) {
+/* Write the file: the model header (model) or the caller's header text,
+** the elements, the read section. */
+static int write(tds_ctx *ctx, tds_surf *s, const char *path, int model, const char *hdr,
+                 const char *read) {
   tds_wfile w;
   int rc = tds_wfile_open(ctx, &w, path);
   if (rc != TDS_OK) return rc;
   out o = {0};
   o.f = w.f;
-  tds_ctx quiet = *ctx;
-  double energy = NAN;
-  if (tds_surf_update(&quiet, s) == TDS_OK) energy = s->energy;
   const tds_mesh *m = &s->m;
-  fprintf(o.f, "// %s: Surface Evolver datafile written by tds %s\n", path, TDS_VERSION);
-  fprintf(o.f, "// vertices %d, edges %d, facets %d, bodies %d", tds_mesh_count(m, TDS_VERTEX),
-          tds_mesh_count(m, TDS_EDGE), tds_mesh_count(m, TDS_FACET),
-          tds_mesh_count(m, TDS_BODY));
-  if (isfinite(energy)) fprintf(o.f, "; total energy %.17g", energy);
-  fputs("\n\n", o.f);
-  header(&o, s);
+  if (model) {
+    tds_ctx quiet = *ctx;
+    double energy = NAN;
+    if (tds_surf_update(&quiet, s) == TDS_OK) energy = s->energy;
+    fprintf(o.f, "// %s: Surface Evolver datafile written by tds %s\n", path, TDS_VERSION);
+    fprintf(o.f, "// vertices %d, edges %d, facets %d, bodies %d",
+            tds_mesh_count(m, TDS_VERTEX), tds_mesh_count(m, TDS_EDGE),
+            tds_mesh_count(m, TDS_FACET), tds_mesh_count(m, TDS_BODY));
+    if (isfinite(energy)) fprintf(o.f, "; total energy %.17g", energy);
+    fputs("\n\n", o.f);
+    header(&o, s);
+  } else {
+    fprintf(o.f, "// %s: written by tds write_fe\n", path);
+    if (hdr) fprintf(o.f, "%s\n", hdr);
+    if (s->gravity_on || m->nb) gravity(&o, s);
+    defines(&o, s);
+    fputc('\n', o.f);
+  }
   elements(&o, s);
-  if (s->read_text) {
+  if (read) {
     fputs("\nread\n", o.f);
-    fputs(s->read_text, o.f);
-    size_t k = strlen(s->read_text);
-    if (k && s->read_text[k - 1] != '\n') fputc('\n', o.f);
+    fputs(read, o.f);
+    size_t k = strlen(read);
+    if (k && read[k - 1] != '\n') fputc('\n', o.f);
   }
   if (o.bad)
     rc = tds_seterr(ctx, TDS_ENUM, "cannot dump to '%s': %s is not finite", path, o.what);
@@ -363,4 +380,13 @@ int tds_datafile_dump(tds_ctx *ctx, tds_surf *s, const char *path) {
     rc = tds_wfile_commit(ctx, &w);
   tds_wfile_abort(&w);
   return rc;
+}
+
+int tds_datafile_dump(tds_ctx *ctx, tds_surf *s, const char *path) {
+  return write(ctx, s, path, 1, NULL, s->read_text);
+}
+
+int tds_datafile_write_fe(tds_ctx *ctx, tds_surf *s, const char *path, const char *header,
+                          const char *read) {
+  return write(ctx, s, path, 0, header, read);
 }

@@ -12,6 +12,7 @@
 #              new elements, the default facet colour 15 (white)
 #   evdump     tds reads Evolver's dump (taken after r)
 #   tdsdump    Evolver reads tds's dump, after values set from Lua
+#   write_fe   Evolver reads the same surface written by write_fe
 . "$(dirname "$0")/lib.sh"
 D=$ROOT/tests/evolver/attributes
 tmp=$(mktemp -d)
@@ -36,11 +37,15 @@ r()
 for v in vertices() do v.weight = v.weight * 1.5 + v.x / 3; v.tri = { v.id, -v.id, 7 } end
 for f in facets() do local m = f.mat; m[2][1] = f.id / 7; f.mat = m end
 body[1].bw = math.pi
-dump('$tmp/td.dmp')" -f "$D/print.cmd" 2>&1 | grep '^[VEFB] ' > "$tmp/t_set"
+dump('$tmp/td.dmp')
+write_fe('$tmp/td.fe', { header = '// the plain element lists' })" -f "$D/print.cmd" 2>&1 |
+  grep '^[VEFB] ' > "$tmp/t_set"
 evolver_run "$tmp/td.dmp" "$P" | grep '^[VEFB] ' > "$tmp/ev_tdsdump"
+evolver_run "$tmp/td.fe" "$P" | grep '^[VEFB] ' > "$tmp/ev_writefe"
 
 "$TDS" -q "$ROOT/tests/evolver/numcmp.lua" -e "
 numcmp('attributes/load', lines_of('$tmp/ev_load', '.'), lines_of('$tmp/t_load', '.'), 0)
 numcmp('attributes/refine', lines_of('$tmp/ev_refine', '.'), lines_of('$tmp/t_refine', '.'), 0)
 numcmp('attributes/evdump', lines_of('$tmp/ev_refine', '.'), lines_of('$tmp/t_evdump', '.'), 0)
-numcmp('attributes/tdsdump', lines_of('$tmp/ev_tdsdump', '.'), lines_of('$tmp/t_set', '.'), 0)"
+numcmp('attributes/tdsdump', lines_of('$tmp/ev_tdsdump', '.'), lines_of('$tmp/t_set', '.'), 0)
+numcmp('attributes/write_fe', lines_of('$tmp/ev_writefe', '.'), lines_of('$tmp/t_set', '.'), 0)"
