@@ -200,6 +200,16 @@ function attribute(t)
     end
   end
   table.sort(list, function(a, b) return a[1] .. " " .. a[2] < b[1] .. " " .. b[2] end)
+  for _, a in ipairs(list) do -- clashes with what exists, before anything is defined
+    for _, have in ipairs(tds.attributes(KIND[a[1]] or tds.facet)) do
+      local shape = have.type
+      for _, d in ipairs(have.dims or {}) do shape = shape .. "[" .. d .. "]" end
+      if have.name == a[2] and (not have.user or shape ~= a[3]) then
+        error(("attribute: %s %s is %s"):format(a[1], a[2], have.user
+              and "already defined as " .. shape or "a built-in attribute"), 2)
+      end
+    end
+  end
   for _, a in ipairs(list) do tds.define_attribute(a[1], a[2], a[3]) end
 end
 
