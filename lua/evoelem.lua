@@ -436,20 +436,39 @@ local COLOR_NAME = { [-1] = "clear", [0] = "black", "blue", "green", "cyan", "re
   "brown", "lightgray", "darkgray", "lightblue", "lightgreen", "lightcyan", "lightred",
   "lightmagenta", "yellow", "white" }
 
+-- The user attributes of h as list writes them: " name value", arrays
+-- in braces ({1,2,3} for integers, {1.5, 2} for reals, as Evolver).
+local function userlist(h, kind)
+  local out = {}
+  for _, a in ipairs(tds.attributes(KINDNUM[kind])) do
+    if a.user then
+      local function fmt(v)
+        if type(v) ~= "table" then return ("%.15g"):format(v) end
+        local t = {}
+        for i, x in ipairs(v) do t[i] = fmt(x) end
+        return "{" .. table.concat(t, a.type == "integer" and "," or ", ") .. "}"
+      end
+      out[#out + 1] = " " .. a.name .. " " .. fmt(h[a.name])
+    end
+  end
+  return table.concat(out)
+end
+
 -- list GEN in Evolver's layout: coordinates or ids, then the element's
 -- constraints and flags, then its length or area (%g) in a comment.
 function E.list(h, kind, first)
   h = unwrap(h)
-  local cons = h.constraints and #h.constraints > 0 and table.concat(h.constraints, " ")
+  local cons = kind ~= "body" and #h.constraints > 0 and table.concat(h.constraints, " ")
   if kind == "vertex" then
     if first then E.out("// Id               X                Y               Z\n") end
-    E.out(("%3d  %17.15g %17.15g %17.15g%s%s\n"):format(h.id, h.x, h.y, h.z,
-      cons and ("  constraints " .. cons .. " ") or "", h.fixed and " fixed " or ""))
+    E.out(("%3d  %17.15g %17.15g %17.15g%s%s%s\n"):format(h.id, h.x, h.y, h.z,
+      cons and ("  constraints " .. cons .. " ") or "", h.fixed and " fixed " or "",
+      userlist(h, kind)))
   elseif kind == "edge" then
     if first then E.out("// Id    endpoints\n") end
-    E.out(("%3d    %4d %4d   %s%s%s  /*length %g*/ \n"):format(h.id, h.tail.id, h.head.id,
+    E.out(("%3d    %4d %4d   %s%s%s  /*length %g*/ %s\n"):format(h.id, h.tail.id, h.head.id,
       cons and ("   constraints " .. cons) or "", h.fixed and " fixed" or "",
-      h.no_refine and "  no_refine" or "", h.length))
+      h.no_refine and "  no_refine" or "", h.length, userlist(h, kind)))
   elseif kind == "facet" then
     if first then E.out("// Id    edges\n") end
     local ids = {}
@@ -457,12 +476,14 @@ function E.list(h, kind, first)
     local flags = (h.fixed and " fixed " or "") .. (h.tension ~= 1 and ("  density %g "):format(h.tension) or "")
       .. (h.color ~= 15 and (" color " .. (COLOR_NAME[h.color] or tostring(h.color)) .. " ") or "")
       .. (h.no_refine and " no_refine " or "")
-    E.out(("%3d   %s%s /*area %g*/\n"):format(h.id, table.concat(ids, " "), flags, h.area))
+    E.out(("%3d   %s%s /*area %g*/%s\n"):format(h.id, table.concat(ids, " "), flags, h.area,
+      userlist(h, kind)))
   elseif kind == "body" then
     if first then E.out("// Id    facets\n") end
     local ids = {}
     for _, f in ipairs(around(h, "facet")) do ids[#ids + 1] = tostring(f.backbody == h and -f.id or f.id) end
-    E.out(("%3d    %s  volume %.15g\n"):format(h.id, table.concat(ids, " "), h.volume))
+    E.out(("%3d    %s  volume %.15g%s\n"):format(h.id, table.concat(ids, " "), h.volume,
+      userlist(h, kind)))
   end
 end
 

@@ -85,11 +85,18 @@ static int in_list(const char *list, const char *w) {
 }
 
 int tds_attr_find(const tds_mesh *m, int kind, const char *name, tds_attr *a) {
-  int n = tds_attr_count(m, kind);
-  for (int i = 0; i < n; i++) {
-    tds_attr_at(m, kind, i, a);
-    if (!strcmp(a->name, name) || in_list(a->alias, name)) return 1;
+  for (int i = 0; i < tds_attr_nrows[kind]; i++) { /* no copies while searching */
+    const tds_attr *r = &tds_attr_rows[kind][i];
+    if (!strcmp(r->name, name) || in_list(r->alias, name)) {
+      *a = *r;
+      return 1;
+    }
   }
+  for (int c = 0; c < m->nucol[kind]; c++)
+    if (!strcmp(m->ucol[kind][c].name, name)) {
+      tds_attr_at(m, kind, tds_attr_nrows[kind] + c, a);
+      return 1;
+    }
   return 0;
 }
 

@@ -9,11 +9,13 @@
 #include "attr.h"
 #include "lua_attr.h"
 
-/* A scratch buffer for one attribute's values, owned by a userdata on the
-** stack (so a raised error cannot leak it). */
-static double *values_buf(lua_State *L, const tds_attr *a) {
-  int n = a->size > TDS_MAX_CON ? a->size : TDS_MAX_CON;
-  return lua_newuserdatauv(L, sizeof(double) * (size_t)n, 0);
+/* A scratch buffer for one attribute's values: `small` (TDS_MAX_CON
+** doubles on the C stack) when it fits, else a userdata pushed on the Lua
+** stack (so a raised error cannot leak it); *pushed says which. */
+static double *values_buf(lua_State *L, const tds_attr *a, double *small, int *pushed) {
+  *pushed = a->size > TDS_MAX_CON;
+  if (!*pushed) return small;
+  return lua_newuserdatauv(L, sizeof(double) * (size_t)a->size, 0);
 }
 
 static void push_number(lua_State *L, const tds_attr *a, double x) {
@@ -42,7 +44,9 @@ static void push_array(lua_State *L, const tds_attr *a, const double *v, int *k,
 }
 
 void tds_lua_attr_push(lua_State *L, tds_state *st, const tds_attr *a, tds_id id) {
-  double *v = values_buf(L, a);
+  double small[TDS_MAX_CON];
+  int pushed;
+  double *v = values_buf(L, a, small, &pushed);
   int n = 0;
   int rc = tds_attr_read(&st->ctx, &st->s, a, id, v, &n);
   if (rc != TDS_OK) tds_lua_fail(L, st, rc);
@@ -60,7 +64,7 @@ void tds_lua_attr_push(lua_State *L, tds_state *st, const tds_attr *a, tds_id id
     int k = 0;
     push_array(L, a, v, &k, 0);
   }
-  lua_remove(L, -2); /* the buffer */
+  if (pushed) lua_remove(L, -2); /* the buffer */
 }
 
 static const char *lua_kind(lua_State *L, int i) { return luaL_typename(L, i); }
@@ -157,12 +161,14 @@ void tds_lua_attr_set(lua_State *L, tds_state *st, const tds_attr *a, tds_id id,
   snprintf(what, sizeof what, "%s %d", tds_kind_name[a->kind], (int)id + 1);
   if (!a->set) tds_lua_error(L, "%s: %s cannot be set", what, a->name);
   i = lua_absindex(L, i);
-  double *v = values_buf(L, a);
+  double small[TDS_MAX_CON];
+  int pushed;
+  double *v = values_buf(L, a, small, &pushed);
   int n;
   if (!tds_lua_attr_values(L, a, i, what, v, &n)) tds_lua_error(L, "%s", lua_tostring(L, -1));
   int rc = tds_attr_write(&st->ctx, &st->s, a, id, v, n);
   if (rc != TDS_OK) tds_lua_error(L, "%s", st->ctx.errmsg);
-  lua_pop(L, 1);
+  if (pushed) lua_pop(L, 1);
 }
 
 /* ---- declarations of user attributes ---- */

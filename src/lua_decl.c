@@ -41,7 +41,7 @@ static int walk_keys(lua_State *L, tds_state *st, int t, int kind, const char *w
       goto fail;
     }
     int sz = a.size > TDS_MAX_CON ? a.size : TDS_MAX_CON;
-    double *v = lua_newuserdatauv(L, sizeof(double) * (size_t)sz, 0);
+    double *v = lua_newuserdatauv(L, sizeof(double) * (size_t)sz, 0); /* popped below */
     int n;
     if (a.type == TDS_AT_FLAG && !lua_isboolean(L, -2)) {
       lua_pushfstring(L, "%s: %s must be a boolean (true or false), not a %s", w, k,
