@@ -215,11 +215,12 @@ int tds_attr_define(tds_ctx *ctx, tds_mesh *m, int kind, const char *name, int t
   int32_t cap = kind == TDS_VERTEX ? m->capv
                 : kind == TDS_EDGE ? m->cape
                 : kind == TDS_FACET ? m->capf : m->capb;
-  double *v = calloc((size_t)(cap > 0 ? cap : 1) * (size_t)size, sizeof *v);
-  tds_ucol *cols = realloc(m->ucol[kind], sizeof *cols * (size_t)(m->nucol[kind] + 1));
+  double *v = tds_calloc(&m->alloc, (size_t)(cap > 0 ? cap : 1) * (size_t)size, sizeof *v);
+  tds_ucol *cols =
+      tds_realloc(&m->alloc, m->ucol[kind], sizeof *cols * (size_t)(m->nucol[kind] + 1));
   if (cols) m->ucol[kind] = cols;
   if (!v || !cols) {
-    free(v);
+    tds_free(&m->alloc, v);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   }
   tds_ucol *c = &cols[m->nucol[kind]++];

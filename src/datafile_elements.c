@@ -118,7 +118,7 @@ static int next_attr(df *d, char *w, size_t cap, const char **at, const char *wh
 
 /* Push one value onto the pending list d->pv. */
 static int push_pv(df *d, double v) {
-  if (tds_grow((void **)&d->pv, sizeof *d->pv, &d->cappv, d->npv + 1))
+  if (tds_grow(&d->ctx->alloc, (void **)&d->pv, sizeof *d->pv, &d->cappv, d->npv + 1))
     return df_err(d, NULL, TDS_ENOMEM, "out of memory");
   d->pv[d->npv++] = v;
   return TDS_OK;
@@ -253,7 +253,7 @@ static int apply_attrs(df *d, int kind, tds_id id, int32_t from, int32_t to, int
 
 /* Append one entry to the scratch list d->oe (at: where for messages). */
 static int push_oe(df *d, const char *at, int32_t v) {
-  if (tds_grow((void **)&d->oe, sizeof *d->oe, &d->capoe, d->noe + 1))
+  if (tds_grow(&d->ctx->alloc, (void **)&d->oe, sizeof *d->oe, &d->capoe, d->noe + 1))
     return df_err(d, at, TDS_ENOMEM, "out of memory");
   d->oe[d->noe++] = v;
   return TDS_OK;
@@ -376,7 +376,7 @@ static int face_line(df *d) {
   if (n < 3)
     return df_err(d, NULL, TDS_ETOPO, "%s has %d edge%s; at least 3 are needed", what, n,
                   n == 1 ? "" : "s");
-  if (tds_grow((void **)&d->faces, sizeof *d->faces, &d->capfaces, d->nfaces + 1))
+  if (tds_grow(&d->ctx->alloc, (void **)&d->faces, sizeof *d->faces, &d->capfaces, d->nfaces + 1))
     return df_err(d, NULL, TDS_ENOMEM, "out of memory");
   df_face *r = &d->faces[d->nfaces++];
   r->id = id;

@@ -23,6 +23,7 @@
 
 typedef struct out {
   FILE *f;
+  const tds_alloc *alloc; /* for scratch values (the ctx's hook) */
   int bad;        /* a value was not finite */
   char what[96];  /* first non-finite item */
 } out;
@@ -112,12 +113,13 @@ static void attrs(out *o, tds_surf *s, int kind, tds_id id) {
       continue;
     }
     double one[1];
-    v = a.size > 1 ? malloc(sizeof *v * (size_t)a.size) : one;
+    v = a.size > 1 ? tds_malloc(o->alloc, sizeof *v * (size_t)a.size) : one;
     int n = 0;
     tds_ctx quiet;
     tds_ctx_init(&quiet);
+    quiet.alloc = *o->alloc;
     if (!v || tds_attr_read(&quiet, s, &a, id, v, &n) != TDS_OK || n == 0) {
-      if (v != one) free(v);
+      if (v != one) tds_free(o->alloc, v);
       if (!v && !o->bad) {
         o->bad = 1;
         snprintf(o->what, sizeof o->what, "memory for %s %d", tds_kind_name[kind], id + 1);
@@ -133,7 +135,7 @@ static void attrs(out *o, tds_surf *s, int kind, tds_id id) {
     } else if (a.type != TDS_AT_FLAG) {
       fprintf(o->f, " %.17g", v[0]);
     }
-    if (v != one) free(v);
+    if (v != one) tds_free(o->alloc, v);
   }
 }
 
@@ -348,6 +350,7 @@ static int write(tds_ctx *ctx, tds_surf *s, const char *path, int model, const c
   if (rc != TDS_OK) return rc;
   out o = {0};
   o.f = w.f;
+  o.alloc = &ctx->alloc;
   const tds_mesh *m = &s->m;
   if (model) {
     tds_ctx quiet = *ctx;

@@ -67,18 +67,20 @@ void tds_mesh_init(tds_mesh *m) {
 }
 
 void tds_mesh_free(tds_mesh *m) {
+  tds_alloc a = m->alloc;
   for (int k = 0; k < TDS_NKINDS; k++)
     for (int c = 0; c < kinds[k].ncols; c++)
-      free(FIELD(m, kinds[k].cols[c].off, void *));
+      tds_free(&a, FIELD(m, kinds[k].cols[c].off, void *));
   for (int k = 0; k < TDS_NKINDS; k++) {
-    for (int c = 0; c < m->nucol[k]; c++) free(m->ucol[k][c].v);
-    free(m->ucol[k]);
+    for (int c = 0; c < m->nucol[k]; c++) tds_free(&a, m->ucol[k][c].v);
+    tds_free(&a, m->ucol[k]);
   }
-  free(m->vf_start);
-  free(m->vf);
-  free(m->ve_start);
-  free(m->ve);
+  tds_free(&a, m->vf_start);
+  tds_free(&a, m->vf);
+  tds_free(&a, m->ve_start);
+  tds_free(&a, m->ve);
   tds_mesh_init(m);
+  m->alloc = a;
 }
 
 int tds_mesh_reserve(tds_mesh *m, int kind, int32_t n) {
@@ -90,7 +92,7 @@ int tds_mesh_reserve(tds_mesh *m, int kind, int32_t n) {
   for (int c = 0; c < kinds[kind].ncols; c++) {
     const column *col = &kinds[kind].cols[c];
     void **p = &FIELD(m, col->off, void *);
-    void *q = realloc(*p, (size_t)n * col->size);
+    void *q = tds_realloc(&m->alloc, *p, (size_t)n * col->size);
     if (!q) return TDS_ENOMEM;
     memset((char *)q + (size_t)*cap * col->size, 0,
            (size_t)(n - *cap) * col->size);
@@ -98,7 +100,7 @@ int tds_mesh_reserve(tds_mesh *m, int kind, int32_t n) {
   }
   for (int c = 0; c < m->nucol[kind]; c++) {
     tds_ucol *u = &m->ucol[kind][c];
-    double *q = realloc(u->v, (size_t)n * (size_t)u->size * sizeof *q);
+    double *q = tds_realloc(&m->alloc, u->v, (size_t)n * (size_t)u->size * sizeof *q);
     if (!q) return TDS_ENOMEM;
     memset(q + (size_t)*cap * (size_t)u->size, 0,
            (size_t)(n - *cap) * (size_t)u->size * sizeof *q);
@@ -317,7 +319,7 @@ void tds_mesh_inherit(tds_mesh *m, int kind, tds_id dst, tds_id src) {
 static int copy_ucols(tds_mesh *dst, const tds_mesh *src) {
   for (int k = 0; k < TDS_NKINDS; k++) {
     if (!src->nucol[k]) continue;
-    dst->ucol[k] = calloc((size_t)src->nucol[k], sizeof *dst->ucol[k]);
+    dst->ucol[k] = tds_calloc(&dst->alloc, (size_t)src->nucol[k], sizeof *dst->ucol[k]);
     if (!dst->ucol[k]) return TDS_ENOMEM;
     for (int c = 0; c < src->nucol[k]; c++) {
       dst->ucol[k][c] = src->ucol[k][c];
@@ -330,6 +332,7 @@ static int copy_ucols(tds_mesh *dst, const tds_mesh *src) {
 
 int tds_mesh_copy(tds_mesh *dst, const tds_mesh *src) {
   tds_mesh_init(dst);
+  dst->alloc = src->alloc;
   if (copy_ucols(dst, src) != TDS_OK) {
     tds_mesh_free(dst);
     return TDS_ENOMEM;
