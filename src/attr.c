@@ -2,6 +2,7 @@
 ** attr.h); the built-in rows are in attr_rows.c. */
 #include "attr.h"
 
+#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -160,6 +161,40 @@ int tds_attr_dumped(tds_surf *s, const tds_attr *a, tds_id id) {
   for (int i = 0; i < n; i++)
     if (v[i] != a->dflt) return 1;
   return 0;
+}
+
+/* The position of the attribute `name` of `kind` in the registry, or -1. */
+static int row_of(const tds_mesh *m, int kind, const char *name) {
+  tds_attr a;
+  if (!tds_attr_find(m, kind, name, &a)) return -1;
+  for (int i = 0; i < tds_attr_count(m, kind); i++) {
+    tds_attr b;
+    tds_attr_at(m, kind, i, &b);
+    if (!strcmp(a.name, b.name)) return i;
+  }
+  return -1;
+}
+
+int tds_attr_exclusive(tds_ctx *ctx, const tds_mesh *m, int kind, const char *what, int fe,
+                       const char *const *names, int n) {
+  for (int i = 0; i < n; i++) {
+    tds_attr a;
+    if (!tds_attr_find(m, kind, names[i], &a) || !a.excl) continue;
+    for (int j = 0; j < n; j++) {
+      int ri = row_of(m, kind, names[i]), rj = row_of(m, kind, names[j]);
+      if (j == i || !in_list(a.excl, names[j]) || rj < 0) continue;
+      tds_attr first, second; /* in registry order, so the message is stable */
+      tds_attr_at(m, kind, ri < rj ? ri : rj, &first);
+      tds_attr_at(m, kind, ri < rj ? rj : ri, &second);
+      char w1[TDS_ATTR_NAMELEN], w2[TDS_ATTR_NAMELEN];
+      snprintf(w1, sizeof w1, "%s", fe ? tds_attr_word(&first) : first.name);
+      snprintf(w2, sizeof w2, "%s", fe ? tds_attr_word(&second) : second.name);
+      for (char *c = w1; fe && *c; c++) *c = (char)toupper((unsigned char)*c);
+      for (char *c = w2; fe && *c; c++) *c = (char)toupper((unsigned char)*c);
+      return tds_seterr(ctx, TDS_ESYNTAX, "%s: give either %s or %s, not both", what, w1, w2);
+    }
+  }
+  return TDS_OK;
 }
 
 /* ---- user attributes ---- */

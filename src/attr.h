@@ -75,6 +75,8 @@ typedef struct tds_attr {
   int ndim;
   const int32_t *dim;
   size_t off;          /* built-in rows over one mesh column: its offset */
+  const char *excl;    /* names (blank-separated) it cannot be given with in
+                          one declaration (a target volume, a pressure) */
 } tds_attr;
 
 /* A user attribute's storage: `size` doubles per element slot, grown with
@@ -119,6 +121,13 @@ int tds_attr_write(tds_ctx *ctx, tds_surf *s, const tds_attr *a, tds_id id,
                    const double *v, int n);
 /* Whether dump writes a for element id. */
 int tds_attr_dumped(tds_surf *s, const tds_attr *a, tds_id id);
+
+/* Whether the attributes names[0..n) (registry names), given together in
+** one declaration of an element of `kind`, include two that exclude each
+** other: then "what: give either A or B, not both" (datafile words when
+** fe) in ctx and TDS_ESYNTAX, else TDS_OK. */
+int tds_attr_exclusive(tds_ctx *ctx, const tds_mesh *m, int kind, const char *what, int fe,
+                       const char *const *names, int n);
 
 /* Define user attribute `name` of `kind`: type TDS_AT_REAL or TDS_AT_INT,
 ** ndim dimensions dim[] (0 = a scalar). Every element gets zeros. Defining

@@ -238,6 +238,20 @@ static int attr_words(df *d, int kind, const char *what, uint32_t *flags, tds_cm
   return rc;
 }
 
+/* Refuse attributes that exclude each other (a body's VOLUME and
+** PRESSURE) among those read from d->pv[from..]. */
+static int exclusive(df *d, int kind, const char *what, int32_t from) {
+  const char *names[64];
+  int n = 0;
+  for (int32_t i = from; i < d->npv && n < 64; i += 2 + (int32_t)d->pv[i + 1]) {
+    tds_attr a;
+    tds_attr_at(&d->s->m, kind, (int)d->pv[i], &a);
+    names[n++] = a.name;
+  }
+  int rc = tds_attr_exclusive(d->ctx, &d->s->m, kind, what, 1, names, n);
+  return rc ? df_core(d, df_line_of(d, NULL), rc, NULL) : TDS_OK;
+}
+
 /* Set the values d->pv[from..to) (read by attr_words) on element id. */
 static int apply_attrs(df *d, int kind, tds_id id, int32_t from, int32_t to, int line) {
   for (int32_t i = from; i < to;) {
@@ -435,15 +449,7 @@ static int body_line(df *d) {
   int32_t pv0 = d->npv = 0;
   uint32_t flags = 0;
   if ((rc = attr_words(d, TDS_BODY, what, &flags, NULL, NULL, NULL, NULL))) return rc;
-  int has_volume = 0, has_pressure = 0;
-  for (int32_t i = pv0; i < d->npv; i += 2 + (int32_t)d->pv[i + 1]) {
-    tds_attr a;
-    tds_attr_at(&d->s->m, TDS_BODY, (int)d->pv[i], &a);
-    has_volume |= !strcmp(a.name, "target");
-    has_pressure |= !strcmp(a.name, "pressure");
-  }
-  if (has_volume && has_pressure)
-    return df_err(d, NULL, TDS_ESYNTAX, "%s: give either VOLUME or PRESSURE, not both", what);
+  if ((rc = exclusive(d, TDS_BODY, what, pv0))) return rc;
   int line = df_line_of(d, NULL);
   rc = tds_decl_body(d->ctx, d->s, id, n, d->oe + off);
   d->noe = off;

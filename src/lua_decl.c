@@ -62,6 +62,20 @@ static int walk_keys(lua_State *L, tds_state *st, int t, int kind, const char *w
       continue;
     }
     if (!tds_lua_attr_values(L, &a, -2, w, v, &n)) goto fail;
+    for (const char *x = a.excl; !apply && x && *x;) { /* keys that exclude each other */
+      char other[32];
+      size_t len = strcspn(x, " ");
+      snprintf(other, sizeof other, "%.*s", (int)len, x);
+      x += len + (x[len] == ' ');
+      lua_getfield(L, t, other);
+      int given = !lua_isnil(L, -1);
+      lua_pop(L, 1);
+      const char *pair[2] = {a.name, other};
+      if (given && tds_attr_exclusive(&st->ctx, &st->s.m, kind, w, 0, pair, 2) != TDS_OK) {
+        lua_pushstring(L, st->ctx.errmsg);
+        goto fail;
+      }
+    }
     if (!apply) {
       if (tds_attr_check(&st->ctx, &a, w, v, n) != TDS_OK) {
         lua_pushstring(L, st->ctx.errmsg);
@@ -281,11 +295,6 @@ static int l_decl_body(lua_State *L) {
     faces[k] = (int32_t)f;
   }
   /* every value was checked before the body exists (all or nothing) */
-  lua_getfield(L, 2, "volume");
-  lua_getfield(L, 2, "pressure");
-  int both = !lua_isnil(L, -1) && !lua_isnil(L, -2);
-  lua_pop(L, 2);
-  if (both) return fail(L, "body %d: give either volume or pressure, not both", id);
   int rc = tds_decl_body(&st->ctx, &st->s, id - 1, n, faces);
   if (rc != TDS_OK) return fail(L, "%s", st->ctx.errmsg);
   if (!apply_keys(L, st, 2, TDS_BODY, "body", id, id - 1)) return 2;
