@@ -177,33 +177,6 @@ function E.defattr(kind, name, ty, dims)
   if not ok then fail(tostring(err):gsub("^.-:%d+: ", "")) end
 end
 
--- An array attribute as an Evolver array: a proxy whose elements read and
--- write the element's values (a[i], #a, nested for several dimensions).
-local function aproxy(h, name, dims, path)
-  local d = #path + 1
-  return setmetatable({}, {
-    __len = function() return dims[d] end,
-    __index = function(_, i)
-      i = math.tointeger(i)
-      if not i or i < 1 or i > dims[d] then return nil end
-      local p = { table.unpack(path) }
-      p[#p + 1] = i
-      if d < #dims then return aproxy(h, name, dims, p) end
-      local t = h[name]
-      for _, k in ipairs(p) do t = t[k] end
-      return t + 0.0
-    end,
-    __newindex = function(_, i, v)
-      local root = h[name]
-      local t = root
-      for _, k in ipairs(path) do t = t[k] end
-      t[i] = num(v)
-      local ok, err = pcall(function() h[name] = root end)
-      if not ok then fail(tostring(err):gsub("^.-:%d+: ", "")) end
-    end,
-  })
-end
-
 local function setuser(h, name, u, v)
   if u.dims then
     if type(v) ~= "table" then -- a number assigned to an array sets every element
@@ -292,7 +265,7 @@ function E.attr(o, name)
   local h, rev = unwrap(o)
   local u = userattr(kindof(h), name)
   if u then
-    if u.dims then return aproxy(h, name, u.dims, {}) end
+    if u.dims then return h[name] end -- a proxy: a[i] reads, a[i] = x writes the element
     return h[name] + 0.0
   end
   local f = ATTR[name]

@@ -228,7 +228,7 @@ static int attr_words(df *d, int kind, const char *what, uint32_t *flags, tds_cm
       while (row < tds_attr_count(&d->s->m, kind)) {
         tds_attr b;
         tds_attr_at(&d->s->m, kind, row, &b);
-        if (b.name == a.name) break;
+        if (b.name == a.name) break; /* the same row: names are shared strings */
         row++;
       }
       rc = read_attr_value(d, kind, row, &a, what, at);

@@ -44,6 +44,10 @@ static void push_array(lua_State *L, const tds_attr *a, const double *v, int *k,
 }
 
 void tds_lua_attr_push(lua_State *L, tds_state *st, const tds_attr *a, tds_id id) {
+  if (a->ndim > 0) { /* a user array: a proxy that reads and writes the element */
+    tds_lua_attr_push_array(L, a, id);
+    return;
+  }
   double small[TDS_MAX_CON];
   int pushed;
   double *v = values_buf(L, a, small, &pushed);
@@ -114,7 +118,7 @@ static int table_values(lua_State *L, const tds_attr *a, int i, double *v, int *
   i = lua_absindex(L, i);
   lua_Integer len = luaL_len(L, i);
   for (lua_Integer k = 1; k <= len; k++) {
-    lua_rawgeti(L, i, k);
+    lua_geti(L, i, k); /* not raw: arrays read from elements are proxies */
     int ok;
     if (lua_istable(L, -1)) {
       ok = table_values(L, a, -1, v, n, cap, what);
