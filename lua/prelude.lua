@@ -356,6 +356,26 @@ setmetatable(_G, {
 export, mark = tds.export, tds.mark
 tds.props.vertex.gauss_curvature = function(h) return tds.vertex_gauss_curvature(h) end
 
+-- Newton steps and Hessian eigenvalues (doc/newton.md; src/lua_newton.c).
+function hessian() return tds.hessian() end
+function hessian_seek(maxscale) return tds.hessian_seek(maxscale) end
+function saddle(maxscale) return tds.saddle(maxscale) end
+function eigenprobe(c) return tds.eigenprobe(c or 0) end
+function ritz(shift, n) return tds.ritz(shift or 0, n or 5) end
+lanczos = ritz
+function move(t) return tds.move(t) end
+local function newton_toggle(name, msg)
+  return function(on)
+    if on == nil then on = true end
+    local was = tds.hessian_setting(name)
+    tds.hessian_setting(name, on)
+    print(msg:format(on and "ON" or "OFF", was and "on" or "off"))
+  end
+end
+hessian_normal = newton_toggle("hessian_normal", "hessian_normal %s. (was %s)")
+linear_metric = newton_toggle("linear_metric", "Linear interpolation metric with Hessian %s.(was %s)")
+hessian_diff = newton_toggle("hessian_diff", "hessian_diff %s. (was %s)")
+
 -- Evolver's command language: the runtime (tds.E, evolver [[...]]), read
 -- sections run at load, and the prompt's Lua/Evolver rule.
 require("evorun")
@@ -374,3 +394,4 @@ if os.getenv("TDS_CHECK") == "1" then require("check") end
 tds.E.protect()
 
 return true
+
