@@ -114,7 +114,9 @@ static int l_ritz(lua_State *L) {
   int32_t got = 0;
   int iters = 0;
   tds_inertia in = {0};
-  int rc = tds_newton_ritz(&st->ctx, s, &ns->o, shift, (int32_t)n, vals, &got, &in, vec, &iters);
+  double change = 0;
+  int rc = tds_newton_ritz(&st->ctx, s, &ns->o, shift, (int32_t)n, vals, &got, &in, vec, &iters,
+                           &change);
   if (rc != TDS_OK) {
     free(vals);
     free(vec);
@@ -122,14 +124,14 @@ static int l_ritz(lua_State *L) {
   }
   print_counts(st, in);
   lua_createtable(L, got, 0);
-  double total = 0;
   for (int32_t i = 0; i < got; i++) {
     tds_printf(&st->ctx, "%3d.    %.15g\n", (int)i + 1, vals[i]);
     lua_pushnumber(L, vals[i]);
     lua_rawseti(L, -2, i + 1);
-    total += vals[i];
   }
-  if (got) tds_printf(&st->ctx, "Iterations: %d.\n", iters);
+  if (got)
+    tds_printf(&st->ctx, "Iterations: %d. Total eigenvalue changes in last iteration: %.8g\n",
+               iters, change);
   free(ns->vec);
   ns->vec = got ? vec : NULL;
   ns->nv = got ? s->m.nv : 0;

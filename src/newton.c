@@ -318,7 +318,7 @@ int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
   s->iterations++;
   if (index) *index = in.neg;
   if (scale) *scale = t;
-  if (in.neg) tds_printf(ctx, "WARNING: Hessian not positive definite. Index: %d \n", (int)in.neg);
+  if (in.neg) tds_printf(ctx, "WARNING 1825: Hessian not positive definite. Index: %d\n", (int)in.neg);
   if (seekmax > 0)
     tds_printf(ctx, "%3d. area: %#17.15g energy: %#17.15g  scale: %g\n", 1, s->area, s->energy, t);
   else
@@ -409,7 +409,7 @@ int tds_newton_saddle(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, doubl
   int iters;
   double (*vec)[3] = tds_calloc(&ctx->alloc, (size_t)s->m.nv + 1, sizeof *vec);
   if (!vec) return tds_snap_end(ctx, s, &sn, tds_seterr(ctx, TDS_ENOMEM, "saddle: out of memory"));
-  rc = tds_newton_ritz(ctx, s, o, NAN, 1, &val, &got, &in, vec, &iters);
+  rc = tds_newton_ritz(ctx, s, o, NAN, 1, &val, &got, &in, vec, &iters, NULL);
   if (rc == TDS_OK && got == 0) rc = tds_seterr(ctx, TDS_ERANGE, "saddle: nothing can move");
   if (rc != TDS_OK) {
     tds_free(&ctx->alloc, vec);

@@ -20,7 +20,8 @@
 ** linear interpolation of the unit motions over the facets, as Evolver's
 ** linear_metric: mix x (consistent mass, area/12 (1 + [i = j]) per facet
 ** pair) + (1 - mix) x (lumped, area/3 on the diagonal), mix 0.5 by
-** default.
+** default, each facet's area weighted by its tension (as Evolver does:
+** column.fe's solder, tension 460, shows it).
 **
 ** Counts. Eigencounts are the inertia of H - c M on A^T w = 0: the
 ** inertia of the bordered K - c [M 0; 0 0] less nq from the negative and
@@ -47,7 +48,8 @@ typedef struct tds_newton_opts {
 ** value], move every vertex by its w (projecting onto its constraints),
 ** bring the quantities back to their targets, print Evolver's line
 ** "  1. area: ... energy: ..." and, when H on the constraints is not
-** positive definite, "WARNING: Hessian not positive definite. Index: n".
+** positive definite, "WARNING 1825: Hessian not positive definite.
+** Index: n" (Evolver's words and number).
 ** With seek > 0 (hessian_seek), the step is scaled by the t in (0, seek]
 ** that minimises the energy along it (the line search of `g`) and the
 ** line shows the scale. *index (if not NULL) gets the index, *scale (if
@@ -68,10 +70,11 @@ int tds_newton_probe(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double
 ** vec (nv slots x 3, zeroed) not NULL, the eigenvector of vals[0] as
 ** a displacement per vertex (unit M-norm in the unknowns; 0 for fixed
 ** vertices). *got: how many were found (fewer than n when there are
-** fewer unknowns). *iters: iterations done. */
+** fewer unknowns). *iters: iterations done; *change (if not NULL): the
+** total change of the n values in the last iteration. */
 int tds_newton_ritz(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double shift,
                     int32_t n, double *vals, int32_t *got, tds_inertia *in, double (*vec)[3],
-                    int *iters);
+                    int *iters, double *change);
 
 /* Move every vertex by t times vec (a displacement per vertex slot, as
 ** tds_newton_ritz gives), projecting onto its constraints and then the

@@ -325,7 +325,7 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
       v3_sub(a, m->x[fv[1]], m->x[fv[0]]);
       v3_sub(b, m->x[fv[2]], m->x[fv[0]]);
       v3_cross(c, a, b);
-      double area = 0.5 * v3_norm(c);
+      double area = 0.5 * v3_norm(c) * m->ften[f]; /* weighted as Evolver's */
       for (int x = 0; x < 3; x++)
         for (int y = 0; y < 3; y++) {
           int32_t kx = vk[fv[x]], ky = vk[fv[y]];
