@@ -180,6 +180,39 @@ function gravity_constant(value)
   tds.gravity(value)
 end
 
+-- attribute{ vertex = { weight = "real" }, facet = { flags = "integer[3]" } }:
+-- user attributes, columns of the attribute registry (doc/language.md).
+-- Every kind, name and type is checked before any is defined.
+local ATTR_KINDS = { vertex = "table", edge = "table", facet = "table", face = "table",
+                     body = "table" }
+function attribute(t)
+  if type(t) ~= "table" then error('attribute{ vertex = { name = "real" }, ... } expected', 2) end
+  check_options(t, "attribute", ATTR_KINDS, 2)
+  local list = {}
+  for kind, names in pairs(t) do
+    for name, ty in pairs(names) do
+      if type(name) ~= "string" or type(ty) ~= "string"
+         or not (ty:match("^real[%[%]%d]*$") or ty:match("^integer[%[%]%d]*$")) then
+        error(("attribute: %s %s: expected name = \"real\" or \"integer\" (with dimensions "
+              .. "such as \"real[3]\")"):format(kind, tostring(name)), 2)
+      end
+      list[#list + 1] = { kind, name, ty }
+    end
+  end
+  table.sort(list, function(a, b) return a[1] .. " " .. a[2] < b[1] .. " " .. b[2] end)
+  for _, a in ipairs(list) do -- clashes with what exists, before anything is defined
+    for _, have in ipairs(tds.attributes(KIND[a[1]] or tds.facet)) do
+      local shape = have.type
+      for _, d in ipairs(have.dims or {}) do shape = shape .. "[" .. d .. "]" end
+      if have.name == a[2] and (not have.user or shape ~= a[3]) then
+        error(("attribute: %s %s is %s"):format(a[1], a[2], have.user
+              and "already defined as " .. shape or "a built-in attribute"), 2)
+      end
+    end
+  end
+  for _, a in ipairs(list) do tds.define_attribute(a[1], a[2], a[3]) end
+end
+
 -- Commands, with Evolver's single letters and long names.
 function g(n)
   if n ~= nil and math.type(n) ~= "integer" then
