@@ -395,6 +395,7 @@ local INTERNAL = {
   hessian_normal = function() return tds.hessian_setting("hessian_normal") and 1.0 or 0.0 end,
   linear_metric = function() return tds.hessian_setting("linear_metric") and 1.0 or 0.0 end,
   linear_metric_mix = function() return tds.hessian_setting("linear_metric_mix") end,
+  last_eigenvalue = function() return tds.hessian_setting("last_eigenvalue") end,
   total_length = function()
     local s = 0.0
     for _, e in ipairs(E.all("edge")) do s = s + e.length end
@@ -915,7 +916,7 @@ B.ritz = function(c, n)
   if n ~= nil then n = times(n, "ritz") end
   tds.ritz(c ~= nil and num(c, "ritz") or 0, n or 5)
 end
-B.lanczos = B.ritz
+B.lanczos = function(c, n) return B.ritz(c, n or 15) end
 B.move = function(t)
   if t == nil then fail("move needs a step: move 0.1") end
   tds.move(num(t, "move"))

@@ -16,6 +16,8 @@ typedef struct nstate {
   double (*vec)[3];   /* eigenvector of the last ritz, per vertex slot */
   int32_t nv;
   uint64_t topo;      /* topo_gen it belongs to */
+  double last;        /* the first eigenvalue of the last ritz (Evolver's
+                         last_eigenvalue), 0 before any */
 } nstate;
 
 static int ns_gc(lua_State *L) {
@@ -132,6 +134,7 @@ static int l_ritz(lua_State *L) {
   if (got)
     tds_printf(&st->ctx, "Iterations: %d. Total eigenvalue changes in last iteration: %.8g\n",
                iters, change);
+  if (got) ns->last = vals[0];
   free(ns->vec);
   ns->vec = got ? vec : NULL;
   ns->nv = got ? s->m.nv : 0;
@@ -173,10 +176,11 @@ static int l_eigenvector(lua_State *L) {
   return 3;
 }
 
-/* tds.hessian_setting(name [, value]) -> value */
+/* tds.hessian_setting(name [, value]) -> value: hessian_normal,
+** linear_metric, linear_metric_mix, hessian_diff; last_eigenvalue (read) */
 static int l_setting(lua_State *L) {
   static const char *const names[] = {"hessian_normal", "linear_metric", "linear_metric_mix",
-                                      "hessian_diff", NULL};
+                                      "hessian_diff", "last_eigenvalue", NULL};
   nstate *ns = get_ns(L);
   int which = luaL_checkoption(L, 1, NULL, names);
   int set = !lua_isnone(L, 2);
@@ -192,6 +196,10 @@ static int l_setting(lua_State *L) {
   case 3:
     if (set) ns->o.diff = lua_toboolean(L, 2);
     lua_pushboolean(L, ns->o.diff);
+    break;
+  case 4: /* read-only */
+    if (set) return tds_lua_error(L, "last_eigenvalue is read-only");
+    lua_pushnumber(L, ns->last);
     break;
   default:
     if (set) {

@@ -139,7 +139,8 @@ static double place(tds_ctx *ctx, tds_surf *s, const start *st, const tds_nsys *
 }
 
 /* Least energy along t in (0, tmax]: the energy at tmax, then halving
-** while that lowers it (or the energy is not below the start), then the
+** (down to 1e-6 tmax, as Evolver) while that lowers it (or the energy is
+** not below the start), then the
 ** parabola through the best sample and its neighbours (t = 0 among them)
 ** when its vertex is inside and lower. Leaves the surface at the t
 ** returned, *E its energy. */
@@ -152,7 +153,7 @@ static double seek(tds_ctx *ctx, tds_surf *s, const start *st, const tds_nsys *n
   double t = tmax, e = place(ctx, s, st, n, w, t);
   ts[k] = t;
   es[k++] = e;
-  while (k < 44 && t > 1e-12 * tmax) {
+  while (k < 44 && t > 1e-6 * tmax) { /* Evolver gives up at 1e-6 of it */
     double t2 = t / 2, e2 = place(ctx, s, st, n, w, t2);
     ts[k] = t2;
     es[k++] = e2;
@@ -302,7 +303,15 @@ int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
   if (rc == TDS_OK) rc = start_take(ctx, s, &st);
   double E = NAN, t = 1;
   if (rc == TDS_OK) {
-    if (seekmax > 0) t = seek(ctx, s, &st, &n, w, n.energy, seekmax, &E);
+    if (seekmax > 0) {
+      t = seek(ctx, s, &st, &n, w, n.energy, seekmax, &E);
+      if (t == 0) { /* no decrease forward: look the other way */
+        for (int32_t j = 0; j < n.m; j++) w[j] = -w[j];
+        t = -seek(ctx, s, &st, &n, w, n.energy, seekmax, &E);
+        for (int32_t j = 0; j < n.m; j++) w[j] = -w[j];
+        if (t == 0) E = place(ctx, s, &st, &n, w, 0);
+      }
+    }
     else E = place(ctx, s, &st, &n, w, 1);
     if (!isfinite(E))
       rc = tds_seterr(ctx, TDS_ENUM, "hessian: the step gives a non-finite energy");
