@@ -5,9 +5,11 @@
 ** The system. The Hessian of the Lagrangian (hess.h) restricted to the
 ** vertices' motion spaces (tds_hess_reduce) and, with `normal` on
 ** (Evolver's hessian_normal, the default), further to each vertex's
-** normal space: a free or constrained vertex moves along its normal, the
-** sum of the area vectors of its facets, projected into its motion
-** space and scaled to unit length in space; a vertex on one triple
+** normal space: a free or constrained vertex moves along its normal (the
+** area-weighted sum of its facets' unit normals, each signed to agree
+** with the vertex's dominant normal direction: the volume gradient on a
+** smooth closed sheet), projected into its motion space and scaled to
+** unit length in space; a vertex on one triple
 ** junction line (edges with three or more facets) moves in the plane
 ** perpendicular to the line; a vertex where several such lines meet, or
 ** with no facets, keeps its whole motion space. The unknowns w (sys.m of
@@ -26,6 +28,14 @@
 ** Counts. Eigencounts are the inertia of H - c M on A^T w = 0: the
 ** inertia of the bordered K - c [M 0; 0 0] less nq from the negative and
 ** from the positive side (nq independent constraint gradients).
+**
+** Multipliers: those stored on the surface (the pressures of the last g
+** or Newton step, as Evolver), computed here only when none ever was; a
+** step stores the new ones from its solution.
+**
+** Singular systems: a step through a consistent singular system (rigid
+** motions with hessian_normal off) leaves the null directions out; an
+** inconsistent one is refused.
 **
 ** Every command is all-or-nothing (snap.h): a singular system, a
 ** non-finite energy or any failure leaves the surface exactly as before.

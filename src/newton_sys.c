@@ -231,6 +231,10 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
   if (rc == TDS_OK) rc = tds_hess_assemble(ctx, s, NULL, &h);
   if (rc == TDS_OK && o->diff) rc = tds_hess_diff(ctx, s, &h);
   if (rc == TDS_OK) rc = tds_hess_reduce(ctx, s, &h, &r);
+  if (rc == TDS_OK) { /* the xyz matrices are not needed any more: less peak memory */
+    tds_spmat_free(&h.H);
+    tds_spmat_free(&h.A);
+  }
   if (rc != TDS_OK) goto fail;
   int32_t nvm = r.nvm;
   vn = tds_malloc(&ctx->alloc, ((size_t)m->nv + 1) * sizeof *vn);
@@ -300,6 +304,7 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
   for (int32_t j = 0; j < mm; j++) /* every diagonal entry exists */
     if (tds_sptrip_add(&t, j, j, 0)) goto nomem;
   if (tds_spmat_from_trip(&t, 1, &out->H)) goto nomem;
+  tds_spmat_free(&r.H);
   tds_sptrip_free(&t);
   t = (tds_sptrip){.nrow = mm, .ncol = h.nq, .alloc = ctx->alloc};
   for (int32_t q = 0; q < h.nq; q++)
