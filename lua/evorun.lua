@@ -910,7 +910,11 @@ end
 B.hessian = function() need_surface("hessian"); tds.hessian() end
 B.hessian_seek = function(s) need_surface("hessian_seek"); tds.hessian_seek(s ~= nil and num(s, "hessian_seek") or nil) end
 B.saddle = function(s) need_surface("saddle"); tds.saddle(s ~= nil and num(s, "saddle") or nil) end
-B.eigenprobe = function(c) need_surface("eigenprobe"); tds.eigenprobe(c ~= nil and num(c, "eigenprobe") or 0) end
+B.eigenprobe = function(c, iters)
+  if iters ~= nil then fail("eigenprobe(value, iterations): the inverse iteration form is not supported yet (use ritz(value, 1))") end
+  need_surface("eigenprobe")
+  tds.eigenprobe(c ~= nil and num(c, "eigenprobe") or 0)
+end
 B.ritz = function(c, n)
   need_surface("ritz")
   if n ~= nil then n = times(n, "ritz") end
