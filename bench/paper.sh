@@ -26,10 +26,11 @@ row() { # row LABEL RESULT-LINE
   l=$2
   c=$(field cpvi "$l")
   case $c in ""|-) c=- ;; *) c=$(printf %.2e "$c") ;; esac
-  printf '%-16s %6s %6s %6s %9s %9s %9s %9s %7s %8s %9s %10s\n' "$1" \
+  printf '%-16s %6s %6s %6s %9s %9s %9s %9s %9s %7s %8s %9s %10s\n' "$1" \
     "$(printf %.2f "$(field mean "$l")")" "$(printf %.2f "$(field min "$l")")" \
     "$(printf %.1f "$(field above50 "$l")")" \
     "$(printf %.2e "$(field crms "$l")")" "$(printf %.2e "$(field cmax "$l")")" \
+    "$(printf %.2e "$(field nrms "$l")")" \
     "$(printf %.1e "$(field verr "$l")")" "$(printf %.1e "$(field rrel "$l")")" \
     "$(field iters "$l")" "$(printf %.3f "$(field secs "$l")")" \
     "$(printf %.2e "$(field spvi "$l")")" "$c"
@@ -59,8 +60,8 @@ for exp in $EXPS; do
   pline=$(grep '^RESULT' "$d/plain.out")
   echo
   echo "== $exp"
-  printf '%-16s %6s %6s %6s %9s %9s %9s %9s %7s %8s %9s %10s\n' run mean min ">50%" \
-    "curv.rms" "curv.max" "vol.err" "r/edge" iters seconds "s/(v*it)" "cpu/(v*it)"
+  printf '%-16s %6s %6s %6s %9s %9s %9s %9s %9s %7s %8s %9s %10s\n' run mean min ">50%" \
+    "|K|.rms" "|K|.max" "K.n.rms" "vol.err" "r/edge" iters seconds "s/(v*it)" "cpu/(v*it)"
   if [ -z "$tline" ]; then
     echo "tds failed:"; tail -n 5 "$d/tds.out"; continue
   fi
