@@ -103,6 +103,16 @@ static int l_pg(lua_State *L) {
              ? r.seconds / ((double)r.iterations * r.nfree) : 0);
   lua_pushboolean(L, r.converged);
   lua_setfield(L, -2, "converged");
+  static const char *const status[] = {"iterations", "converged", "stalled",
+                                       "cycling", "max"};
+  lua_pushstring(L, status[r.status]);
+  lua_setfield(L, -2, "status");
+  setnum(L, "hysteresis", r.hysteresis);
+  if (r.status == TDS_PG_CYCLING) setint(L, "window_flips", r.window_flips);
+  if (r.message[0]) {
+    lua_pushstring(L, r.message);
+    lua_setfield(L, -2, "message");
+  }
   return 1;
 }
 
