@@ -226,6 +226,7 @@ function C.run(exp)
     "energy=" .. fmt(total_energy),
   }
   if res.reached then out[#out + 1] = "reached=" .. fmt(res.reached) end
+  if res.status then out[#out + 1] = "status=" .. res.status end
   print(table.concat(out, " "))
   if env("PAPER_ANALYSE") then C.breakdown(c) end
   return res, q, c
