@@ -307,7 +307,8 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   const int64_t win = 5 * (int64_t)o->nmax;
   int64_t win_start = 0, win_flips = 0, stuck_flips = 0;
   double win_min = INFINITY, glob_min = INFINITY;
-  int stuck = 0;
+  int stuck = 0, resumes = 0;
+  int64_t plain_until = 0; /* > 0: resume the mixing at this iteration */
   res->hysteresis = w.flip_tol;
   save_best(s, &w);
   tds_printf(ctx, "pg: %d movable vertices, %s%s\n", w.nmov,
@@ -363,8 +364,23 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
         tds_printf(ctx, "pg %7lld  acceleration stalled at r %.3e: continuing plainly\n",
                    (long long)k, rbest);
         progress = k;
+        /* Well above the rounding level the mixing usually stalled on a
+        ** saddle of the mesh-quality energy or in a nonlinear stretch:
+        ** the plain steps leave it, and after N_max of them the mixing
+        ** resumes with a fresh history (at most three times). */
+        if (rbest > noise && resumes < 3) plain_until = k + o->nmax;
         if (rbest > noise) rbest = INFINITY;
         idle = 0;
+      }
+      if (!accel && plain_until && k >= plain_until) {
+        accel = 1;
+        plain_until = 0;
+        resumes++;
+        progress = k; /* the mixing gets its own N_max */
+        pg_accel_reset(&w.aa);
+        res->restarts++;
+        tds_progress_erase(ctx);
+        tds_printf(ctx, "pg %7lld  resuming acceleration at r %.3e\n", (long long)k, si.r);
       }
       if (rbest == 0 || (o->rtol > 0 && rbest < o->rtol * hbar) ||
           (idle >= o->nmax && rbest <= noise) || idle >= 5 * (int64_t)o->nmax) {
@@ -375,7 +391,7 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
       if (si.r < win_min) win_min = si.r;
       win_flips += nf;
       if (k - win_start >= win) {
-        if (win_flips > 0 && !(win_min < glob_min)) {
+        if (win_flips > 0 && !(win_min < 0.5 * glob_min)) {
           /* flips cycling: first widen the flip hysteresis tenfold per
           ** stuck window (1e-3 to 1e-1: a pair of opposite angles may
           ** then exceed pi by up to 0.1 radian before the edge flips),
@@ -479,13 +495,21 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
                  (long long)res->window_flips, (long long)(3 * win), glob_min,
                  res->mean_edge > 0 ? glob_min / res->mean_edge : 0);
     else if (rc == TDS_OK && res->status == TDS_PG_STALLED)
+    {
+      double rel = res->mean_edge > 0 ? res->r / res->mean_edge : 0;
+      int far = rel > 1e-2; /* still moving by a good part of an edge */
       snprintf(msg, ml, "pg: not converged: r has not gone below %.3e (%.2e x mean "
-                        "edge) for %lld iterations; stopped. Try %sa few g() "
-                        "first, or a larger nmax",
-                 res->r, res->mean_edge > 0 ? res->r / res->mean_edge : 0,
-                 (long long)(5 * (int64_t)o->nmax),
-                 o->accel && o->depth > 0 ? "pg{ plain = true } (without "
-                                            "acceleration), " : "");
+                        "edge) for %lld iterations; stopped. %sTry %s",
+               res->r, rel, (long long)(5 * (int64_t)o->nmax),
+               far ? "The vertices still move by a good part of an edge: the "
+                     "surface may have no stable equilibrium near this shape "
+                     "(a neck pinching off, a film collapsing). " : "",
+               far ? "g() to see where the surface goes, or r() to refine"
+               : o->accel && o->depth > 0
+                   ? "pg{ plain = true } (without acceleration), a few g() "
+                     "first, or a larger nmax"
+                   : "a few g() first, or a larger nmax");
+    }
     else if (rc == TDS_OK && res->status == TDS_PG_MAX)
       snprintf(msg, ml, "pg: not converged within max = %lld iterations; pg() "
                       "again continues, pg{ max = ... } allows more",
