@@ -15,7 +15,9 @@
 --   3 jitter     a hexagonal lattice jittered by 0.45 h
 --   4 aniso      a lattice stretched 2.5:1 (facets with aspect ratio 2.5)
 --   5 aniso_r    random points triangulated in coordinates stretched 3:1
---                (long thin Delaunay facets), across the first direction
+--                (long thin Delaunay facets), across the first direction;
+--                for Schwarz P a lattice stretched 6:1 (the stretched
+--                Delaunay would cross the holes)
 --   6 graded     random points whose density varies 1:9 across the domain
 --   7 pole9      a jittered lattice with one vertex of valence 9
 --   8 pole11     the same with valence 11 (at the hemisphere's pole)
@@ -88,8 +90,10 @@ local function grid(cell)
 end
 
 -- n random points, at least gap(u, v) apart and from the boundary points
--- `fixed`; density(u, v) in (0, 1] thins them by rejection.
-local function random_points(dom, n, rng, fixed, gapf, density)
+-- `fixed`, and at least margin (default 0.3 gap) inside the domain (more
+-- than the boundary polygon's sagitta, or a point would lie outside the
+-- polygon); density(u, v) in (0, 1] thins them by rejection.
+local function random_points(dom, n, rng, fixed, gapf, density, margin)
   local b = dom.bounds
   local cell = 0.2 * sqrt(dom.area / n)
   local gr = grid(cell)
@@ -100,7 +104,7 @@ local function random_points(dom, n, rng, fixed, gapf, density)
     assert(tries < 1000 * n, "random_points: cannot place the points")
     local u, v = b[1] + (b[2] - b[1]) * rng(), b[3] + (b[4] - b[3]) * rng()
     local g = gapf(u, v)
-    if dom.inside(u, v, 0.3 * g + 1e-9) and (not density or rng() < density(u, v))
+    if dom.inside(u, v, margin or 0.3 * g) and (not density or rng() < density(u, v))
        and (g == 0 or not gr.near(dom, { u, v }, g)) then
       local p = { u, v }
       out[#out + 1] = p
@@ -172,7 +176,7 @@ local function kind_points(dom, kind, n, rng, fixed, pole_at)
   if kind == "random" or kind == "perturbed" then
     return random_points(dom, n, rng, fixed, function() return 0.3 * h end)
   elseif kind == "sliver" then
-    return random_points(dom, n, rng, fixed, function() return 0 end)
+    return random_points(dom, n, rng, fixed, function() return 0 end, nil, 0.15 * h)
   elseif kind == "jitter" then
     return (lattice_points(dom, n, rng, { jitter = 0.45 }))
   elseif kind == "aniso" then
@@ -460,13 +464,17 @@ local function schwarz_mesh(kind, rng)
     local inner
     if kind == "coarse" then
       inner = (lattice_points(dom, nint, rng, { jitter = 0.02 }))
+    elseif kind == "aniso_r" then
+      -- Delaunay in stretched coordinates would not respect the hole:
+      -- here a lattice stretched 6:1, turned by 1 radian, triangulated
+      -- in the face's own coordinates
+      inner = (lattice_points(dom, nint, rng, { stretch = sqrt(6), jitter = 0.05, rot = 1 }))
     elseif kind == "perturbed" then
       inner = kind_points(dom, "random", nint, rng, fixed)
     else
       inner = kind_points(dom, kind, nint, rng, fixed, { 0.62, 0.62 })
     end
     local img = function(u, v) return u, v end
-    if kind == "aniso_r" then img = function(u, v) return 3 * u, v / 3 end end
     local pts, tris = triangulate(fixed, inner, img, function(t, all)
       local cu = (all[t[1]][1] + all[t[2]][1] + all[t[3]][1]) / 3
       local cv = (all[t[1]][2] + all[t[2]][2] + all[t[3]][2]) / 3
