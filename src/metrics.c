@@ -154,11 +154,11 @@ int tds_curvature(tds_ctx *ctx, tds_surf *s, int mode, double value,
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   double *mult = NULL;
   if (mode != TDS_CURV_VALUE && m->nb > 0) {
-    mult = tds_calloc((size_t)m->nb, sizeof *mult);
+    mult = tds_calloc(&ctx->alloc, (size_t)m->nb, sizeof *mult);
     if (!mult) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
     int rc = tds_pg_multipliers(ctx, s, mult);
     if (rc != TDS_OK) {
-      free(mult);
+      tds_free(&ctx->alloc, mult);
       return rc;
     }
   }
@@ -197,7 +197,7 @@ int tds_curvature(tds_ctx *ctx, tds_surf *s, int mode, double value,
     if (hn) hn[v] = hv[1];
     if (target) target[v] = tv;
   }
-  free(mult);
+  tds_free(&ctx->alloc, mult);
   out->n = n;
   for (int j = 0; j < 2; j++) {
     tds_curv_stats *o = j ? &out->normal : &out->meyer;

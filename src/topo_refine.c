@@ -138,11 +138,11 @@ static tds_id split_edge(tds_surf *s, tds_id e, int32_t *e2) {
 static int refine(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nsplit) {
   tds_mesh *m = &s->m;
   int32_t ne = m->ne, nf = m->nf, nv0 = m->nv;
-  tds_id *midv = malloc((size_t)(ne > 0 ? ne : 1) * sizeof *midv);
-  int32_t *e2 = malloc((size_t)(ne > 0 ? ne : 1) * sizeof *e2);
+  tds_id *midv = tds_malloc(&s->m.alloc, (size_t)(ne > 0 ? ne : 1) * sizeof *midv);
+  int32_t *e2 = tds_malloc(&s->m.alloc, (size_t)(ne > 0 ? ne : 1) * sizeof *e2);
   if (!midv || !e2) {
-    free(midv);
-    free(e2);
+    tds_free(&s->m.alloc, midv);
+    tds_free(&s->m.alloc, e2);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   }
   int32_t nsp = 0, nnewf = 0, nnewe = 0;
@@ -166,16 +166,16 @@ static int refine(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nsplit
   if (tds_mesh_reserve(m, TDS_VERTEX, nv0 + nsp) ||
       tds_mesh_reserve(m, TDS_EDGE, ne + nsp + nnewe) ||
       tds_mesh_reserve(m, TDS_FACET, nf + nnewf)) {
-    free(midv);
-    free(e2);
+    tds_free(&s->m.alloc, midv);
+    tds_free(&s->m.alloc, e2);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory while refining");
   }
   for (tds_id e = 0; e < ne; e++)
     if (midv[e] != TDS_NONE) midv[e] = split_edge(s, e, e2);
   for (tds_id f = 0; f < nf; f++)
     if (tds_alive(m->fflags, f)) split_facet(m, f, midv, e2);
-  free(midv);
-  free(e2);
+  tds_free(&s->m.alloc, midv);
+  tds_free(&s->m.alloc, e2);
   int bad = 0;
   for (tds_id v = nv0; v < m->nv; v++)
     if (tds_motion_enforce(s, v) != TDS_OK) bad++;
