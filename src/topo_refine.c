@@ -25,6 +25,7 @@ static void inherit_facet(tds_mesh *m, tds_id dst, tds_id src) {
   m->fb[dst][0] = m->fb[src][0];
   m->fb[dst][1] = m->fb[src][1];
   m->forig[dst] = m->forig[src] != TDS_NONE ? m->forig[src] : src;
+  tds_mesh_inherit(m, TDS_FACET, dst, src);
 }
 
 /* A new edge inside facet f, from v0 to v1. */
@@ -79,13 +80,17 @@ static void split_facet(tds_mesh *m, tds_id f, const tds_id *midv,
     mm[k] = mid[(k + r) % 3];
   }
   if (nsplit == 3) {
-    tds_id e01 = inner_edge(m, f, mm[0], mm[1]);
-    tds_id e12 = inner_edge(m, f, mm[1], mm[2]);
-    tds_id e20 = inner_edge(m, f, mm[2], mm[0]);
-    new_facet(m, f, half(e2, o[0], 1), half(e2, o[1], 0), TDS_OREF(e01, 1));
-    new_facet(m, f, half(e2, o[1], 1), half(e2, o[2], 0), TDS_OREF(e12, 1));
-    new_facet(m, f, TDS_OREF(e01, 0), TDS_OREF(e12, 0), TDS_OREF(e20, 0));
-    set3(m, f, half(e2, o[0], 0), TDS_OREF(e20, 1), half(e2, o[2], 1));
+    /* Numbered as Evolver numbers them, so element ids after r agree: the
+    ** inner edges cut off the corners a0, a1, a2 in turn, each oriented
+    ** along its corner triangle; the corner triangles are new facets in
+    ** that order, and f becomes the middle one, starting at m1. */
+    tds_id c0 = inner_edge(m, f, mm[0], mm[2]);
+    tds_id c1 = inner_edge(m, f, mm[1], mm[0]);
+    tds_id c2 = inner_edge(m, f, mm[2], mm[1]);
+    new_facet(m, f, half(e2, o[0], 0), TDS_OREF(c0, 0), half(e2, o[2], 1));
+    new_facet(m, f, half(e2, o[0], 1), half(e2, o[1], 0), TDS_OREF(c1, 0));
+    new_facet(m, f, TDS_OREF(c2, 0), half(e2, o[1], 1), half(e2, o[2], 0));
+    set3(m, f, TDS_OREF(c2, 1), TDS_OREF(c0, 1), TDS_OREF(c1, 1));
   } else if (nsplit == 2) {
     /* Edges 0 (a0->a1) and 1 (a1->a2) split: corner at a1, then the quad
     ** a0, m0, m1, a2 cut along its shorter diagonal. */
@@ -131,6 +136,7 @@ static tds_id split_edge(tds_surf *s, tds_id e, int32_t *e2) {
   m->ebdry[n] = m->ebdry[e];
   m->eten[n] = m->eten[e];
   m->ecolor[n] = m->ecolor[e];
+  tds_mesh_inherit(m, TDS_EDGE, n, e);
   e2[e] = n;
   return v;
 }
