@@ -68,20 +68,28 @@ function quality(o)
   return q
 end
 
--- curvature{ target = number | "lambda" | "pressure" }: Meyer et al. mean
--- curvature (k1 + k2) at every measured vertex and its error.
+-- curvature{ target = number | "lambda" | "pressure", measure = "meyer" |
+-- "normal" }: Meyer et al. mean curvature (k1 + k2) at every measured
+-- vertex and its error: by default |K| with the sign of K . n (the paper's),
+-- measure = "normal" K . n. Both measures' statistics are in c.meyer and
+-- c.normal, their RMS by valence in c.by_valence.
 -- Default target: "pressure" when there are bodies, else 0.
 function curvature(o)
   o = o or {}
   if type(o) == "number" or type(o) == "string" then o = { target = o } end
-  tds.check_options(o, "curvature", { target = "number|string", quiet = "boolean" }, 2)
+  tds.check_options(o, "curvature", { target = "number|string", quiet = "boolean",
+    measure = "string" }, 2)
   local target = o.target
   if target == nil then target = (tds.count(tds.body) > 0) and "pressure" or 0 end
+  local measure = o.measure or "meyer"
+  if measure ~= "meyer" and measure ~= "normal" then
+    error('curvature{ measure = "meyer" | "normal" } expected', 2)
+  end
   local c
   if type(target) == "number" then
-    c = tds.curvature("value", target)
+    c = tds.curvature("value", target, measure)
   elseif target == "lambda" or target == "pressure" then
-    c = tds.curvature(target)
+    c = tds.curvature(target, 0, measure)
   else
     error('curvature{ target = number | "lambda" | "pressure" } expected', 2)
   end
@@ -90,8 +98,20 @@ function curvature(o)
     print(("Mean curvature (Meyer et al., k1+k2) at %d vertices, target %s"):format(
       c.n, tostring(target)))
     if c.n > 0 then
-      print(("  mean k1+k2 %.10g   error max %.3e  mean %.3e  rms %.3e"):format(
-        c.mean_curvature, c.max, c.mean, c.rms))
+      for _, k in ipairs { "meyer", "normal" } do
+        local s = c[k]
+        print(("  %-6s mean k1+k2 %.10g   error max %.3e  mean %.3e  rms %.3e%s"):format(
+          k == "meyer" and "|K|" or "K.n", s.mean_curvature, s.max, s.mean, s.rms,
+          k == measure and "  *" or ""))
+      end
+      local parts = {}
+      for val, g in pairs(c.by_valence) do parts[#parts + 1] = val end
+      table.sort(parts)
+      for i, val in ipairs(parts) do
+        local g = c.by_valence[val]
+        parts[i] = ("%d: %d, %.2e/%.2e"):format(val, g.n, g.rms_meyer, g.rms_normal)
+      end
+      print("  rms |K|/K.n by valence: " .. table.concat(parts, "; "))
       print(("  worst vertex %d: k1+k2 %.10g, target %.10g"):format(
         c.worst, c.worst_value, c.worst_target))
     end
@@ -99,8 +119,10 @@ function curvature(o)
   return c
 end
 
--- Element attributes computed on demand: v.mean_curvature, f.min_angle.
+-- Element attributes computed on demand: v.mean_curvature (K . n),
+-- v.meyer_curvature (signed |K|), f.min_angle.
 tds.props.vertex.mean_curvature = function(h) return tds.vertex_mean_curvature(h) end
+tds.props.vertex.meyer_curvature = function(h) return tds.vertex_meyer_curvature(h) end
 tds.props.facet.min_angle = function(h) return tds.facet_min_angle(h) end
 
 -- trimesh{ vertices = {...}, facets = {...}, bodies = {...} }: declare a
@@ -170,65 +192,14 @@ function trimesh(t)
 end
 
 -- write_fe(path, { header = text, read = text }): the current surface as a
--- Surface Evolver datafile (vertices, edges, facets, bodies, gravity).
--- header goes first (parameters, constraint declarations in Evolver
--- syntax); constraint numbers are written as the surface has them.
--- The file is written all or nothing by tds.write_text (temporary file,
--- fsync, rename); a failure is an error at the caller's line.
+-- Surface Evolver datafile: header first (parameters, constraint
+-- declarations in Evolver syntax), then the gravity constant and the
+-- elements exactly as dump writes them (tds.write_fe, src/dump.c: one
+-- writer), then the read section. Written all or nothing; a failure is an
+-- error at the caller's line.
 function write_fe(path, o)
   o = o or {}
-  local buf = {}
-  local w = function(...) buf[#buf + 1] = string.format(...) end
-  w("// %s: written by tds write_fe\n", path)
-  if o.header then w("%s\n", o.header) end
-  local G, on = tds.gravity()
-  if on then w("gravity_constant %.17g\n", G) end
-  local function cons(e)
-    local c = e.constraints
-    if #c == 0 then return "" end
-    return " constraint " .. table.concat(c, " ")
-  end
-  w("\nvertices\n")
-  for v in vertices() do
-    w("%d %.17g %.17g %.17g%s%s\n", v.id, v.x, v.y, v.z, v.fixed and " fixed" or "", cons(v))
-  end
-  w("\nedges\n")
-  for e in edges() do
-    w("%d %d %d%s%s%s\n", e.id, e.tail.id, e.head.id, e.fixed and " fixed" or "",
-      e.no_refine and " no_refine" or "", cons(e))
-  end
-  w("\nfaces\n")
-  for f in facets() do
-    local ed = f.edges
-    local extra = ""
-    if f.tension ~= 1 then extra = extra .. (" density %.17g"):format(f.tension) end
-    if f.fixed then extra = extra .. " fixed" end
-    if f.no_refine then extra = extra .. " no_refine" end
-    w("%d %d %d %d%s%s\n", f.id, ed[1], ed[2], ed[3], extra, cons(f))
-  end
-  local nb = tds.count(tds.body)
-  if nb > 0 then
-    local list = {}
-    for f in facets() do
-      local fb, bb = f.frontbody, f.backbody
-      if fb then list[fb.id] = list[fb.id] or {}; table.insert(list[fb.id], f.id) end
-      if bb then list[bb.id] = list[bb.id] or {}; table.insert(list[bb.id], -f.id) end
-    end
-    w("\nbodies\n")
-    for b in bodies() do
-      local fl = list[b.id] or {}
-      local parts = {}
-      for i = 1, #fl, 12 do
-        parts[#parts + 1] = table.concat(fl, " ", i, math.min(#fl, i + 11))
-      end
-      w("%d %s", b.id, table.concat(parts, " \\\n  "))
-      if b.target then w(" volume %.17g", b.target) end
-      if b.density ~= 0 then w(" density %.17g", b.density) end
-      w("\n")
-    end
-  end
-  if o.read then w("\nread\n%s\n", o.read) end
-  local ok, err = tds.write_text(path, table.concat(buf))
+  local ok, err = tds.write_fe(path, o.header, o.read)
   if not ok then error(err, 2) end
 end
 

@@ -21,7 +21,7 @@
 static const char *const unsupported[] = {
     "torus", "torus_filled", "periods", "display_periods", "display_origin",
     "string", "quadratic", "lagrange", "lagrange_order", "simplex_representation",
-    "symmetry_group", "metric", "conformal_metric", "klein_metric", "define",
+    "symmetry_group", "metric", "conformal_metric", "klein_metric",
     "method_instance", "optimizing_parameter", "optimising_parameter", "wulff",
     "phasefile", "diffusion", "pressure", "squared_curvature",
     "square_curvature", "mean_curvature_integral", "gauss_curvature",
@@ -521,6 +521,12 @@ static int h_nothing(df *d, const hdr_kw *k) {
   return TDS_OK;
 }
 
+/* DEFINE kind ATTRIBUTE ... (datafile_define.c) */
+static int h_define(df *d, const hdr_kw *k) {
+  (void)k;
+  return df_define(d, d->p);
+}
+
 /* EVOLVER_VERSION "x" */
 static int h_version(df *d, const hdr_kw *k) {
   (void)k;
@@ -537,8 +543,16 @@ static int h_version(df *d, const hdr_kw *k) {
   return TDS_OK;
 }
 
+/* KEEP_ORIGINALS: element ids as the file gives them (datafile_int.h). */
+static int h_keep(df *d, const hdr_kw *k) {
+  (void)k;
+  d->keep_ids = 1;
+  return TDS_OK;
+}
+
 static const hdr_kw header_kw[] = {
     {"parameter", h_parameter, 0, 0},
+    {"define", h_define, 0, 0},
     {"constraint", h_constraint, 0, 0},
     {"boundary", h_boundary, 0, 0},
     {"quantity", h_quantity, 0, 0},
@@ -557,7 +571,7 @@ static const hdr_kw header_kw[] = {
     {"evolver_version", h_version, 0, 0},
     {"soapfilm", h_nothing, 0, 0},
     {"linear", h_nothing, 0, 0},
-    {"keep_originals", h_nothing, 0, 0},
+    {"keep_originals", h_keep, 0, 0},
     {"keep_macros", h_nothing, 0, 0},
     {"everything_quantities", h_nothing, 0, 0},
     {"merit_factor", h_nothing, 0, 0},

@@ -36,6 +36,8 @@ enum { TDS_VERTEX = 0, TDS_EDGE, TDS_FACET, TDS_BODY, TDS_NKINDS };
 
 typedef uint64_t tds_cmask; /* bit c set: on constraint slot c (0..63) */
 
+struct tds_ucol;            /* a user attribute's column (attr.h) */
+
 typedef struct tds_mesh {
   /* vertices */
   int32_t nv, capv;         /* slots used, capacity */
@@ -44,6 +46,11 @@ typedef struct tds_mesh {
   tds_cmask *vcon;          /* constraints the vertex is on */
   int32_t *vbdry;           /* parametric boundary index or TDS_NONE */
   double (*vp)[2];          /* boundary parameters */
+  int32_t *vfile;           /* Evolver's `original`: the element's id in the
+                               datafile (inherited by the parts of a split
+                               element of the same kind), or 0 for one made
+                               at run time (Evolver 2.70 prints 0; its manual
+                               says -1); likewise efile, ffile, bfile */
   /* edges */
   int32_t ne, cape;
   tds_id (*ev)[2];          /* tail, head */
@@ -53,6 +60,7 @@ typedef struct tds_mesh {
   double *eten;             /* edge tension (default 0 in the soapfilm model) */
   int16_t *ecolor;
   int32_t *eside;           /* one facet side on the edge or TDS_NONE */
+  int32_t *efile;
   /* facets */
   int32_t nf, capf;
   tds_id (*fv)[3];
@@ -63,6 +71,7 @@ typedef struct tds_mesh {
   double *ften;             /* surface tension (default 1) */
   int16_t *fcolor;
   tds_id *forig;            /* facet of the datafile it descends from */
+  int32_t *ffile;
   int32_t *side_next;       /* ring of sides around an edge, 3*capf */
   /* bodies */
   int32_t nb, capb;
@@ -72,6 +81,12 @@ typedef struct tds_mesh {
   double *bdensity;         /* for gravity */
   double *bpressure;        /* Lagrange multiplier, or prescribed pressure */
   double *bvol;             /* actual volume, as last computed */
+  int32_t *bfile;
+
+  /* user attributes per kind (attr.h): grown, copied and freed with the
+  ** element columns above */
+  struct tds_ucol *ucol[TDS_NKINDS];
+  int nucol[TDS_NKINDS];
 
   uint64_t topo_gen;        /* bumped by every topology change */
   uint64_t coord_gen;       /* bumped by every coordinate change */
@@ -163,6 +178,17 @@ int tds_mesh_check(tds_ctx *ctx, tds_mesh *m);
 ** WARNING 8745) — and about facets of zero area. Returns how many such
 ** edges and facets there are; changes nothing. */
 int32_t tds_mesh_body_warnings(tds_ctx *ctx, const tds_mesh *m, const char *where);
+
+/* The `original` column of a kind (vfile, efile, ffile or bfile). */
+static inline int32_t *tds_mesh_file_ids(const tds_mesh *m, int kind) {
+  return kind == TDS_VERTEX ? m->vfile : kind == TDS_EDGE ? m->efile
+         : kind == TDS_FACET ? m->ffile : m->bfile;
+}
+
+/* Copy the user attribute values and the datafile id (`original`) of
+** element src to dst (same kind): an element split from another inherits
+** them, as in Evolver. */
+void tds_mesh_inherit(tds_mesh *m, int kind, tds_id dst, tds_id src);
 
 /* Bytes of storage held by the mesh per live facet (for the benchmark). */
 size_t tds_mesh_bytes(const tds_mesh *m);
