@@ -8,6 +8,7 @@
 ** split-off facets come after every declared id.
 */
 #include "datafile_int.h"
+#include "string_model.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -155,10 +156,12 @@ static int vertex_line(df *d) {
   if (rc) return rc;
   double val[3];
   int nval = 0;
+  int maxc = d->s->str ? d->s->str->space_dim : 3;
+  val[2] = 0; /* z of a vertex in 2-D space */
   while (df_looks_value(d)) {
-    if (nval == 3)
-      return df_err(d, d->p, TDS_ESYNTAX, "%s: more than 3 coordinates "
-                    "(SPACE_DIMENSION is not supported yet)", what);
+    if (nval == maxc)
+      return df_err(d, d->p, TDS_ESYNTAX, "%s: more than %d coordinates%s", what, maxc,
+                    maxc == 3 ? " (SPACE_DIMENSION > 3 is not supported yet)" : "");
     if ((rc = df_read_value(d, &val[nval], what))) return rc;
     nval++;
   }
@@ -195,8 +198,8 @@ static int vertex_line(df *d) {
                     what, d->s->bdry[bd].number, np, np > 1 ? "s" : "", nval);
     for (int k = 0; k < np; k++) p[k] = val[k];
   } else {
-    if (nval != 3)
-      return df_err(d, NULL, TDS_ESYNTAX, "%s needs 3 coordinates, got %d", what, nval);
+    if (nval != maxc)
+      return df_err(d, NULL, TDS_ESYNTAX, "%s needs %d coordinates, got %d", what, maxc, nval);
     for (int k = 0; k < 3; k++) x[k] = val[k];
   }
   int line = df_line_of(d, NULL);
@@ -228,7 +231,7 @@ static int edge_line(df *d) {
   tds_cmask con = 0;
   int rev = 0;
   int32_t bd = TDS_NONE;
-  double ten = 0;
+  double ten = d->s->str ? 1 : 0; /* strings carry tension by default */
   int16_t color = 0;
   const char *at;
   while (next_attr(d, w, sizeof w, &at, what, &rc)) {
@@ -269,8 +272,10 @@ static int id_list(df *d, int kind, const char *what, int *n) {
     int rc = df_read_int(d, 1, what, &v);
     if (rc) return rc;
     int64_t av = v < 0 ? -v : v;
+    const tds_strings *st = d->s->str;
     int ok = v != 0 && (kind == TDS_EDGE
                  ? av <= m->ne && tds_alive(m->eflags, (tds_id)(av - 1))
+                 : st ? av <= st->nf && !(st->flags[av - 1] & TDS_DEAD)
                  : av <= m->nf && tds_alive(m->fflags, (tds_id)(av - 1)) &&
                        m->forig[av - 1] == (tds_id)(av - 1));
     if (!ok)
@@ -318,7 +323,7 @@ static int face_line(df *d) {
     if (rc) return rc;
   }
   if (rc) return rc;
-  if (n < 3)
+  if (n < 3 && !(d->s->str && n >= 1))
     return df_err(d, NULL, TDS_ETOPO, "%s has %d edge%s; at least 3 are needed", what, n,
                   n == 1 ? "" : "s");
   if (tds_grow(&d->ctx->alloc, (void **)&d->faces, sizeof *d->faces, &d->capfaces, d->nfaces + 1))
@@ -335,6 +340,7 @@ static int face_line(df *d) {
 
 int df_build_faces(df *d) {
   if (d->nfaces == 0) return TDS_OK;
+  if (d->s->str) return df_string_faces(d);
   tds_mesh *m = &d->s->m;
   /* Reserve for the split-off elements at once (tds_build_face reserves
   ** exactly what each face needs, which is quadratic over many faces). */
@@ -395,9 +401,15 @@ static int body_line(df *d) {
   if (has[B_VOLUME] && has[B_PRESSURE])
     return df_err(d, NULL, TDS_ESYNTAX, "%s: give either VOLUME or PRESSURE, not both", what);
   int line = df_line_of(d, NULL);
-  rc = tds_decl_body(d->ctx, d->s, id, n, d->oe + off);
+  if (d->s->str) {
+    rc = df_string_body(d, id, n, d->oe + off);
+    d->noe = off;
+    if (rc) return rc;
+  } else {
+    rc = tds_decl_body(d->ctx, d->s, id, n, d->oe + off);
   d->noe = off;
   if (rc) return df_core(d, line, rc, NULL);
+  }
   tds_mesh *m = &d->s->m;
   if (has[B_VOLUME]) {
     m->btarget[id] = val[B_VOLUME];

@@ -20,7 +20,7 @@
 /* Evolver keywords whose features the core does not have yet. */
 static const char *const unsupported[] = {
     "torus", "torus_filled", "periods", "display_periods", "display_origin",
-    "string", "quadratic", "lagrange", "lagrange_order", "simplex_representation",
+    "quadratic", "lagrange", "lagrange_order", "simplex_representation",
     "symmetry_group", "metric", "conformal_metric", "klein_metric", "define",
     "method_instance", "optimizing_parameter", "optimising_parameter", "wulff",
     "phasefile", "diffusion", "pressure", "squared_curvature",
@@ -220,7 +220,7 @@ static int h_boundary(df *d, const hdr_kw *k) {
   if (rc) return rc;
   int have;
   if ((rc = df_more(d, &have))) return rc;
-  if (!have || !df_accept(d, "parameters")) {
+  if (!have || (!df_accept(d, "parameters") && !df_accept(d, "parameter"))) {
     char b[64];
     return df_err(d, d->p, TDS_ESYNTAX, "%s: expected PARAMETERS, found %s", what,
                   df_describe(d->p, b, sizeof b));
@@ -445,16 +445,26 @@ static int h_symmetric(df *d, const hdr_kw *k) {
   return TDS_OK;
 }
 
-/* SPACE_DIMENSION 3, SURFACE_DIMENSION 2: anything else is refused. */
+/* SPACE_DIMENSION 2 or 3; SURFACE_DIMENSION 1 (the string model, as
+** STRING) or 2: anything else is refused. The string model is set up when
+** the VERTICES section starts (the keywords may come in any order). */
 static int h_dimension(df *d, const hdr_kw *k) {
   int64_t n;
   char u[64];
   df_upper(k->name, u, sizeof u);
   int rc = df_header_int(d, 0, u, &n);
   if (rc) return rc;
-  int want = k->name[1] == 'p' ? 3 : 2;
-  if (n != want)
+  int space = k->name[1] == 'p';
+  if (space ? n != 2 && n != 3 : n != 1 && n != 2)
     return df_err(d, NULL, TDS_ESYNTAX, "%s %lld is not supported yet", u, (long long)n);
+  if (space) d->space_dim = (int)n;
+  else d->string_model = n == 1;
+  return TDS_OK;
+}
+
+static int h_string(df *d, const hdr_kw *k) {
+  (void)k;
+  d->string_model = 1;
   return TDS_OK;
 }
 
@@ -545,6 +555,7 @@ static const hdr_kw header_kw[] = {
     {"spring_constant", h_value, AT(gap_constant), ANY},
     {"gap_constant", h_value, AT(gap_constant), ANY},
     {"symmetric_content", h_symmetric, 0, 0},
+    {"string", h_string, 0, 0},
     {"constraint_tolerance", h_value, AT(constraint_tol), POSITIVE},
     {"space_dimension", h_dimension, 0, 0},
     {"surface_dimension", h_dimension, 0, 0},

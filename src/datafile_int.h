@@ -120,7 +120,22 @@ typedef struct df {
   int has_read;        /* a READ section follows ... */
   size_t read_at;      /* ... from this raw offset */
   int split;           /* several values in a row: element lines, matrices */
+  int space_dim;       /* SPACE_DIMENSION given (0: not given) */
+  int string_model;    /* STRING or SURFACE_DIMENSION 1 given */
 } df;
+
+/* ---- the string model (datafile_string.c) ---- */
+
+/* Build the faces of the FACES section as string-model cells (in id
+** order). */
+int df_string_faces(df *d);
+/* Give body id the cells faces[0..n) (signed 1-based ids). */
+int df_string_body(df *d, tds_id id, int n, const int32_t *faces);
+/* When the elements start: refuse what the string model does not have yet
+** (messages at the current line). */
+int df_string_model(df *d);
+/* At the end: check the cells. */
+int df_string_finish(df *d);
 
 /* ---- messages (datafile_read.c) ---- */
 

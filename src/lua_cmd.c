@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "string_model.h"
 #include "iterate.h"
 #include "lua_tds.h"
 #include "recalc.h"
@@ -17,7 +18,7 @@ static int check_rc(lua_State *L, tds_state *st, int rc) {
 
 static void print_counts(tds_state *st) {
   const tds_mesh *m = &st->s.m;
-  int32_t nf = tds_mesh_count(m, TDS_FACET);
+  int32_t nf = tds_surf_count(&st->s, TDS_FACET);
   tds_printf(&st->ctx, "Vertices: %d  Edges: %d  Facets: %d  Bodies: %d  Facetedges: %d\n",
              tds_mesh_count(m, TDS_VERTEX), tds_mesh_count(m, TDS_EDGE), nf,
              tds_mesh_count(m, TDS_BODY), 3 * nf);

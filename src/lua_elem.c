@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "string_model.h"
 #include "gather.h"
 #include "geom.h"
 #include "lua_tds.h"
@@ -450,7 +451,7 @@ static int l_count(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   int kind = (int)luaL_checkinteger(L, 1);
   luaL_argcheck(L, kind >= 0 && kind < TDS_NKINDS, 1, "bad element kind");
-  lua_pushinteger(L, tds_mesh_count(&st->s.m, kind));
+  lua_pushinteger(L, tds_surf_count(&st->s, kind));
   return 1;
 }
 

@@ -7,6 +7,7 @@
 #include <strings.h>
 
 #include "expr.h"
+#include "string_model.h"
 
 void tds_surf_init(tds_surf *s) {
   memset(s, 0, sizeof *s);
@@ -52,6 +53,7 @@ void tds_surf_free(tds_surf *s) {
   tds_free(&a, s->orig_facets);
   tds_free(&a, s->cg_dir);
   tds_free(&a, s->cg_prev);
+  tds_strings_free(s);
   tds_surf_init(s);
   s->m.alloc = a;
 }

@@ -97,6 +97,9 @@ typedef struct tds_surf {
 
   char *read_text;        /* a datafile's read section, kept verbatim */
 
+  struct tds_strings *str; /* the string model's cells (string_model.h),
+                              NULL in the soapfilm model */
+
   /* derived: facets of each declared face (CSR by forig), for bodies */
   int32_t *orig_start, *orig_facets;
   uint64_t orig_gen;      /* topo_gen the index was built for */
