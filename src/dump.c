@@ -17,6 +17,7 @@
 
 #include "datafile.h"
 #include "model.h"
+#include "string_model.h"
 #include "wfile.h"
 
 typedef struct out {
@@ -65,10 +66,12 @@ static void text(out *o, const tds_expr *e) {
   }
 }
 
-static void components(out *o, const char *title, char letter, tds_expr *const e[3]) {
+/* ncomp: 3, or 1 for the string model's scalar content */
+static void components(out *o, const char *title, char letter, tds_expr *const e[3],
+                       int ncomp) {
   if (!e[0] && !e[1] && !e[2]) return;
   fprintf(o->f, "%s\n", title);
-  for (int k = 0; k < 3; k++) {
+  for (int k = 0; k < ncomp; k++) {
     fprintf(o->f, "%c%d: ", letter, k + 1);
     text(o, e[k]);
     fputc('\n', o->f);
@@ -93,6 +96,8 @@ static void header(out *o, const tds_surf *s) {
     num(o, s->parval[i], "parameter", i + 1);
     fputc('\n', f);
   }
+  if (s->str)
+    fprintf(f, "STRING\nSPACE_DIMENSION %d\n\n", s->str->space_dim);
   if (s->npar) fputc('\n', f);
   if (!s->gravity_on && density)
     fputs("// gravity was off: G = 0 keeps the bodies' densities without energy\n"
@@ -142,8 +147,8 @@ static void header(out *o, const tds_surf *s) {
             (c->flags & TDS_CON_NONPOS) ? " NONPOSITIVE" : "");
     text(o, c->formula);
     fputc('\n', f);
-    components(o, "ENERGY", 'E', c->energy);
-    components(o, "CONTENT", 'C', c->content);
+    components(o, "ENERGY", 'E', c->energy, s->str ? 1 : 3);
+    components(o, "CONTENT", 'C', c->content, s->str ? 1 : 3);
     fputc('\n', f);
   }
   for (int i = 0; i < s->nbdry; i++) {
@@ -156,8 +161,8 @@ static void header(out *o, const tds_surf *s) {
       text(o, b->x[k]);
       fputc('\n', f);
     }
-    components(o, "ENERGY", 'E', b->energy);
-    components(o, "CONTENT", 'C', b->content);
+    components(o, "ENERGY", 'E', b->energy, s->str ? 1 : 3);
+    components(o, "CONTENT", 'C', b->content, s->str ? 1 : 3);
     fputc('\n', f);
   }
   for (int i = 0; i < s->nquant; i++) {
@@ -206,6 +211,45 @@ static void header(out *o, const tds_surf *s) {
   }
 }
 
+/* The string model's cells as faces: their edge lists. */
+static void string_faces(out *o, const tds_surf *s) {
+  const tds_strings *st = s->str;
+  for (tds_id t = 0; t < st->nf; t++) {
+    if (st->flags[t] & TDS_DEAD) continue;
+    fprintf(o->f, "%d", t + 1);
+    int col = 0;
+    for (int32_t i = st->start[t]; i < st->start[t + 1]; i++) {
+      if (++col == 20) {
+        fputs(" \\\n ", o->f);
+        col = 0;
+      }
+      fprintf(o->f, " %s%d", TDS_OREV(st->oe[i]) ? "-" : "", TDS_OID(st->oe[i]) + 1);
+    }
+    if (st->flags[t] & TDS_FIXED) fputs(" fixed", o->f);
+    if (st->flags[t] & TDS_NODISPLAY) fputs(" nodisplay", o->f);
+    if (st->flags[t] & TDS_NONCONTENT) fputs(" noncontent", o->f);
+    if (st->color[t]) fprintf(o->f, " color %d", st->color[t]);
+    fputc('\n', o->f);
+  }
+}
+
+/* The cells of body b (string model), signed. */
+static void string_body(out *o, const tds_surf *s, tds_id b) {
+  const tds_strings *st = s->str;
+  int col = 0;
+  for (tds_id t = 0; t < st->nf; t++) {
+    if (st->flags[t] & TDS_DEAD) continue;
+    for (int j = 0; j < 2; j++)
+      if (st->fb[t][j] == b) {
+        if (col++ == 16) {
+          fputs(" \\\n ", o->f);
+          col = 0;
+        }
+        fprintf(o->f, " %s%d", j ? "-" : "", t + 1);
+      }
+  }
+}
+
 static void elements(out *o, const tds_surf *s) {
   FILE *f = o->f;
   const tds_mesh *m = &s->m;
@@ -218,7 +262,8 @@ static void elements(out *o, const tds_surf *s) {
       for (int k = 0; k < s->bdry[bd].nparams; k++) num(o, m->vp[v][k], "vertex", v + 1);
       fprintf(f, " boundary %d", s->bdry[bd].number);
     } else {
-      for (int k = 0; k < 3; k++) num(o, m->x[v][k], "vertex", v + 1);
+      int dim = s->str ? s->str->space_dim : 3;
+      for (int k = 0; k < dim; k++) num(o, m->x[v][k], "vertex", v + 1);
     }
     cons(o, s, m->vcon[v], 0);
     if (m->vflags[v] & TDS_FIXED) fputs(" fixed", f);
@@ -265,6 +310,7 @@ static void elements(out *o, const tds_surf *s) {
     if (m->fcolor[t]) fprintf(f, " color %d", m->fcolor[t]);
     fputc('\n', f);
   }
+  if (s->str) string_faces(o, s);
   int any = 0;
   for (tds_id b = 0; b < m->nb; b++) any |= tds_alive(m->bflags, b);
   if (!any) return;
@@ -273,6 +319,7 @@ static void elements(out *o, const tds_surf *s) {
     if (!tds_alive(m->bflags, b)) continue;
     fprintf(f, "%d", b + 1);
     int col = 0;
+    if (s->str) string_body(o, s, b);
     for (tds_id t = 0; t < m->nf; t++) {
       if (!tds_alive(m->fflags, t)) continue;
       for (int j = 0; j < 2; j++)
@@ -319,7 +366,7 @@ int tds_datafile_dump(tds_ctx *ctx, tds_surf *s, const char *path) {
   const tds_mesh *m = &s->m;
   fprintf(o.f, "// %s: Surface Evolver datafile written by tds %s\n", path, TDS_VERSION);
   fprintf(o.f, "// vertices %d, edges %d, facets %d, bodies %d", tds_mesh_count(m, TDS_VERTEX),
-          tds_mesh_count(m, TDS_EDGE), tds_mesh_count(m, TDS_FACET),
+          tds_mesh_count(m, TDS_EDGE), tds_surf_count(s, TDS_FACET),
           tds_mesh_count(m, TDS_BODY));
   if (isfinite(energy)) fprintf(o.f, "; total energy %.17g", energy);
   fputs("\n\n", o.f);

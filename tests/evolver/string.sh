@@ -81,3 +81,20 @@ for bb in bodies() do p = bb.pressure; same('string/slidestr/converged-area', bb
 same('string/slidestr/converged-energy', total_energy, ge, 1e-8)
 same('string/slidestr/converged-pressure', p, gp, 1e-6)
 " 2>&1 || echo "FAIL string/slidestr/converged: tds exited with an error"
+
+# dump: slidestr refined and moved, written by tds, read back by Evolver
+# and by tds: the same counts and energy (1e-12).
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+out=$("$TDS" -q "$EXAMPLES/slidestr.fe" -e "r(); g(5); V(); dump('$tmp/d.fe')
+print(('T %d %d %d %d %.17g'):format(vertex_count, edge_count, facet_count, body_count, total_energy))" 2>&1)
+t=$(echo "$out" | grab T)
+ev=$(evolver_run "$tmp/d.fe" "$PRINT")
+"$TDS" -q "$tmp/d.fe" -e "
+dofile('$ROOT/tests/evolver/compare.lua')
+local c, e = ('$t'):match('^(%d+ %d+ %d+ %d+) (%S+)$')
+report('string/dump/evolver-counts', '$(echo "$ev" | grab C0)' == c, '$(echo "$ev" | grab C0)', c)
+same('string/dump/evolver-energy', $(echo "$ev" | grab E0), tonumber(e), 1e-12)
+report('string/dump/tds-counts', counts() == c, counts(), c)
+same('string/dump/tds-energy', total_energy, tonumber(e), 1e-12)
+" 2>&1 || echo "FAIL string/dump: tds exited with an error: $out"
