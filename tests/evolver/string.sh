@@ -98,3 +98,16 @@ same('string/dump/evolver-energy', $(echo "$ev" | grab E0), tonumber(e), 1e-12)
 report('string/dump/tds-counts', counts() == c, counts(), c)
 same('string/dump/tds-energy', total_energy, tonumber(e), 1e-12)
 " 2>&1 || echo "FAIL string/dump: tds exited with an error: $out"
+
+# The command language on a string surface: element attributes (edge
+# length and vertices, facet area and its oriented edges), counts, sums,
+# r and V, printed by Evolver and by tds (`tds -f`): the same lines, the
+# numbers to 1e-12 relative (printed with 15 digits).
+cp "$EXAMPLES/slidestr.fe" "$tmp/slidestr.fe"
+cp "$ROOT/tests/evolver/string/slidestr.cmd" "$tmp/s.cmd"
+evolver_run "$EXAMPLES/slidestr.fe" "$(cat "$tmp/s.cmd")" > "$tmp/ev.out"
+(cd "$tmp" && "$TDS" -q slidestr.fe -f s.cmd) > "$tmp/tds.out" 2>&1
+"$TDS" -q -e "
+dofile('$ROOT/tests/evolver/numcmp.lua')
+local pat = '^[LFONXS] '
+numcmp('string/slidestr/commands', lines_of('$tmp/ev.out', pat), lines_of('$tmp/tds.out', pat), 1e-12)"
