@@ -548,15 +548,24 @@ function P:atend(t)
   return false
 end
 
+-- Evolver takes a ':' that ends a line or comes before '}' as the end of
+-- the command (3ds.cmd has one); step over it.
+function P:stray_colon()
+  if not self:isop(":") then return false end
+  local n = self:peek(1)
+  if n.t == "eof" or n.nl or (n.t == "op" and n.v == "}") then self:next(); return true end
+  return false
+end
+
 function P:block_until_brace()
   local parts = {}
   self.depth = self.depth + 1
   while true do
-    while self:acceptop(";") do end
+    while self:acceptop(";") or self:stray_colon() do end
     if self:isop("}") then break end
     if self:peek().t == "eof" then self:err("'{' not closed by '}'") end
     parts[#parts + 1] = self:statement()
-    if not (self:isop(";") or self:isop("}")) then
+    if not (self:isop(";") or self:isop("}") or self:stray_colon()) then
       local t = self:peek()
       if not t.nl then self:err("expected ';' or '}' after a command, found " .. self:desc()) end
     end
@@ -1196,7 +1205,7 @@ function M.translate(text, line0)
       unit = nil
     end
     while true do
-      while p:acceptop(";") do end
+      while p:acceptop(";") or p:stray_colon() do end
       if p:peek().t == "eof" then
         if p:peek().lexerr then close(); p:err("") end
         break
@@ -1205,7 +1214,7 @@ function M.translate(text, line0)
       unit = unit or {}
       unit[#unit + 1] = p:statement()
       local t = p:peek()
-      if not (t.t == "eof" or t.nl or p:isop(";")) then
+      if not (t.t == "eof" or t.nl or p:isop(";") or p:stray_colon()) then
         p:err("expected ';' or a new line after a command, found " .. p:desc(t))
       end
     end

@@ -376,6 +376,8 @@ local INTERNAL = {
   space_dimension = function() return 3.0 end,
   surface_dimension = function() return 2.0 end,
   torus = function() return 0.0 end,
+  -- the identity and the datafile's view transforms (display only in tds)
+  transform_count = function() return tds.setting("view_transforms") + 1.0 end,
   symmetry_group = function() return 0.0 end,
   simplex_representation = function() return 0.0 end,
   lagrange_order = function() return 1.0 end,

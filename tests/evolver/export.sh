@@ -40,14 +40,14 @@ done
 # Every script shipped in examples/*.cmd is read (its definitions made)
 # without error, except those that use what tds does not have, each
 # stopping with a message that names its file and line:
-#   3ds (a stray ':'), adjointc (set vertex __x to an array), cut
+#   adjointc (set vertex __x to an array), cut
 #   ('eee ecutmark' attribute without '.'), detorus_capper and
 #   dirichlet_to_disk (define constraint at run time), reorder and strips
 #   (facetedge generators). cmccousin, unshear and cube_views print their
 #   own message (4-D space, torus, include file) and abort, which is not
 #   an error.
 cp "$EXAMPLES/cube.fe" "$tmp/cube.fe"
-EXPECTED_FAIL=" 3ds adjointc cut detorus_capper dirichlet_to_disk reorder strips "
+EXPECTED_FAIL=" adjointc cut detorus_capper dirichlet_to_disk reorder strips "
 for c in "$EXAMPLES"/*.cmd; do
   b=$(basename "$c" .cmd)
   printf 'read "%s.cmd"\n' "$b" > "$tmp/r.cmd"
@@ -70,21 +70,27 @@ done
 # programs (float32 of the same coordinates and normals, the facet count
 # as a four-byte integer, little endian) on datafiles as loaded (after a
 # refinement Evolver starts some facets' vertex loops elsewhere).
+# 3ds.cmd's do_3ds (a binary 3D Studio file, facets grouped by colour)
+# likewise, with the colours set to white as above.
 for fe in cube mound catbody; do
-  printf 'read "stl.cmd"\nbinary_stl >>> "ev.bin"\nq\n' > "$tmp/e.cmd"
-  printf 'read "stl.cmd"\nbinary_stl >>> "tds.bin"\n' > "$tmp/t.cmd"
-  cp "$EXAMPLES/$fe.fe" "$tmp/$fe.fe"
-  rm -f "$tmp/ev.bin" "$tmp/tds.bin"
-  (cd "$tmp" && "$EVOLVER" -f e.cmd "$fe.fe" < /dev/null > /dev/null 2>&1)
-  if ! (cd "$tmp" && "$TDS" -q "$fe.fe" -f t.cmd) > "$tmp/log" 2>&1; then
-    echo "FAIL export/binary_stl/$fe: $(head -n 2 "$tmp/log" | tr '\n' ' ')"
-  elif [ ! -s "$tmp/ev.bin" ]; then
-    echo "FAIL export/binary_stl/$fe: Evolver wrote nothing"
-  elif cmp -s "$tmp/ev.bin" "$tmp/tds.bin"; then
-    echo "PASS export/binary_stl/$fe ($(wc -c < "$tmp/tds.bin") bytes identical)"
-  else
-    echo "FAIL export/binary_stl/$fe: $(cmp "$tmp/ev.bin" "$tmp/tds.bin" 2>&1 | head -n 1)"
-  fi
+  for job in "stl.cmd:binary_stl" "3ds.cmd:set facet color white; do_3ds"; do
+    name=${job##*;* }
+    name=${name#*:}
+    printf 'read "%s"\n%s >>> "ev.bin"\nq\n' "${job%%:*}" "${job#*:}" > "$tmp/e.cmd"
+    sed -e '$d' -e 's/"ev.bin"/"tds.bin"/' "$tmp/e.cmd" > "$tmp/t.cmd"
+    cp "$EXAMPLES/$fe.fe" "$tmp/$fe.fe"
+    rm -f "$tmp/ev.bin" "$tmp/tds.bin"
+    (cd "$tmp" && "$EVOLVER" -f e.cmd "$fe.fe" < /dev/null > /dev/null 2>&1)
+    if ! (cd "$tmp" && "$TDS" -q "$fe.fe" -f t.cmd) > "$tmp/log" 2>&1; then
+      echo "FAIL export/$name/$fe: $(head -n 2 "$tmp/log" | tr '\n' ' ')"
+    elif [ ! -s "$tmp/ev.bin" ]; then
+      echo "FAIL export/$name/$fe: Evolver wrote nothing"
+    elif cmp -s "$tmp/ev.bin" "$tmp/tds.bin"; then
+      echo "PASS export/$name/$fe ($(wc -c < "$tmp/tds.bin") bytes identical)"
+    else
+      echo "FAIL export/$name/$fe: $(cmp "$tmp/ev.bin" "$tmp/tds.bin" 2>&1 | head -n 1)"
+    fi
+  done
 done
 # Every conversion in both byte orders, against the IEEE and two's
 # complement encodings written out by hand (Evolver 2.70's big-endian %f

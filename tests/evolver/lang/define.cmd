@@ -28,3 +28,8 @@ printf "K9 %d %d %d %d %d\n", valid_constraint(8), valid_constraint(10), valid_b
 define constraint 11 formula: x +
    y = 1 // a comment
 printf "K10 %d\n", valid_constraint(11)
+// a ':' at the end of a line or before '}' ends a command (3ds.cmd has one)
+kk := 3:
+setk := { kk := 4: }
+setk
+printf "K11 %d %d\n", kk, transform_count
