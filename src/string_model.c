@@ -189,6 +189,17 @@ int tds_strings_index(tds_ctx *ctx, tds_surf *s) {
   if (st->eb_start && st->idx_gen == st->gen && st->idx_topo == m->topo_gen &&
       st->idx_ne == m->ne)
     return TDS_OK;
+  /* A topology command that knows nothing of cells must not leave them on
+  ** deleted edges: refuse to evaluate (its snapshot puts things back). */
+  for (tds_id f = 0; f < st->nf; f++) {
+    if (st->flags[f] & TDS_DEAD) continue;
+    for (int32_t i = st->start[f]; i < st->start[f + 1]; i++) {
+      tds_id e = TDS_OID(st->oe[i]);
+      if (e >= m->ne || !tds_alive(m->eflags, e))
+        return tds_seterr(ctx, TDS_ETOPO, "facet %d refers to edge %d, which no longer "
+                          "exists (a command the string model does not support)", f + 1, e + 1);
+    }
+  }
   free_index(st);
   int32_t ne = m->ne;
   st->eb_start = tds_calloc(&st->alloc, (size_t)ne + 1, sizeof *st->eb_start);

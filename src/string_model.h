@@ -85,4 +85,11 @@ int tds_strings_check(tds_ctx *ctx, const tds_surf *s);
 ** adjacency. (Measured on evolver-nox-d; vertices on constraints, at
 ** junctions or ends stay.) */
 int tds_strings_vavg(const tds_surf *s, tds_id v, double out[3]);
+
+/* Evolver's o (pop) for strings (string_topo.c): every vertex with four or
+** more edges, not fixed and on no constraint or boundary, is split until
+** three edges meet at each of its pieces. *npopped: splits made. All or
+** nothing. TDS_OK, TDS_ERANGE (not the string model), TDS_ENOMEM,
+** TDS_ENUM. */
+int tds_strings_pop(tds_ctx *ctx, tds_surf *s, int32_t *npopped);
 #endif

@@ -1,0 +1,22 @@
+/* lua_string.c: Lua bindings of the string model's own commands
+** (string_model.h):
+**   tds.string_pop() -> n   Evolver's o for strings: split vertices where
+**                           four or more edges meet; prints "Vertices
+**                           popped: n" as Evolver does. */
+#include "lua_tds.h"
+#include "string_model.h"
+
+static int l_string_pop(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  int32_t n = 0;
+  int rc = tds_strings_pop(&st->ctx, &st->s, &n);
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+  tds_printf(&st->ctx, "Vertices popped: %d\n", n);
+  lua_pushinteger(L, n);
+  return 1;
+}
+
+void tds_open_string(lua_State *L, tds_state *st) {
+  static const luaL_Reg fns[] = {{"string_pop", l_string_pop}, {NULL, NULL}};
+  tds_lua_register(L, st, fns);
+}

@@ -1,0 +1,167 @@
+/*
+** string_topo.c: topology changes of the string model: popping vertices
+** where four or more edges meet (Evolver's o / pop for strings).
+**
+** Evolver's rule, measured on evolver-nox-d (popstr.fe and a 5-edge star):
+** a vertex that is not fixed, on no constraint or boundary, with k >= 4
+** edges splits off the two edges with the smallest angle between them onto
+** a new vertex, joined to the old one by a new edge; repeated until three
+** edges remain (k - 3 pops). The new vertex lies along the bisector of the
+** two edges at a tenth of the shorter one's length. Ties in the angle go to
+** the first pair in the order (first edge, last edge, ..., second edge) of
+** the vertex's edges by id in 3-D space (Evolver's choice on popstr); in
+** 2-D space the edges are taken in angular order (atan2) and the later of
+** tied neighbouring pairs wins, the pair across the -x axis last (Evolver's
+** choice on tests/evolver/string/pop4.fe).
+** The cells whose edge lists pass between a moved and a kept edge take the
+** new edge.
+*/
+#include "string_model.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "gather.h"
+#include "snap.h"
+#include "vec3.h"
+
+#define MAXSTAR 64 /* edges at one vertex considered */
+
+/* Put bridge edge n (from v to w) into the cell lists between an edge that
+** now ends at w and one that still starts at v, or the other way round.
+** TDS_OK or TDS_ENOMEM (nothing changed). */
+static int bridge_cells(tds_strings *st, const tds_mesh *m, tds_id v, tds_id w, tds_id n) {
+  int32_t extra = 0;
+  for (int pass = 0; pass < 2; pass++) {
+    int32_t *out = NULL, k = 0;
+    if (pass) {
+      out = tds_malloc(&st->alloc, (size_t)(st->noe + extra + 1) * sizeof *out);
+      if (!out) return TDS_ENOMEM;
+    }
+    for (tds_id f = 0; f < st->nf; f++) {
+      int32_t a = st->start[f], b = st->start[f + 1];
+      if (pass) st->start[f] = k;
+      for (int32_t i = a; i < b; i++) {
+        if (pass) out[k++] = st->oe[i];
+        int last = i + 1 == b;
+        if (last && (st->flags[f] & TDS_DEAD)) continue;
+        tds_id h = tds_oe_head(m, st->oe[i]);
+        tds_id t = tds_oe_tail(m, st->oe[last ? a : i + 1]);
+        int32_t r = -1;
+        if (h == w && t == v) r = TDS_OREF(n, 1);
+        else if (h == v && t == w) r = TDS_OREF(n, 0);
+        if (r < 0) continue;
+        if (pass) out[k++] = r;
+        else extra++;
+      }
+    }
+    if (pass) {
+      st->start[st->nf] = k;
+      tds_free(&st->alloc, st->oe);
+      st->oe = out;
+      st->noe = st->capoe = k;
+      st->gen++;
+    } else if (!extra) {
+      return TDS_OK;
+    }
+  }
+  return TDS_OK;
+}
+
+/* One pop at v if it has four or more edges: 1 if done, 0 if not, or
+** -status. Adjacency must be current. */
+static int pop_once(tds_surf *s, tds_id v) {
+  tds_mesh *m = &s->m;
+  int32_t a = m->ve_start[v], k = m->ve_start[v + 1] - a;
+  if (k < 4 || k > MAXSTAR) return 0;
+  int32_t ord[MAXSTAR];
+  double u[MAXSTAR][3], len[MAXSTAR];
+  ord[0] = m->ve[a];
+  for (int32_t i = 1; i < k; i++) ord[i] = m->ve[a + k - i];
+  for (int32_t i = 0; i < k; i++) {
+    tds_edge_vec(m, ord[i], u[i]);
+    len[i] = v3_norm(u[i]);
+    if (!(len[i] > 0)) return 0;
+    v3_scale(u[i], 1 / len[i]);
+  }
+  int bi = -1, bj = -1;
+  if (s->str->space_dim == 2) {
+    /* edges in angular order; the smallest gap between neighbours, ties
+    ** (within rounding) to the later pair, the wrap-around pair last */
+    int idx[MAXSTAR];
+    double ang[MAXSTAR];
+    for (int i = 0; i < k; i++) {
+      ang[i] = atan2(u[i][1], u[i][0]);
+      idx[i] = i;
+    }
+    for (int i = 1; i < k; i++) /* insertion sort: k is small */
+      for (int j = i; j > 0 && ang[idx[j]] < ang[idx[j - 1]]; j--) {
+        int t = idx[j];
+        idx[j] = idx[j - 1];
+        idx[j - 1] = t;
+      }
+    double best = INFINITY;
+    for (int i = 0; i < k; i++) {
+      int p = idx[i], q = idx[(i + 1) % k];
+      double gap = i + 1 < k ? ang[q] - ang[p] : 2 * 3.14159265358979323846 - (ang[p] - ang[q]);
+      if (gap <= best + 1e-12) {
+        if (gap < best) best = gap;
+        bi = p;
+        bj = q;
+      }
+    }
+  } else {
+    double best = -2;
+    for (int i = 0; i < k; i++)
+      for (int j = i + 1; j < k; j++) {
+        double d = v3_dot(u[i], u[j]);
+        if (d > best) best = d, bi = i, bj = j;
+      }
+  }
+  double dir[3];
+  v3_add(dir, u[bi], u[bj]);
+  double dn = v3_norm(dir);
+  if (!(dn > 1e-12)) return 0;
+  double step = 0.1 * (len[bi] < len[bj] ? len[bi] : len[bj]) / dn, x[3];
+  for (int i = 0; i < 3; i++) x[i] = m->x[v][i] + step * dir[i];
+  if (tds_mesh_room(m, TDS_VERTEX, m->nv + 1) || tds_mesh_room(m, TDS_EDGE, m->ne + 1))
+    return -TDS_ENOMEM;
+  tds_id w = tds_mesh_add_vertex(m, x);
+  tds_id n = tds_mesh_add_edge(m, v, w);
+  m->eten[n] = 1;
+  int32_t mv[2] = {ord[bi], ord[bj]};
+  for (int c = 0; c < 2; c++) /* the edge's end at v (its tail if it leaves v) */
+    m->ev[TDS_OID(mv[c])][TDS_OREV(mv[c])] = w;
+  m->topo_gen++;
+  m->coord_gen++;
+  if (bridge_cells(s->str, m, v, w, n) != TDS_OK) return -TDS_ENOMEM;
+  return 1;
+}
+
+static int pop_all(tds_ctx *ctx, tds_surf *s, int32_t *npopped) {
+  tds_mesh *m = &s->m;
+  int32_t count = 0, nv = m->nv;
+  for (tds_id v = 0; v < nv; v++) {
+    if (!tds_alive(m->vflags, v) || (m->vflags[v] & TDS_FIXED) || m->vcon[v] ||
+        m->vbdry[v] != TDS_NONE)
+      continue;
+    for (;;) {
+      if (tds_mesh_adjacency(m) != TDS_OK) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+      int r = pop_once(s, v);
+      if (r < 0) return tds_seterr(ctx, -r, "out of memory");
+      if (!r) break;
+      count++;
+    }
+  }
+  if (npopped) *npopped = count;
+  return tds_surf_update(ctx, s);
+}
+
+int tds_strings_pop(tds_ctx *ctx, tds_surf *s, int32_t *npopped) {
+  if (npopped) *npopped = 0;
+  if (!s->str) return tds_seterr(ctx, TDS_ERANGE, "not a string-model surface");
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
+  if (rc != TDS_OK) return rc;
+  return tds_snap_end(ctx, s, &sn, pop_all(ctx, s, npopped));
+}
