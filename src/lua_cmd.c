@@ -142,6 +142,7 @@ static int l_check(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   if (tds_mesh_adjacency(&st->s.m) != TDS_OK) return luaL_error(L, "out of memory");
   check_rc(L, st, tds_mesh_check(&st->ctx, &st->s.m));
+  if (st->s.str) check_rc(L, st, tds_strings_check(&st->ctx, &st->s)); /* cells */
   lua_pushboolean(L, 1);
   lua_pushinteger(L, tds_mesh_body_warnings(&st->ctx, &st->s.m, ""));
   return 2;
