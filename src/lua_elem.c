@@ -242,7 +242,14 @@ static int edge_get(lua_State *L, tds_state *st, tds_id e, const char *k) {
   else if (!strcmp(k, "no_refine")) lua_pushboolean(L, m->eflags[e] & TDS_NO_REFINE);
   else if (!strcmp(k, "tension") || !strcmp(k, "density")) lua_pushnumber(L, m->eten[e]);
   else if (!strcmp(k, "color")) lua_pushinteger(L, m->ecolor[e]);
-  else if (!strcmp(k, "valence")) lua_pushinteger(L, tds_edge_valence(m, e));
+  else if (!strcmp(k, "valence")) {
+    int32_t n = 0; /* facets on the edge: the cells using it in the string model */
+    if (s->str)
+      for (int32_t i = 0; i < s->str->noe; i++) n += TDS_OID(s->str->oe[i]) == e;
+    else
+      n = tds_edge_valence(m, e);
+    lua_pushinteger(L, n);
+  }
   else if (!strcmp(k, "constraints")) push_cmask(L, s, m->econ[e]);
   else if (!strcmp(k, "boundary")) {
     if (m->ebdry[e] == TDS_NONE) lua_pushnil(L);
@@ -283,7 +290,7 @@ static int cell_get(lua_State *L, tds_state *st, tds_id f, const char *k) {
       else lua_pushinteger(L, (TDS_OID(r) + 1) * (TDS_OREV(r) ? -1 : 1));
       lua_rawseti(L, -2, i + 1);
     }
-    /* an open loop ends at another vertex */
+    /* an open list ends at one more vertex (Evolver lists it too) */
     if (k[0] == 'v' && n > 0 && tds_oe_head(&s->m, c->oe[a + n - 1]) != tds_oe_tail(&s->m, c->oe[a])) {
       tds_push_elem(L, TDS_VERTEX, tds_oe_head(&s->m, c->oe[a + n - 1]));
       lua_rawseti(L, -2, n + 1);

@@ -151,3 +151,10 @@ same('string/pop4/converged-energy', total_energy, ge, 1e-8)
 same('string/pop4/converged-pressure1', body[1].pressure, p1, 1e-6)
 same('string/pop4/converged-pressure2', body[2].pressure, p2, 1e-6)
 " 2>&1 || echo "FAIL string/pop4/converged: tds exited with an error"
+# ... and a cell's vertices, bodies and cells, valences, max/min/count.
+cp "$ROOT/tests/evolver/string/slidestr2.cmd" "$tmp/s2.cmd"
+evolver_run "$EXAMPLES/slidestr.fe" "$(cat "$tmp/s2.cmd")" > "$tmp/ev.out"
+(cd "$tmp" && "$TDS" -q slidestr.fe -f s2.cmd) > "$tmp/tds.out" 2>&1
+"$TDS" -q -e "
+dofile('$ROOT/tests/evolver/numcmp.lua')
+numcmp('string/slidestr/attributes', lines_of('$tmp/ev.out', '^[A-G] '), lines_of('$tmp/tds.out', '^[A-G] '), 1e-12)"
