@@ -2,7 +2,11 @@
 ** (string_model.h):
 **   tds.string_pop() -> n   Evolver's o for strings: split vertices where
 **                           four or more edges meet; prints "Vertices
-**                           popped: n" as Evolver does. */
+**                           popped: n" as Evolver does.
+**   tds.string_t1([edges]) -> n   Evolver's t1_edgeswap: the 2-D foam T1 on
+**                           the given edges (all if none). */
+#include <stdlib.h>
+
 #include "lua_tds.h"
 #include "string_model.h"
 
@@ -16,7 +20,20 @@ static int l_string_pop(lua_State *L) {
   return 1;
 }
 
+static int l_string_t1(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  uint8_t *sel = tds_lua_selection(L, st, 1, TDS_EDGE);
+  int32_t n = 0;
+  int rc = tds_strings_t1(&st->ctx, &st->s, sel, &n);
+  free(sel);
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+  lua_pushinteger(L, n);
+  return 1;
+}
+
 void tds_open_string(lua_State *L, tds_state *st) {
-  static const luaL_Reg fns[] = {{"string_pop", l_string_pop}, {NULL, NULL}};
+  static const luaL_Reg fns[] = {{"string_pop", l_string_pop},
+                                 {"string_t1", l_string_t1},
+                                 {NULL, NULL}};
   tds_lua_register(L, st, fns);
 }

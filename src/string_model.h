@@ -92,4 +92,12 @@ int tds_strings_vavg(const tds_surf *s, tds_id v, double out[3]);
 ** nothing. TDS_OK, TDS_ERANGE (not the string model), TDS_ENOMEM,
 ** TDS_ENUM. */
 int tds_strings_pop(tds_ctx *ctx, tds_surf *s, int32_t *npopped);
+
+/* Evolver's t1_edgeswap (string_topo.c), in 2-D space: every selected edge
+** (sel[e] != 0; sel NULL: all) joining two triple points, not fixed and
+** on no constraint or boundary, with ends that are free, turns a quarter
+** about its midpoint and reconnects its four neighbours (the 2-D foam T1);
+** other edges are skipped. In 3-D space nothing is done. *nflip: edges
+** flipped. All or nothing. */
+int tds_strings_t1(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nflip);
 #endif

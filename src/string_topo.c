@@ -165,3 +165,128 @@ int tds_strings_pop(tds_ctx *ctx, tds_surf *s, int32_t *npopped) {
   if (rc != TDS_OK) return rc;
   return tds_snap_end(ctx, s, &sn, pop_all(ctx, s, npopped));
 }
+
+/* ---- T1 (Evolver's t1_edgeswap for strings, 2-D space) ----
+** Measured on evolver-nox-d (tests/evolver/string/t1.fe): the edge e from
+** t to h, both ends triple points, turns a quarter about its midpoint,
+** keeping its length. The edge on the right of t->h at t stays at t and
+** the one on the right at h moves to t; the left ones go to h. t goes to
+** the right of the old edge when the cells using e are counterclockwise
+** (positive area), to the left when they are clockwise, as Evolver
+** places it. Cells lose e where it separated them and take it where their
+** lists now pass between t and h. */
+
+static double cross2(const double a[3], const double b[3]) { return a[0] * b[1] - a[1] * b[0]; }
+
+/* The other two edges at end v of e as oriented refs leaving v; 0 if v
+** does not have exactly three edges. */
+static int other_two(const tds_mesh *m, tds_id v, tds_id e, int32_t out[2]) {
+  int32_t a = m->ve_start[v], k = m->ve_start[v + 1] - a, n = 0;
+  if (k != 3) return 0;
+  for (int32_t i = 0; i < k; i++)
+    if (TDS_OID(m->ve[a + i]) != e) {
+      if (n == 2) return 0;
+      out[n++] = m->ve[a + i];
+    }
+  return n == 2;
+}
+
+static int t1_once(tds_surf *s, tds_id e) {
+  tds_mesh *m = &s->m;
+  tds_strings *st = s->str;
+  if (!tds_alive(m->eflags, e) || (m->eflags[e] & TDS_FIXED) || m->econ[e] ||
+      m->ebdry[e] != TDS_NONE)
+    return 0;
+  tds_id t = m->ev[e][0], h = m->ev[e][1];
+  int32_t at[2], ah[2];
+  for (int c = 0; c < 2; c++) {
+    tds_id v = c ? h : t;
+    if ((m->vflags[v] & TDS_FIXED) || m->vcon[v] || m->vbdry[v] != TDS_NONE) return 0;
+  }
+  if (!other_two(m, t, e, at) || !other_two(m, h, e, ah)) return 0;
+  double d[3], u[4][3];
+  tds_edge_vec(m, TDS_OREF(e, 0), d);
+  tds_edge_vec(m, at[0], u[0]);
+  tds_edge_vec(m, at[1], u[1]);
+  tds_edge_vec(m, ah[0], u[2]);
+  tds_edge_vec(m, ah[1], u[3]);
+  for (int i = 0; i < 4; i++) {
+    double l = sqrt(u[i][0] * u[i][0] + u[i][1] * u[i][1]);
+    if (!(l > 0)) return 0;
+    u[i][0] /= l, u[i][1] /= l;
+  }
+  /* the right one at each end: the smaller cross product with d */
+  int rt = cross2(d, u[0]) <= cross2(d, u[1]) ? 0 : 1;
+  int rh = cross2(d, u[2]) <= cross2(d, u[3]) ? 0 : 1;
+  int32_t t_left = at[!rt], h_right = ah[rh];
+  tds_id ends[4] = {tds_oe_head(m, at[0]), tds_oe_head(m, at[1]), tds_oe_head(m, ah[0]),
+                    tds_oe_head(m, ah[1])};
+  for (int i = 0; i < 4; i++) /* no edge back into the pair, no double edges */
+    for (int j = i + 1; j < 4; j++)
+      if (ends[i] == ends[j] || ends[i] == t || ends[i] == h) return 0;
+  /* the side t goes to: right (-perp) unless the cells are clockwise */
+  double sgn = -1;
+  for (tds_id f = 0; f < st->nf; f++) {
+    if (st->flags[f] & TDS_DEAD) continue;
+    int32_t i = st->start[f];
+    while (i < st->start[f + 1] && TDS_OID(st->oe[i]) != e) i++;
+    if (i == st->start[f + 1]) continue;
+    double A = tds_strings_area(s, f); /* its orientation, whichever side */
+    if (A != 0) {
+      sgn = A > 0 ? -1 : 1;
+      break;
+    }
+  }
+  double mid[3], perp[3] = {-d[1], d[0], 0};
+  for (int i = 0; i < 3; i++) mid[i] = (m->x[t][i] + m->x[h][i]) / 2;
+  for (int i = 0; i < 2; i++) {
+    m->x[t][i] = mid[i] + sgn * perp[i] / 2;
+    m->x[h][i] = mid[i] - sgn * perp[i] / 2;
+  }
+  /* reconnect: t's left edge to h, h's right edge to t */
+  m->ev[TDS_OID(t_left)][TDS_OREV(t_left)] = h;
+  m->ev[TDS_OID(h_right)][TDS_OREV(h_right)] = t;
+  m->topo_gen++;
+  m->coord_gen++;
+  return 1;
+}
+
+/* Drop e from every cell list, then put it back (bridge_cells) where a
+** list passes between t and h. */
+static int t1_cells(tds_strings *st, const tds_mesh *m, tds_id e) {
+  int32_t k = 0;
+  for (tds_id f = 0; f < st->nf; f++) {
+    int32_t a = st->start[f], b = st->start[f + 1];
+    st->start[f] = k;
+    for (int32_t i = a; i < b; i++)
+      if (TDS_OID(st->oe[i]) != e) st->oe[k++] = st->oe[i];
+  }
+  st->start[st->nf] = k;
+  st->noe = k;
+  st->gen++;
+  return bridge_cells(st, m, m->ev[e][0], m->ev[e][1], e);
+}
+
+static int t1_all(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nflip) {
+  tds_mesh *m = &s->m;
+  int32_t count = 0, ne = m->ne;
+  if (s->str->space_dim == 2)
+    for (tds_id e = 0; e < ne; e++) {
+      if (sel && !sel[e]) continue;
+      if (tds_mesh_adjacency(m) != TDS_OK) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+      if (!t1_once(s, e)) continue;
+      if (t1_cells(s->str, m, e) != TDS_OK) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+      count++;
+    }
+  if (nflip) *nflip = count;
+  return tds_surf_update(ctx, s);
+}
+
+int tds_strings_t1(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nflip) {
+  if (nflip) *nflip = 0;
+  if (!s->str) return tds_seterr(ctx, TDS_ERANGE, "not a string-model surface");
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
+  if (rc != TDS_OK) return rc;
+  return tds_snap_end(ctx, s, &sn, t1_all(ctx, s, sel, nflip));
+}
