@@ -1016,6 +1016,9 @@ function E.oncollection(name, kind, list)
   elseif name == "vertex_average" then
     if kind ~= "vertex" then fail("vertex_average needs vertices") end
     tds.vertex_average(list)
+  elseif name == "t1_edgeswap" then -- the string model (doc/string.md)
+    if kind ~= "edge" then fail("t1_edgeswap needs edges") end
+    tds.string_t1(list)
   else
     fail(name .. ": not supported yet")
   end

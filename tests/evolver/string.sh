@@ -167,7 +167,10 @@ f=$ROOT/tests/evolver/string/t1.fe
 p=$(printf '%s' "$POP" | sed "s/ZZ//; s/ XX//")
 tp=$(printf '%s' "$TPOP" | sed "s/ZZ//; s/ XX//")
 evolver_run "$f" "t1_edgeswap edge[1]; recalc; $p" > "$tmp/ev.out"
-"$TDS" -q "$f" -e "tds.string_t1(edge[1]); $tp" > "$tmp/tds.out" 2>&1
+# (tds through Evolver's syntax: `t1_edgeswap edge[1]` reaches tds.string_t1)
+cp "$f" "$tmp/t1.fe"
+printf '%s\n' "t1_edgeswap edge[1]; recalc; $p" > "$tmp/t1.cmd"
+(cd "$tmp" && "$TDS" -q t1.fe -f t1.cmd) > "$tmp/tds.out" 2>&1
 "$TDS" -q -e "
 dofile('$ROOT/tests/evolver/numcmp.lua')
 numcmp('string/t1/swap', lines_of('$tmp/ev.out', '^[VEL] '), lines_of('$tmp/tds.out', '^[VEL] '), 1e-12)"
