@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "attr.h"
 #include "string_model.h"
 
 static int by_id(const void *a, const void *b) {
@@ -21,12 +22,26 @@ int df_string_faces(df *d) {
       return df_err_line(d, r->line, TDS_ESYNTAX,
                          "face %d: constraints on faces of the string model are not "
                          "supported yet", r->id + 1);
+    /* valued attributes (registry rows, datafile_elements.c): a colour */
+    int16_t color = r->at.color;
+    for (int32_t j = r->pv0; j < r->pv1;) {
+      tds_attr a;
+      tds_attr_at(&d->s->m, TDS_FACET, (int)d->pv[j], &a);
+      int n = (int)d->pv[j + 1];
+      if (!strcmp(a.name, "color") && n == 1)
+        color = (int16_t)d->pv[j + 2];
+      else
+        return df_err_line(d, r->line, TDS_ESYNTAX,
+                           "face %d: %s on faces of the string model is not supported yet",
+                           r->id + 1, a.name);
+      j += 2 + n;
+    }
     int rc = tds_strings_add(d->ctx, d->s, r->id, r->n, d->oe + r->off,
-                             r->at.flags & (TDS_FIXED | TDS_NONCONTENT | TDS_NODISPLAY),
-                             r->at.color);
+                             r->at.flags & (TDS_FIXED | TDS_NONCONTENT | TDS_NODISPLAY), color);
     if (rc) return df_core(d, r->line, rc, NULL);
   }
   d->nfaces = 0;
+  d->npv = 0;
   return TDS_OK;
 }
 
