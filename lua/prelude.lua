@@ -230,6 +230,8 @@ function u(set) tds.equiangulate(set) end
 equiangulate = u
 
 function V(set) tds.vertex_average(set) end
+-- facet_crosscut(f, tail, head): split a string-model cell (doc/string.md)
+function facet_crosscut(f, t, h) return tds.facet_crosscut(f, t, h) end
 vertex_average = V
 
 -- recalc(): after assigning parameters, put boundary vertices where their

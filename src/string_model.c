@@ -80,8 +80,7 @@ int tds_strings_copy(const tds_alloc *a, const tds_strings *src, tds_strings **d
   return TDS_OK;
 }
 
-/* Room for nf cells and noe loop entries; TDS_OK or TDS_ENOMEM. */
-static int room(tds_strings *st, int32_t nf, int32_t noe) {
+int tds_strings_room(tds_strings *st, int32_t nf, int32_t noe) {
   if (nf > st->capf) {
     int32_t cap = nf < 16 ? 16 : nf + nf / 2, c;
     c = st->capf;
@@ -119,7 +118,7 @@ int tds_strings_add(tds_ctx *ctx, tds_surf *s, tds_id f, int n, const int32_t *o
       return tds_seterr(ctx, TDS_ETOPO, "face %d: edge %s%d does not end where edge %s%d starts",
                         f + 1, TDS_OREV(oe[k]) ? "-" : "", TDS_OID(oe[k]) + 1,
                         TDS_OREV(oe[k + 1]) ? "-" : "", TDS_OID(oe[k + 1]) + 1);
-  if (room(st, f + 1, st->noe + n)) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+  if (tds_strings_room(st, f + 1, st->noe + n)) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   for (tds_id g = st->nf; g < f; g++) { /* gaps in the ids: dead slots */
     st->flags[g] = TDS_DEAD;
     st->fb[g][0] = st->fb[g][1] = TDS_NONE;

@@ -52,6 +52,9 @@ int tds_strings_copy(const tds_alloc *a, const tds_strings *src, tds_strings **d
 ** TDS_ERANGE, TDS_ETOPO (message in ctx) or TDS_ENOMEM. */
 int tds_strings_add(tds_ctx *ctx, tds_surf *s, tds_id f, int n, const int32_t *oe,
                     uint32_t flags, int16_t color);
+/* Room for nf cell slots and noe loop entries. TDS_OK or TDS_ENOMEM. */
+int tds_strings_room(tds_strings *st, int32_t nf, int32_t noe);
+
 /* Live cell count. */
 int32_t tds_strings_count(const tds_strings *st);
 /* Live element count of kind in s: cells for facets in the string model. */
@@ -100,4 +103,12 @@ int tds_strings_pop(tds_ctx *ctx, tds_surf *s, int32_t *npopped);
 ** other edges are skipped. In 3-D space nothing is done. *nflip: edges
 ** flipped. All or nothing. */
 int tds_strings_t1(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nflip);
+
+/* Evolver's facet_crosscut (string_topo.c): split cell f (closed edge
+** list) by a new edge from corner tv to corner hv (tension 0, as
+** Evolver's); f keeps the new edge and the corners from hv round to tv, a
+** new cell (same bodies) the rest. *newedge: the new edge. All or
+** nothing; TDS_ERANGE (no such cell or corners) with a message. */
+int tds_strings_crosscut(tds_ctx *ctx, tds_surf *s, tds_id f, tds_id tv, tds_id hv,
+                         tds_id *newedge);
 #endif

@@ -290,3 +290,70 @@ int tds_strings_t1(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nflip
   if (rc != TDS_OK) return rc;
   return tds_snap_end(ctx, s, &sn, t1_all(ctx, s, sel, nflip));
 }
+
+/* ---- facet_crosscut ----
+** Measured on evolver-nox-d (tests/evolver/string/pop4.fe): the new edge
+** runs from the tail vertex to the head vertex with tension 0; the cell
+** keeps the new edge followed by its edges from the head round to the
+** tail, and a new cell (next id, same bodies, flags and colour) takes the
+** new edge reversed followed by the edges from the tail to the head. */
+static int crosscut(tds_ctx *ctx, tds_surf *s, tds_id f, tds_id tv, tds_id hv, tds_id *ne) {
+  tds_mesh *m = &s->m;
+  tds_strings *st = s->str;
+  if (f < 0 || f >= st->nf || (st->flags[f] & TDS_DEAD))
+    return tds_seterr(ctx, TDS_ERANGE, "facet_crosscut: facet %d does not exist", f + 1);
+  int32_t a = st->start[f], n = st->start[f + 1] - a, i = -1, j = -1;
+  for (int32_t k = 0; k < n; k++) {
+    tds_id v = tds_oe_tail(m, st->oe[a + k]);
+    if (v == tv) i = k;
+    if (v == hv) j = k;
+  }
+  if (i < 0 || j < 0 || i == j || tds_oe_head(m, st->oe[a + n - 1]) != tds_oe_tail(m, st->oe[a]))
+    return tds_seterr(ctx, TDS_ERANGE, "facet_crosscut: vertices %d and %d are not two "
+                      "corners of facet %d's closed edge list", tv + 1, hv + 1, f + 1);
+  if (tds_mesh_room(m, TDS_EDGE, m->ne + 1) || tds_strings_room(st, st->nf + 1, st->noe + 2))
+    return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+  int32_t *oe = tds_malloc(&st->alloc, (size_t)(st->noe + 2) * sizeof *oe);
+  if (!oe) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+  tds_id e = tds_mesh_add_edge(m, tv, hv);
+  m->eten[e] = 0;
+  int32_t k = 0;
+  for (tds_id g = 0; g < st->nf; g++) {
+    int32_t b0 = st->start[g], b1 = st->start[g + 1];
+    st->start[g] = k;
+    if (g != f) {
+      for (int32_t q = b0; q < b1; q++) oe[k++] = st->oe[q];
+      continue;
+    }
+    oe[k++] = TDS_OREF(e, 0); /* tail -> head, then head round to tail */
+    for (int32_t q = j; q != i; q = (q + 1) % n) oe[k++] = st->oe[a + q];
+  }
+  tds_id nf = st->nf;
+  st->start[nf] = k;
+  oe[k++] = TDS_OREF(e, 1); /* the new cell: head -> tail, then tail to head */
+  for (int32_t q = i; q != j; q = (q + 1) % n) oe[k++] = st->oe[a + q];
+  st->flags[nf] = st->flags[f];
+  st->fb[nf][0] = st->fb[f][0];
+  st->fb[nf][1] = st->fb[f][1];
+  st->color[nf] = st->color[f];
+  st->start[nf + 1] = k;
+  st->nf = nf + 1;
+  tds_free(&st->alloc, st->oe);
+  st->oe = oe;
+  st->noe = k;
+  st->capoe = st->noe;
+  st->gen++;
+  m->topo_gen++;
+  *ne = e;
+  return tds_surf_update(ctx, s);
+}
+
+int tds_strings_crosscut(tds_ctx *ctx, tds_surf *s, tds_id f, tds_id tv, tds_id hv,
+                         tds_id *newedge) {
+  *newedge = TDS_NONE;
+  if (!s->str) return tds_seterr(ctx, TDS_ERANGE, "facet_crosscut works in the string model only (STRING)");
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
+  if (rc != TDS_OK) return rc;
+  return tds_snap_end(ctx, s, &sn, crosscut(ctx, s, f, tv, hv, newedge));
+}

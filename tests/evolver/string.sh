@@ -194,3 +194,14 @@ local t, a, b = tonumber('$t'), tonumber('$(echo "$ev" | grab A)'), tonumber('$(
 same('string/t1/minimum-energy', a, t, 1e-12)
 report('string/t1/evolver-stays', b and a and b >= a * (1 - 1e-10), b, a)
 " 2>&1 || echo "FAIL string/t1/converged: tds exited with an error"
+
+# facet_crosscut (Evolver's function; in tds a global function calling
+# tds.facet_crosscut): the new edge's id, ends and tension 0, both cells'
+# edge lists and bodies, areas (1e-12), the same lines as Evolver's.
+cp "$ROOT/tests/evolver/string/pop4.fe" "$tmp/pop4.fe"
+cp "$ROOT/tests/evolver/string/crosscut.cmd" "$tmp/cc.cmd"
+evolver_run "$ROOT/tests/evolver/string/pop4.fe" "$(cat "$tmp/cc.cmd")" > "$tmp/ev.out"
+(cd "$tmp" && "$TDS" -q pop4.fe -f cc.cmd) > "$tmp/tds.out" 2>&1
+"$TDS" -q -e "
+dofile('$ROOT/tests/evolver/numcmp.lua')
+numcmp('string/pop4/crosscut', lines_of('$tmp/ev.out', '^[NLEB] '), lines_of('$tmp/tds.out', '^[NLEB] '), 1e-12)"
