@@ -434,6 +434,7 @@ function E.getv(name, cur)
   if v == nil and low ~= name then v = _G[low] end
   if v == nil and cur and E.has_extra(cur, low) then return E.attr(cur, low) end
   if v == nil and tds.quantity_info(low) ~= nil then return { __quantity = low } end
+  if v == nil then v = tds.constraint_named(low) end -- a named constraint is its number
   if v == nil then fail(("undefined variable '%s'"):format(name)) end
   if type(v) == "function" then fail(("'%s' is a command, not a value"):format(name)) end
   if type(v) == "boolean" then return v and 1.0 or 0.0 end

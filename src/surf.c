@@ -94,6 +94,24 @@ int tds_surf_con_slot(const tds_surf *s, int number) {
   return -1;
 }
 
+int tds_surf_con_named(const tds_surf *s, const char *name, size_t len) {
+  if (len == 0 || len >= sizeof s->con[0].name) return -1;
+  for (int i = 0; i < TDS_MAX_CON; i++) {
+    const char *n = s->con[i].name;
+    if (!s->con[i].number || strlen(n) != len) continue;
+    size_t k = 0;
+    while (k < len && n[k] == (char)tolower((unsigned char)name[k])) k++;
+    if (k == len) return i;
+  }
+  return -1;
+}
+
+int tds_surf_con_free_number(const tds_surf *s) {
+  int n = 1;
+  while (tds_surf_con_slot(s, n) >= 0) n++;
+  return n;
+}
+
 tds_cmask tds_surf_global_cons(const tds_surf *s) {
   tds_cmask mask = 0;
   for (int i = 0; i < TDS_MAX_CON; i++)

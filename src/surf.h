@@ -22,6 +22,9 @@ enum {                   /* constraint flags */
 
 typedef struct tds_constraint {
   int number;             /* user's id (1-based, as declared); 0 = unused */
+  char name[32];          /* Evolver's named constraint (`constraint plane
+                             formula ...`, numbered with the smallest free
+                             number), lower case; "" if declared by number */
   int flags;
   tds_expr *formula;      /* level set: formula(x) = 0 */
   tds_expr *energy[3];    /* edge integrand (vector field), or NULL */
@@ -129,6 +132,10 @@ int tds_surf_param_set(tds_surf *s, const char *name, double value);
 
 /* Constraint slot for a user number, or -1 if not declared. */
 int tds_surf_con_slot(const tds_surf *s, int number);
+/* Constraint slot of a named constraint (name[0..len), any case), or -1. */
+int tds_surf_con_named(const tds_surf *s, const char *name, size_t len);
+/* The smallest constraint number not declared (what a named one gets). */
+int tds_surf_con_free_number(const tds_surf *s);
 
 /* The constraints declared GLOBAL: every vertex is on them, also vertices
 ** made later by refining or splitting faces. */
