@@ -11,6 +11,7 @@
 #include "progress.h"
 #include "recalc.h"
 #include "snap.h"
+#include "stall.h"
 #include "vec3.h"
 
 typedef struct work {
@@ -20,6 +21,8 @@ typedef struct work {
   double (*grad)[3]; /* energy gradient */
   double (*vel)[3];  /* motion-space velocity */
   double (*rest)[3]; /* restoring motion of a projection step */
+  double (*rest0)[3]; /* restoring motion at the start of the step */
+  int use_rest0;     /* quantities were off target: trials add rest0 */
   tds_fixq fq;
   int unconverged;   /* a projection hit its step limit */
   double E0;         /* energy at the start of the step */
@@ -33,6 +36,7 @@ static void work_free(work *w) {
   free(w->grad);
   free(w->vel);
   free(w->rest);
+  free(w->rest0);
   tds_fixq_free(&w->fq);
 }
 
@@ -45,7 +49,8 @@ static int work_init(tds_ctx *ctx, tds_surf *s, work *w) {
   w->grad = tds_calloc(nv, sizeof *w->grad);
   w->vel = tds_calloc(nv, sizeof *w->vel);
   w->rest = tds_calloc(nv, sizeof *w->rest);
-  if (!w->x0 || !w->p0 || !w->grad || !w->vel || !w->rest) {
+  w->rest0 = tds_calloc(nv, sizeof *w->rest0);
+  if (!w->x0 || !w->p0 || !w->grad || !w->vel || !w->rest || !w->rest0) {
     work_free(w);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   }
@@ -93,6 +98,12 @@ static int direction(tds_ctx *ctx, tds_surf *s, work *w) {
   rc = tds_fixq_multipliers(ctx, fq, w->grad);
   if (rc != TDS_OK) return rc;
   store_pressures(s, fq);
+  w->use_rest0 = 0;
+  if (!w->at_target && m->nv) {
+    rc = tds_fixq_restore(ctx, fq, m->nv, w->rest0);
+    if (rc != TDS_OK) return rc;
+    w->use_rest0 = 1;
+  }
   w->slope = 0;
   for (tds_id v = 0; v < m->nv; v++) {
     w->vel[v][0] = -w->grad[v][0];
@@ -160,6 +171,7 @@ static double trial(tds_ctx *ctx, tds_surf *s, work *w, double scale) {
     if (!tds_vertex_free(s, v)) continue;
     double d[3] = {scale * w->vel[v][0], scale * w->vel[v][1],
                    scale * w->vel[v][2]};
+    if (w->use_rest0) v3_add(d, d, w->rest0[v]);
     if (tds_motion_apply(s, v, w->x0[v], w->p0[v], d) != TDS_OK) bad = 1;
   }
   m->coord_gen++;
@@ -167,12 +179,28 @@ static double trial(tds_ctx *ctx, tds_surf *s, work *w, double scale) {
   return s->energy;
 }
 
+/* Vertex of the parabola through (a,Ea), (b,Eb), (c,Ec), a < b < c with
+** Eb below both ends; NAN if the three points are collinear. */
+static double parabola_min(double a, double Ea, double b, double Eb, double c,
+                           double Ec) {
+  double d1 = (Eb - Ea) / (b - a), d2 = (Ec - Eb) / (c - b);
+  double curv = (d2 - d1) / (c - a); /* half the second derivative */
+  if (!(curv > 0)) return NAN;
+  return 0.5 * (a + b) - d1 / (2 * curv);
+}
+
 /* Line search along vel from the start of the step (energy E0, slope D =
-** dE/ds at 0, negative for a descent direction). Each trial is a full
-** move with projection, so energies are compared on the constraints. The
-** next scale minimises the parabola through E0, D and the last trial;
-** a trial that does not lower the energy is retried at a smaller scale.
-** Returns the chosen scale with the positions there and *E its energy. */
+** dE/ds at 0, negative for a descent direction), as Evolver describes
+** its optimizing scale: starting from the last scale, double it while the
+** energy keeps going down (up to the scale limit) or halve it until the
+** energy goes below E0, so that a minimum is bracketed by three scales;
+** then move to the vertex of the parabola through them. Each trial is a
+** full move with projection, so energies are compared on the
+** constraints. If the parabola's vertex is not lower than the best
+** bracketing scale, that scale is kept (the step never goes up). Below
+** 1e-12 of the limit the search gives up and uses scale 0 (which still
+** projects). Returns the chosen scale with the positions there and *E
+** its energy. */
 static double line_search(tds_ctx *ctx, tds_surf *s, work *w, double E0,
                           double D, double *E) {
   const double lim = s->scale_limit, tiny = 1e-12 * lim;
@@ -182,30 +210,41 @@ static double line_search(tds_ctx *ctx, tds_surf *s, work *w, double E0,
     *E = trial(ctx, s, w, 0);
     return 0;
   }
+  double sa = 0, Ea = E0, sc, Ec;
   double E1 = trial(ctx, s, w, s1);
-  while (!(E1 < E0)) { /* shrink until the energy goes down */
-    double a = (E1 - E0 - D * s1) / (s1 * s1);
-    double t = a > 0 ? -D / (2 * a) : s1 / 2;
-    if (!(t < 0.5 * s1)) t = 0.5 * s1;
-    if (!(t > 0.1 * s1)) t = 0.1 * s1;
-    s1 = t;
-    if (s1 < tiny) {
-      *E = trial(ctx, s, w, 0);
-      return 0;
+  if (E1 < E0) { /* double while the energy goes down */
+    for (;;) {
+      sc = 2 * s1 < lim ? 2 * s1 : lim;
+      if (!(sc > s1)) { /* at the limit and still going down */
+        *E = E1;
+        return s1;
+      }
+      Ec = trial(ctx, s, w, sc);
+      if (!(Ec < E1)) break;
+      sa = s1, Ea = E1, s1 = sc, E1 = Ec;
     }
-    E1 = trial(ctx, s, w, s1);
+  } else { /* halve until below E0 */
+    do {
+      sc = s1, Ec = E1;
+      s1 = 0.5 * s1;
+      if (s1 < tiny) {
+        *E = trial(ctx, s, w, 0);
+        return 0;
+      }
+      E1 = trial(ctx, s, w, s1);
+    } while (!(E1 < E0));
   }
-  /* s1 lowers the energy: one interpolated (or extrapolated) try. */
-  double a = (E1 - E0 - D * s1) / (s1 * s1);
-  double t = a > 0 ? -D / (2 * a) : 4 * s1;
-  if (t > 4 * s1) t = 4 * s1;
-  if (t > lim) t = lim;
-  if (!(fabs(t - s1) > 0.05 * s1)) { /* close enough: keep s1 */
-    *E = E1;
-    return s1;
+  /* sa < s1 < sc with E1 below both ends */
+  double t = parabola_min(sa, Ea, s1, E1, sc, Ec);
+  if (!(t > sa && t < sc) || !(fabs(t - s1) > 1e-3 * s1)) {
+    if (!(t > sa && t < sc)) t = s1;
+    if (t == s1 || !(fabs(t - s1) > 1e-3 * s1)) {
+      *E = trial(ctx, s, w, s1);
+      return s1;
+    }
   }
   double Et = trial(ctx, s, w, t);
-  if (Et < E1) {
+  if (Et <= E1) {
     *E = Et;
     return t;
   }
@@ -302,6 +341,7 @@ int tds_iterate(tds_ctx *ctx, tds_surf *s, int n) {
   }
   tds_progress_begin(ctx, 'g', n);
   int last = 0; /* countdown number of the last step done */
+  int warned = 0; /* the stall warning is given once per command */
   for (int i = n; i > 0; i--) {
     rc = step(ctx, s, &w);
     if (rc != TDS_OK && n > 1) { /* say which step failed */
@@ -321,6 +361,19 @@ int tds_iterate(tds_ctx *ctx, tds_surf *s, int n) {
                 "in 10 projections\n");
       w.unconverged = 0;
     }
+    if (!warned) { /* once per command, and not again for the same facet */
+      tds_stall_out so;
+      tds_stall_scan(s, &so);
+      int collapsed = tds_stall_collapsed(s, w.slope, s->energy);
+      if (so.degenerate || collapsed) {
+        warned = 1;
+        if (s->stall_facet != tds_stall_facet(&so) + 1) {
+          tds_progress_erase(ctx);
+          tds_stall_warn(ctx, s, &so, collapsed);
+          s->stall_facet = tds_stall_facet(&so) + 1;
+        }
+      }
+    }
     if (ctx->interrupt) {
       ctx->interrupt = 0;
       rc = tds_seterr(ctx, TDS_EINTR, "interrupted: %d of %d iterations done",
@@ -328,6 +381,7 @@ int tds_iterate(tds_ctx *ctx, tds_surf *s, int n) {
       break;
     }
   }
+  if (!warned && rc == TDS_OK) s->stall_facet = 0; /* healthy again */
   if (tds_progress_end(ctx) > 0) /* the live line replaced them: the last */
     tds_printf(ctx, "%3d. area: %#17.15g energy: %#17.15g  scale: %g\n", last,
                s->area, s->energy, s->scale);

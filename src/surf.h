@@ -94,6 +94,7 @@ typedef struct tds_surf {
   double cg_norm2;        /* |velocity|^2 of the last step (0: restart) */
   int32_t cg_nv;          /* vertex slots cg_dir covers */
   uint64_t cg_topo;       /* topo_gen the history belongs to */
+  int32_t stall_facet;    /* facet slot + 1 of g's last stall warning; 0 none */
 
   char *read_text;        /* a datafile's read section, kept verbatim */
 
