@@ -57,10 +57,12 @@ static int l_refine(lua_State *L) {
   return 1;
 }
 
-/* tds.equiangulate([edges]) -> flips */
+/* tds.equiangulate([edges [, repeat]]) -> flips: one pass as Evolver, or
+** with repeat until no edge fails the test. */
 static int l_equiangulate(lua_State *L) {
   tds_state *st = TDS_STATE(L);
-  int32_t n = run_on_set(L, st, TDS_EDGE, tds_equiangulate);
+  int rep = lua_toboolean(L, 2);
+  int32_t n = run_on_set(L, st, TDS_EDGE, rep ? tds_equiangulate : tds_equiangulate_once);
   tds_printf(&st->ctx, "Edges switched in equiangulation: %d\n", n);
   return 1;
 }

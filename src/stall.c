@@ -92,6 +92,15 @@ void tds_stall_warn(tds_ctx *ctx, const tds_surf *s, const tds_stall_out *o,
               "force is not small\n", s->scale);
   else
     tds_warnf(ctx, "warning: g: a facet has degenerated\n");
+  if (!o->degenerate) { /* not the mesh's fault, as far as facets show */
+    tds_warnf(ctx, "  no facet is degenerate (smallest angle %g degrees, on "
+              "facet %d)\n", o->angle, (int)o->worst + 1);
+    tds_warnf(ctx, "  remedies: %s; u and V between runs of g if the mesh "
+              "is poor\n", s->conj_grad
+                  ? "restart the conjugate gradient history (U 2)"
+                  : "conjugate gradient (U) or a fixed scale (m) for a few steps");
+    return;
+  }
   if (by_area(o))
     tds_warnf(ctx, "  facet %d has area %g (mean facet area %g)\n", (int)f + 1,
               o->tiny_area, o->mean_area);
