@@ -108,6 +108,7 @@ void tds_stall_warn(tds_ctx *ctx, const tds_surf *s, const tds_stall_out *o,
     tds_warnf(ctx, "  worst facet %d: smallest angle %g degrees, area %g "
               "(mean facet area %g)\n", (int)f + 1, o->angle, o->area, o->mean_area);
   tds_warnf(ctx, "  remedies: u (equiangulate) and V (vertex_average) between "
-            "runs of g, e.g. {g 50; u; V} 10; t (delete short edges) or "
-            "autopop to remove the collapsed facet\n");
+            "runs of g, e.g. {g 50; u; V} 10, with U (conjugate gradient) on "
+            "fine meshes; t (delete short edges) or autopop to remove the "
+            "collapsed facet\n");
 }
