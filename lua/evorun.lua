@@ -554,17 +554,20 @@ local TOGGLE_MSG = {
   conj_grad = "Conjugate gradient now %s. (was %s)",
   quiet = "Quiet %s. (was %s)",
   gravity = "Gravity %s. (was %s)",
+  check_increase = "Increase check %s. (was %s)",
 }
 
 local function toggle_get(name)
   if name == "conj_grad" then return tds.setting("conj_grad") end
   if name == "quiet" then return tds.quiet() end
   if name == "gravity" then local _, on = tds.gravity(); return on end
+  if name == "check_increase" then return tds.setting("check_increase") end
 end
 local function toggle_set(name, on)
   if name == "conj_grad" then tds.setting("conj_grad", on)
   elseif name == "quiet" then tds.quiet(on)
-  elseif name == "gravity" then local g = tds.gravity(); tds.gravity(g, on) end
+  elseif name == "gravity" then local g = tds.gravity(); tds.gravity(g, on)
+  elseif name == "check_increase" then tds.setting("check_increase", on) end
 end
 
 -- Toggles tds has no switch for, accepted in the state tds always is in
@@ -731,7 +734,7 @@ for w in ([[t o O w l K n j J e A a b f k M p Q W y Z z s P D F H h X hessian he
   reset_counts metis kmetis body_metis ometis matrix_inverse matrix_multiply
   exprint show show_expr showq show_trans close_show transforms transform_expr
   display_text delete_text chdir postscript binary_off_file off_file geomview
-  jiggle homothety autopop autochop ribiere check_increase hessian_normal
+  jiggle homothety autopop autochop ribiere hessian_normal
   linear_metric quietgo quietload verbose approximate_curvature runge_kutta
   post_project volgrads_every area_normalization effective_area normal_motion
   hessian_diff ysmp bunch_kaufman sparse_constraints augmented_hessian

@@ -217,6 +217,15 @@ equiangulate = u
 function V(set) tds.vertex_average(set) end
 vertex_average = V
 
+-- check_increase(on): with it on, a g step that would raise the energy is
+-- taken back and g stops (Evolver's toggle). No argument toggles.
+function check_increase(on)
+  local was = tds.setting("check_increase")
+  if on == nil then on = not was end
+  tds.setting("check_increase", on and true or false)
+  print(("Increase check %s. (was %s)"):format(on and "ON" or "OFF", was and "on" or "off"))
+end
+
 -- recalc(): after assigning parameters, put boundary vertices where their
 -- parameters say and constrained vertices back on their constraints (g, r
 -- and pg do this first by themselves).

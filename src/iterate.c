@@ -28,6 +28,7 @@ typedef struct work {
   double E0;         /* energy at the start of the step */
   int at_target;     /* quantities were at target at the start */
   double slope;      /* dE/ds along vel at the start (negative) */
+  int undone;        /* check_increase took the last step back */
 } work;
 
 static void work_free(work *w) {
@@ -310,6 +311,15 @@ static int step(tds_ctx *ctx, tds_surf *s, work *w) {
   }
   if (!isfinite(E)) /* tds_iterate puts the surface back */
     return tds_seterr(ctx, TDS_ENUM, "iteration produced a non-finite energy");
+  if (s->check_increase && E > w->E0) { /* Evolver's check_increase */
+    if (m->nv) {
+      memcpy(m->x, w->x0, (size_t)m->nv * sizeof *w->x0);
+      memcpy(m->vp, w->p0, (size_t)m->nv * sizeof *w->p0);
+    }
+    m->coord_gen++;
+    w->undone = 1;
+    return tds_surf_update(ctx, s);
+  }
   /* Changed parameters: as Evolver, the step is taken from the positions
   ** as they were, then the surface follows the parameters. */
   if (s->placed_gen != s->param_gen) {
@@ -350,6 +360,13 @@ int tds_iterate(tds_ctx *ctx, tds_surf *s, int n) {
       tds_seterr(ctx, rc, "step %d of %d: %s", n - i + 1, n, msg);
     }
     if (rc != TDS_OK) break;
+    if (w.undone) { /* no line for a step taken back; g stops */
+      tds_progress_erase(ctx);
+      tds_warnf(ctx, "warning: motion would have increased the energy: "
+                "coordinates restored, g stopped after %d of %d steps "
+                "(check_increase)\n", n - i, n);
+      break;
+    }
     last = i;
     if (!tds_progress_step(ctx, n - i + 1, s->energy, s->scale))
       tds_printf(ctx, "%3d. area: %#17.15g energy: %#17.15g  scale: %g\n", i,

@@ -188,7 +188,8 @@ static int l_setting(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   static const char *const names[] = {"symmetric_content", "scale_limit",
                                       "constraint_tolerance", "gap_constant",
-                                      "iterations", "conj_grad", NULL};
+                                      "iterations", "conj_grad", "check_increase",
+                                      NULL};
   int which = luaL_checkoption(L, 1, NULL, names);
   tds_surf *s = &st->s;
   int set = !lua_isnone(L, 2);
@@ -215,6 +216,10 @@ static int l_setting(lua_State *L) {
     break;
   case 4:
     lua_pushinteger(L, (lua_Integer)s->iterations);
+    break;
+  case 6:
+    if (set) s->check_increase = lua_toboolean(L, 2);
+    lua_pushboolean(L, s->check_increase);
     break;
   default:
     if (set) {

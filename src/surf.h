@@ -95,6 +95,7 @@ typedef struct tds_surf {
   int32_t cg_nv;          /* vertex slots cg_dir covers */
   uint64_t cg_topo;       /* topo_gen the history belongs to */
   int32_t stall_facet;    /* facet slot + 1 of g's last stall warning; 0 none */
+  int check_increase;     /* undo a g step that raises the energy, stop g */
 
   char *read_text;        /* a datafile's read section, kept verbatim */
 
