@@ -250,9 +250,109 @@ E.fn = {
     if type(v) == "table" then return #v end
     fail("sizeof: expected an array or a string")
   end,
-  valid_constraint = function() fail("valid_constraint: not supported yet") end,
-  valid_boundary = function() fail("valid_boundary: not supported yet") end,
+  -- Matrices (arrays of arrays): the result goes into an existing array of
+  -- the right size, as Evolver requires; the operands may be the result.
+  matrix_determinant = function(a)
+    local m = E.matrix(a, "matrix_determinant")
+    local _, det = E.lu_inverse(m)
+    return det
+  end,
+  matrix_inverse = function(a, b)
+    local m = E.matrix(a, "matrix_inverse")
+    local inv = E.lu_inverse(m)
+    E.matrix_into(b, inv, #m, #m, "matrix_inverse")
+    return inv and 1 or 0
+  end,
+  matrix_multiply = function(a, b, c)
+    local A, B = E.vecmat(a, "matrix_multiply"), E.vecmat(b, "matrix_multiply")
+    if type(b[1]) ~= "table" then -- matrix * vector: the vector is a column
+      B = {}
+      for i = 1, #b do B[i] = { b[i] } end
+    end
+    local n, k, m = #A, #A[1], #B[1]
+    if #B ~= k then fail(("matrix_multiply: sizes %dx%d and %dx%d do not fit"):format(n, k, #B, m)) end
+    local P = {}
+    for i = 1, n do
+      P[i] = {}
+      for j = 1, m do
+        local sum = 0.0
+        for l = 1, k do sum = sum + A[i][l] * B[l][j] end
+        P[i][j] = sum
+      end
+    end
+    if type(a[1]) ~= "table" then P = P[1]; n = 0 end -- vector * matrix
+    if type(b[1]) ~= "table" then -- matrix * vector: a column
+      local v = {}
+      for i = 1, #P do v[i] = P[i][1] end
+      P = v; m = 0
+    end
+    E.matrix_into(c, P, n, m, "matrix_multiply")
+    return 0.0
+  end,
+  valid_constraint = function(n) return tds.declared("constraint", math.floor(num(n))) and 1 or 0 end,
+  valid_boundary = function(n) return tds.declared("boundary", math.floor(num(n))) and 1 or 0 end,
 }
+
+-- A square matrix argument (an array of equal-length number arrays).
+function E.matrix(a, what)
+  local ok = type(a) == "table" and #a > 0
+  for i = 1, ok and #a or 0 do ok = ok and type(a[i]) == "table" and #a[i] == #a end
+  if not ok then fail(what .. ": expected a square matrix (a two-dimensional array)") end
+  return a
+end
+-- A vector (a row) or matrix argument as a matrix.
+function E.vecmat(a, what)
+  if type(a) ~= "table" or #a == 0 then fail(what .. ": expected an array") end
+  if type(a[1]) ~= "table" then
+    return { a }
+  end
+  return a
+end
+-- Inverse (nil if singular) and determinant by Gaussian elimination with
+-- partial pivoting.
+function E.lu_inverse(m)
+  local n = #m
+  local a, inv, det = {}, {}, 1.0
+  for i = 1, n do
+    a[i], inv[i] = {}, {}
+    for j = 1, n do a[i][j] = num(m[i][j]); inv[i][j] = i == j and 1.0 or 0.0 end
+  end
+  for c = 1, n do
+    local p = c
+    for r = c + 1, n do if math.abs(a[r][c]) > math.abs(a[p][c]) then p = r end end
+    if a[p][c] == 0 then return nil, 0.0 end
+    if p ~= c then a[p], a[c] = a[c], a[p]; inv[p], inv[c] = inv[c], inv[p]; det = -det end
+    local d = a[c][c]
+    det = det * d
+    for j = 1, n do a[c][j] = a[c][j] / d; inv[c][j] = inv[c][j] / d end
+    for r = 1, n do
+      if r ~= c and a[r][c] ~= 0 then
+        local f = a[r][c]
+        for j = 1, n do a[r][j] = a[r][j] - f * a[c][j]; inv[r][j] = inv[r][j] - f * inv[c][j] end
+      end
+    end
+  end
+  return inv, det
+end
+-- Copy rows x cols values into the existing array dst (cols 0: a vector
+-- of rows entries; rows 0: a vector of cols entries). A nil src (singular)
+-- leaves dst alone.
+function E.matrix_into(dst, src, rows, cols, what)
+  if src == nil then return end
+  local ok = type(dst) == "table"
+  if ok and rows > 0 and cols > 0 then
+    ok = #dst == rows
+    for i = 1, ok and rows or 0 do ok = ok and type(dst[i]) == "table" and #dst[i] == cols end
+  elseif ok then
+    ok = #dst == (rows > 0 and rows or cols) and type(dst[1]) ~= "table"
+  end
+  if not ok then fail(what .. ": the result array must be defined with the result's size") end
+  if rows > 0 and cols > 0 then
+    for i = 1, rows do for j = 1, cols do dst[i][j] = src[i][j] end end
+  else
+    for i = 1, #src do dst[i] = src[i] end
+  end
+end
 
 -- Elements, generators and attributes (lua/evoelem.lua).
 require("evoelem")
@@ -276,6 +376,8 @@ local INTERNAL = {
   space_dimension = function() return 3.0 end,
   surface_dimension = function() return 2.0 end,
   torus = function() return 0.0 end,
+  -- the identity and the datafile's view transforms (display only in tds)
+  transform_count = function() return tds.setting("view_transforms") + 1.0 end,
   symmetry_group = function() return 0.0 end,
   simplex_representation = function() return 0.0 end,
   lagrange_order = function() return 1.0 end,
@@ -412,6 +514,13 @@ function E.define(name, ty, dims, init)
   rawset(_G, name, E.newvalue(ty, dims, init))
 end
 
+-- define constraint|boundary|quantity TEXT: a datafile declaration added
+-- to the surface (messages at the command's file and line).
+function E.defmodel(text, line)
+  local file = where():match("^(.*):%d+: $")
+  tds.define_text(text, file or "(define)", line)
+end
+
 -- Assignment of v to a variable holding old: a number assigned to an
 -- array sets every element (Evolver's whole-array assignment).
 local function copy(a)
@@ -438,13 +547,15 @@ end
 ---------------------------------------------------------------- quantities
 
 function E.qattr(q, name)
-  local value, target, pressure = tds.quantity_info(q.__quantity)
-  local v = ({ value = value, target = target, pressure = pressure })[name]
+  local value, target, pressure, _, modulus, volconst = tds.quantity_info(q.__quantity)
+  local v = ({ value = value, target = target, pressure = pressure, modulus = modulus,
+               volconst = volconst })[name]
   if v == nil then fail(("quantity %s: attribute '%s' not supported yet"):format(q.__quantity, name)) end
   return v
 end
-function E.setqattr(q, name)
-  fail(("setting %s.%s: not supported yet"):format(q.__quantity, name))
+function E.setqattr(q, name, v)
+  local ok, msg = tds.quantity_set(q.__quantity, name, num(v, name))
+  if not ok then fail(msg) end
 end
 
 ---------------------------------------------------------------- output
@@ -555,19 +666,71 @@ local TOGGLE_MSG = {
   quiet = "Quiet %s. (was %s)",
   gravity = "Gravity %s. (was %s)",
   check_increase = "Increase check %s. (was %s)",
+  little_endian = "little_endian %s. (was %s)",
+  big_endian = "big_endian %s. (was %s)",
 }
+
+-- Byte order of binary_printf: "<" little endian (Evolver's default on
+-- this machine), ">" big endian.
+local endian = "<"
 
 local function toggle_get(name)
   if name == "conj_grad" then return tds.setting("conj_grad") end
   if name == "quiet" then return tds.quiet() end
   if name == "gravity" then local _, on = tds.gravity(); return on end
   if name == "check_increase" then return tds.setting("check_increase") end
+  if name == "little_endian" then return endian == "<" end
+  if name == "big_endian" then return endian == ">" end
 end
 local function toggle_set(name, on)
   if name == "conj_grad" then tds.setting("conj_grad", on)
   elseif name == "quiet" then tds.quiet(on)
   elseif name == "gravity" then local g = tds.gravity(); tds.gravity(g, on)
-  elseif name == "check_increase" then tds.setting("check_increase", on) end
+  elseif name == "check_increase" then tds.setting("check_increase", on)
+  elseif name == "little_endian" then endian = on and "<" or ">"
+  elseif name == "big_endian" then endian = on and ">" or "<" end
+end
+
+-- binary_printf: Evolver's binary formats (%c one byte, %d two-byte and
+-- %ld four-byte integers, %f float, %lf double, %s a string without its
+-- NUL) in the byte order of the endian toggles; other characters are
+-- copied as bytes.
+function E.binary_printf(fmt, ...)
+  if type(fmt) ~= "string" then fail("binary_printf needs a format string") end
+  local args, k, out = table.pack(...), 0, {}
+  local function arg(conv)
+    k = k + 1
+    if k > args.n then fail(("binary_printf: no value for %%%s"):format(conv)) end
+    return args[k]
+  end
+  local i = 1
+  while i <= #fmt do
+    local c = fmt:sub(i, i)
+    if c ~= "%" then
+      out[#out + 1] = c
+      i = i + 1
+    else
+      local conv = fmt:match("^%%(l?[cdfs%%])", i)
+      if not conv then fail(("binary_printf: unknown conversion %s"):format(fmt:sub(i, i + 2))) end
+      i = i + 1 + #conv
+      if conv == "%" then out[#out + 1] = "%"
+      elseif conv == "s" or conv == "ls" then out[#out + 1] = tostring(arg(conv))
+      else
+        local x = num(arg(conv), "binary_printf %" .. conv)
+        if conv == "f" or conv == "lf" then
+          out[#out + 1] = string.pack(endian .. (conv == "f" and "f" or "d"), x)
+        else
+          local bytes = conv == "c" and 1 or conv == "d" and 2 or 4
+          x = x < 0 and math.ceil(x) or math.floor(x)
+          local lim = 1 << (8 * bytes)
+          x = math.tointeger(x) % lim -- two's complement, as C's conversion
+          out[#out + 1] = string.pack(endian .. "I" .. bytes, x)
+        end
+      end
+    end
+  end
+  if k < args.n then fail(("binary_printf: %d values for %d conversions"):format(args.n, k)) end
+  E.out(table.concat(out))
 end
 
 -- Toggles tds has no switch for, accepted in the state tds always is in
@@ -579,7 +742,7 @@ local FIXED_TOGGLE = {
   transforms = "any", clipped = "any", connected = "any", raw_cells = "any",
   show_inner = "any", show_outer = "any", thicken = "any", pscolorflag = "any",
   ps_colorflag = "any", gridflag = "any", crossingflag = "any", labelflag = "any",
-  show_all_edges = "any", big_endian = "any", little_endian = "any", rgb_colors = false,
+  show_all_edges = "any", rgb_colors = false,
   smooth_graph = "any", view_transforms_use_unique_point = "any", visibility_test = "any",
 }
 E.FIXED_TOGGLE = FIXED_TOGGLE
@@ -623,6 +786,7 @@ B.r = function(n) for _ = 1, times(n, "r") do flush(); tds.refine(nil) end end
 B.refine = B.r
 B.u = function(n) for _ = 1, times(n, "u") do flush(); tds.equiangulate(nil) end end
 B.equiangulate = B.u
+B.j = function(t) flush(); tds.jiggle(t ~= nil and num(t, "j") or nil) end
 B.V = function(n) for _ = 1, times(n, "V") do flush(); tds.vertex_average(nil) end end
 B.vertex_average = B.V
 B.v = function()
@@ -690,6 +854,13 @@ B.system = function(cmd)
   flush()
   os.execute(cmd)
 end
+B.matrix_multiply = function(...) E.fn.matrix_multiply(...) end
+B.matrix_inverse = function(...) E.fn.matrix_inverse(...) end
+B.chdir = function(path)
+  if type(path) ~= "string" then fail("chdir needs a folder name string") end
+  local ok, msg = tds.chdir(path)
+  if not ok then fail(msg) end
+end
 B.shell = function() flush(); os.execute(os.getenv("SHELL") or "/bin/sh") end
 B.help = function() help() end
 B.N = function()
@@ -723,7 +894,7 @@ B.convert_to_quantities = function() end
 
 -- Evolver commands tds does not have: named in the error.
 local UNSUPPORTED = {}
-for w in ([[t o O w l K n j J e A a b f k M p Q W y Z z s P D F H h X hessian hessian_seek
+for w in ([[t o O w l K n J e A a b f k M p Q W y Z z s P D F H h X hessian hessian_seek
   saddle ritz eigenprobe lanczos hessian_menu move lagrange edgeweed areaweed edge_divide
   notch dirichlet dirichlet_seek sobolev sobolev_seek delete dissolve pop pop_edge_to_tri
   pop_tri_to_edge pop_quad_to_quad t1_edgeswap edgeswap raw_vertex_average
@@ -731,9 +902,9 @@ for w in ([[t o O w l K n j J e A a b f k M p Q W y Z z s P D F H h X hessian he
   edge_merge facet_merge facet_crosscut reverse_orientation rebody zoom detorus wrap_vertex 
   addload
   logfile keylogfile history pause subcommand breakpoint whereami flush_counts
-  reset_counts metis kmetis body_metis ometis matrix_inverse matrix_multiply
+  reset_counts metis kmetis body_metis ometis
   exprint show show_expr showq show_trans close_show transforms transform_expr
-  display_text delete_text chdir postscript binary_off_file off_file geomview
+  display_text delete_text postscript binary_off_file off_file geomview
   jiggle homothety autopop autochop ribiere hessian_normal
   linear_metric quietgo quietload verbose approximate_curvature runge_kutta
   post_project volgrads_every area_normalization effective_area normal_motion

@@ -217,6 +217,11 @@ equiangulate = u
 function V(set) tds.vertex_average(set) end
 vertex_average = V
 
+-- j(temperature [, set]): Evolver's jiggle (jiggle.h); seeded by
+-- tds.setting("random_seed"), so a script repeats exactly.
+function j(temperature, set) tds.jiggle(temperature, set) end
+jiggle = j
+
 -- check_increase(on): with it on, a g step that would raise the energy is
 -- taken back and g stops (Evolver's toggle). No argument toggles.
 function check_increase(on)

@@ -140,7 +140,7 @@ static int next_attr(df *d, char *w, size_t cap, const char **at, const char *wh
 
 /* Append one entry to the scratch list d->oe (at: where for messages). */
 static int push_oe(df *d, const char *at, int32_t v) {
-  if (tds_grow((void **)&d->oe, sizeof *d->oe, &d->capoe, d->noe + 1))
+  if (tds_grow(&d->ctx->alloc, (void **)&d->oe, sizeof *d->oe, &d->capoe, d->noe + 1))
     return df_err(d, at, TDS_ENOMEM, "out of memory");
   d->oe[d->noe++] = v;
   return TDS_OK;
@@ -321,7 +321,7 @@ static int face_line(df *d) {
   if (n < 3)
     return df_err(d, NULL, TDS_ETOPO, "%s has %d edge%s; at least 3 are needed", what, n,
                   n == 1 ? "" : "s");
-  if (tds_grow((void **)&d->faces, sizeof *d->faces, &d->capfaces, d->nfaces + 1))
+  if (tds_grow(&d->ctx->alloc, (void **)&d->faces, sizeof *d->faces, &d->capfaces, d->nfaces + 1))
     return df_err(d, NULL, TDS_ENOMEM, "out of memory");
   df_face *r = &d->faces[d->nfaces++];
   r->id = id;

@@ -309,7 +309,7 @@ static int h_quantity(df *d, const hdr_kw *k) {
     } else if (!strcmp(w, "modulus")) {
       rc = df_header_value(d, nm ? &ms[nm - 1].modulus : &modulus, what);
     } else if (!strcmp(w, "method") || !strcmp(w, "global_method")) {
-      meth *nms = realloc(ms, (size_t)(nm + 1) * sizeof *ms);
+      meth *nms = tds_realloc(&d->ctx->alloc, ms, (size_t)(nm + 1) * sizeof *ms);
       if (!nms) {
         rc = df_err(d, at, TDS_ENOMEM, "out of memory");
         goto fail;
@@ -404,11 +404,11 @@ static int h_quantity(df *d, const hdr_kw *k) {
       goto fail;
     }
   }
-  free(ms);
+  tds_free(&d->ctx->alloc, ms);
   return TDS_OK;
 fail:
   for (int i = 0; i < nm; i++) df_free3(ms[i].in);
-  free(ms);
+  tds_free(&d->ctx->alloc, ms);
   return rc;
 }
 
@@ -495,6 +495,7 @@ static int h_view_transforms(df *d, const hdr_kw *k) {
   if (rc) return rc;
   if (n > 100000)
     return df_err(d, NULL, TDS_ESYNTAX, "VIEW_TRANSFORMS: too many (%lld)", (long long)n);
+  d->s->view_transforms = (int)n;
   for (int64_t t = 0; t < n; t++) {
     int have;
     for (;;) {

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "iterate.h"
+#include "jiggle.h"
 #include "lua_tds.h"
 #include "recalc.h"
 #include "topo.h"
@@ -72,6 +73,20 @@ static int l_vertex_average(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   run_on_set(L, st, TDS_VERTEX, tds_vertex_average);
   tds_printf(&st->ctx, "Vertex averaging done.\n");
+  return 1;
+}
+
+/* tds.jiggle([temperature [, vertices]]) -> vertices moved (jiggle.h);
+** the temperature defaults to Evolver's jiggle_temperature, 0.05. */
+static int l_jiggle(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  double t = luaL_optnumber(L, 1, 0.05);
+  uint8_t *sel = tds_lua_selection(L, st, 2, TDS_VERTEX);
+  int32_t n = 0;
+  int rc = tds_jiggle(&st->ctx, &st->s, t, sel, &n);
+  free(sel);
+  check_rc(L, st, rc);
+  lua_pushinteger(L, n);
   return 1;
 }
 
@@ -188,8 +203,8 @@ static int l_setting(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   static const char *const names[] = {"symmetric_content", "scale_limit",
                                       "constraint_tolerance", "gap_constant",
-                                      "iterations", "conj_grad", "check_increase",
-                                      NULL};
+                                      "iterations", "conj_grad", "view_transforms",
+                                      "check_increase", "random_seed", NULL};
   int which = luaL_checkoption(L, 1, NULL, names);
   tds_surf *s = &st->s;
   int set = !lua_isnone(L, 2);
@@ -217,9 +232,16 @@ static int l_setting(lua_State *L) {
   case 4:
     lua_pushinteger(L, (lua_Integer)s->iterations);
     break;
-  case 6:
+  case 6: /* read-only: the datafile's count */
+    lua_pushinteger(L, s->view_transforms);
+    break;
+  case 7:
     if (set) s->check_increase = lua_toboolean(L, 2);
     lua_pushboolean(L, s->check_increase);
+    break;
+  case 8: /* the jiggle's generator state (jiggle.h) */
+    if (set) s->rng = (uint64_t)luaL_checkinteger(L, 2);
+    lua_pushinteger(L, (lua_Integer)s->rng);
     break;
   default:
     if (set) {
@@ -249,6 +271,7 @@ void tds_open_cmd(lua_State *L, tds_state *st) {
   static const luaL_Reg fns[] = {
       {"iterate", l_iterate},   {"refine", l_refine},
       {"equiangulate", l_equiangulate}, {"vertex_average", l_vertex_average},
+      {"jiggle", l_jiggle},
       {"totals", l_totals},     {"pressures", l_pressures},
       {"scale", l_scale},       {"optimize", l_optimize},
       {"gravity", l_gravity},   {"check", l_check},

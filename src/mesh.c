@@ -65,14 +65,16 @@ void tds_mesh_init(tds_mesh *m) {
 }
 
 void tds_mesh_free(tds_mesh *m) {
+  tds_alloc a = m->alloc;
   for (int k = 0; k < TDS_NKINDS; k++)
     for (int c = 0; c < kinds[k].ncols; c++)
-      free(FIELD(m, kinds[k].cols[c].off, void *));
-  free(m->vf_start);
-  free(m->vf);
-  free(m->ve_start);
-  free(m->ve);
+      tds_free(&a, FIELD(m, kinds[k].cols[c].off, void *));
+  tds_free(&a, m->vf_start);
+  tds_free(&a, m->vf);
+  tds_free(&a, m->ve_start);
+  tds_free(&a, m->ve);
   tds_mesh_init(m);
+  m->alloc = a;
 }
 
 int tds_mesh_reserve(tds_mesh *m, int kind, int32_t n) {
@@ -84,7 +86,7 @@ int tds_mesh_reserve(tds_mesh *m, int kind, int32_t n) {
   for (int c = 0; c < kinds[kind].ncols; c++) {
     const column *col = &kinds[kind].cols[c];
     void **p = &FIELD(m, col->off, void *);
-    void *q = realloc(*p, (size_t)n * col->size);
+    void *q = tds_realloc(&m->alloc, *p, (size_t)n * col->size);
     if (!q) return TDS_ENOMEM;
     memset((char *)q + (size_t)*cap * col->size, 0,
            (size_t)(n - *cap) * col->size);
@@ -289,6 +291,7 @@ int32_t tds_mesh_count(const tds_mesh *m, int kind) {
 
 int tds_mesh_copy(tds_mesh *dst, const tds_mesh *src) {
   tds_mesh_init(dst);
+  dst->alloc = src->alloc;
   for (int k = 0; k < TDS_NKINDS; k++) {
     int32_t cap = CFIELD(src, kinds[k].cap_off, int32_t);
     if (tds_mesh_reserve(dst, k, cap) != TDS_OK) {

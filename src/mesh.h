@@ -81,13 +81,19 @@ typedef struct tds_mesh {
   int32_t *vf_start, *vf;   /* facets around each vertex, CSR */
   int32_t *ve_start, *ve;   /* oriented edges leaving each vertex, CSR */
   int32_t adj_cap[4];        /* capacities of vf_start, ve_start, vf, ve */
+
+  /* The allocator of every array above (tds.h); zero = the C library.
+  ** Set it right after tds_mesh_init; tds_mesh_free keeps it. */
+  tds_alloc alloc;
 } tds_mesh;
 
 /* Set up an empty mesh. */
 void tds_mesh_init(tds_mesh *m);
-/* Release all storage; the mesh is empty and reusable afterwards. */
+/* Release all storage; the mesh is empty and reusable afterwards (with the
+** same allocator). */
 void tds_mesh_free(tds_mesh *m);
-/* Deep copy of src into an initialised empty dst. TDS_OK or TDS_ENOMEM. */
+/* Deep copy of src into an initialised empty dst, which takes src's
+** allocator. TDS_OK or TDS_ENOMEM. */
 int tds_mesh_copy(tds_mesh *dst, const tds_mesh *src);
 
 /* Make room for at least n slots of `kind` (all columns grow together).

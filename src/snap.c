@@ -8,21 +8,22 @@
 
 void tds_snap_free(tds_snap *sn) {
   if (sn->taken) tds_mesh_free(&sn->m);
-  free(sn->quant);
-  free(sn->cg_dir);
-  free(sn->cg_prev);
+  tds_free(&sn->alloc, sn->quant);
+  tds_free(&sn->alloc, sn->cg_dir);
+  tds_free(&sn->alloc, sn->cg_prev);
   memset(sn, 0, sizeof *sn);
 }
 
-static void *dup_mem(const void *p, size_t n) {
+static void *dup_mem(const tds_alloc *a, const void *p, size_t n) {
   if (!p || !n) return NULL;
-  void *q = malloc(n);
+  void *q = tds_malloc(a, n);
   if (q) memcpy(q, p, n);
   return q;
 }
 
 int tds_snap_take(tds_ctx *ctx, const tds_surf *s, tds_snap *sn) {
   memset(sn, 0, sizeof *sn);
+  sn->alloc = s->m.alloc;
   if (tds_mesh_copy(&sn->m, &s->m) != TDS_OK)
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory (saving the surface)");
   sn->taken = 1;
@@ -37,7 +38,7 @@ int tds_snap_take(tds_ctx *ctx, const tds_surf *s, tds_snap *sn) {
   sn->cg_topo = s->cg_topo;
   int bad = 0;
   if (s->nquant) {
-    sn->quant = malloc((size_t)s->nquant * sizeof *sn->quant);
+    sn->quant = tds_malloc(&s->m.alloc, (size_t)s->nquant * sizeof *sn->quant);
     bad |= !sn->quant;
     for (int i = 0; sn->quant && i < s->nquant; i++) {
       sn->quant[i][0] = s->quant[i].value;
@@ -46,8 +47,8 @@ int tds_snap_take(tds_ctx *ctx, const tds_surf *s, tds_snap *sn) {
   }
   size_t ncg = (size_t)(s->cg_nv > 0 ? s->cg_nv : 0) * sizeof *s->cg_dir;
   if (s->cg_dir && ncg) {
-    sn->cg_dir = dup_mem(s->cg_dir, ncg);
-    sn->cg_prev = dup_mem(s->cg_prev, ncg);
+    sn->cg_dir = dup_mem(&sn->alloc, s->cg_dir, ncg);
+    sn->cg_prev = dup_mem(&sn->alloc, s->cg_prev, ncg);
     bad |= !sn->cg_dir || (s->cg_prev && !sn->cg_prev);
   }
   if (bad) {
