@@ -204,7 +204,8 @@ static int l_setting(lua_State *L) {
   static const char *const names[] = {"symmetric_content", "scale_limit",
                                       "constraint_tolerance", "gap_constant",
                                       "iterations", "conj_grad", "view_transforms",
-                                      "check_increase", "random_seed", NULL};
+                                      "check_increase", "random_seed",
+                                      "evolver_line_search", NULL};
   int which = luaL_checkoption(L, 1, NULL, names);
   tds_surf *s = &st->s;
   int set = !lua_isnone(L, 2);
@@ -238,6 +239,10 @@ static int l_setting(lua_State *L) {
   case 7:
     if (set) s->check_increase = lua_toboolean(L, 2);
     lua_pushboolean(L, s->check_increase);
+    break;
+  case 9:
+    if (set) s->evolver_ls = lua_toboolean(L, 2);
+    lua_pushboolean(L, s->evolver_ls);
     break;
   case 8: /* the jiggle's generator state (jiggle.h) */
     if (set) s->rng = (uint64_t)luaL_checkinteger(L, 2);

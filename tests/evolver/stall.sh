@@ -3,8 +3,9 @@
 # on tankex.fe (a liquid in a cylindrical tank: gravity, contact energy,
 # gap energy on a convex wall, one volume).
 #
-# 1. The line search is Evolver's (double or halve the last scale until a
-#    minimum is bracketed, then the parabola's vertex): from Evolver's own
+# 1. With tds.setting("evolver_line_search", true) the line search is
+#    Evolver's (double or halve the last scale until a minimum is
+#    bracketed, then the parabola's vertex): from Evolver's own
 #    dumps of three evolved states (volume on target to 1e-14), tds's next
 #    step chooses Evolver's scale (1e-6 relative: both compute the same
 #    parabola from trial energies equal to rounding) and reaches its
@@ -37,6 +38,7 @@ for n in 213 600 1000; do
   "$TDS" -q "$dir/state.dmp" -e "
 dofile('$ROOT/tests/evolver/compare.lua')
 local sc, e = nums('$s1')
+tds.setting('evolver_line_search', true)
 g(1)
 same('stall/linesearch/$n/scale', scale, sc, 1e-6)
 same('stall/linesearch/$n/energy', total_energy, e, 1e-11)
