@@ -18,7 +18,9 @@ LUA_CFLAGS = $(shell pkg-config --cflags lua5.4)
 LUA_LIBS = $(shell pkg-config --libs lua5.4)
 CAIRO_CFLAGS = $(shell pkg-config --cflags cairo)
 CAIRO_LIBS = $(shell pkg-config --libs cairo)
-LIBS = $(LUA_LIBS) $(CAIRO_LIBS) -lreadline -lm
+# The sparse symmetric solver (la_mumps.c) and LAPACK (small dense eigenproblems).
+LA_LIBS = -ldmumps_seq -llapack
+LIBS = $(LUA_LIBS) $(CAIRO_LIBS) $(LA_LIBS) -lreadline -lm
 
 BIND_SRC := $(wildcard src/lua_*.c) src/repl.c src/main.c
 # The live view's server: linked into the program only (libmicrohttpd).
@@ -74,7 +76,7 @@ $(BUILD)/prelude.inc: $(LUA_SRC) scripts/embed.sh | $(BUILD)
 	sh scripts/embed.sh $(LUA_SRC) > $@
 
 $(BUILD)/test_%: tests/unit/test_%.c tests/unit/*.h $(LIBTDS) | deps
-	$(CC) $(CFLAGS_ALL) -fopenmp -Isrc -Itests/unit -o $@ $< $(LIBTDS) $(CAIRO_LIBS) -lm
+	$(CC) $(CFLAGS_ALL) -fopenmp -Isrc -Itests/unit -o $@ $< $(LIBTDS) $(CAIRO_LIBS) $(LA_LIBS) -lm
 
 $(BUILD):
 	mkdir -p $(BUILD)
@@ -143,6 +145,7 @@ demo: $(TDS_BIN)
 
 bench: $(TDS_BIN) | deps-test
 	sh bench/cube.sh ./$(TDS_BIN)
+	sh bench/hessian.sh ./$(TDS_BIN)
 	sh bench/pictures.sh ./$(TDS_BIN)
 
 bench-paper: $(TDS_BIN) | deps-test
