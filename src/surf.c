@@ -16,6 +16,7 @@ void tds_surf_init(tds_surf *s) {
   s->constraint_tol = 1e-12;
   s->scale = 0.1;
   s->scale_limit = 1;
+  s->rng = 1; /* a fixed seed: runs repeat */
 }
 
 static void free_exprs(tds_expr **e, int n) {

@@ -99,6 +99,10 @@ typedef struct tds_surf {
   double cg_norm2;        /* |velocity|^2 of the last step (0: restart) */
   int32_t cg_nv;          /* vertex slots cg_dir covers */
   uint64_t cg_topo;       /* topo_gen the history belongs to */
+  int32_t stall_facet;    /* facet slot + 1 of g's last stall warning; 0 none */
+  int check_increase;     /* undo a g step that raises the energy, stop g */
+  int evolver_ls;         /* g's line search: Evolver's bracketing (iterate.c) */
+  uint64_t rng;           /* state of the jiggle's random numbers (jiggle.h) */
 
   char *read_text;        /* a datafile's read section, kept verbatim */
 
