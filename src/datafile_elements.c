@@ -54,9 +54,29 @@ static int read_original(df *d, const char *what) {
 }
 
 /* CONSTRAINT(S) c1 c2 ...: *rev set if a number is negative. */
+/* The slot of the named constraint at the cursor (optionally after '-'),
+** or -1 (nothing consumed). */
+static int named_con(df *d, int *neg) {
+  df_ws(d);
+  const char *p = d->p + (*d->p == '-');
+  size_t n = df_word_len(p);
+  int slot = n ? tds_surf_con_named(d->s, p, n) : -1;
+  if (slot >= 0) {
+    *neg = *d->p == '-';
+    d->p = p + n;
+  }
+  return slot;
+}
+
 static int con_list(df *d, const char *what, tds_cmask *mask, int *rev) {
-  int n = 0;
-  while (df_looks_int(d)) {
+  int n = 0, neg, named;
+  while ((named = named_con(d, &neg)) >= 0 || df_looks_int(d)) {
+    if (named >= 0) {
+      if (neg && rev) *rev = 1;
+      *mask |= (tds_cmask)1 << named;
+      n++;
+      continue;
+    }
     int64_t c;
     const char *a = d->p;
     int rc = df_read_int(d, 1, what, &c);

@@ -168,12 +168,29 @@ static int decl_number(df *d, const char *kw, int (*slot_of)(const tds_surf *, i
 
 static int h_constraint(df *d, const hdr_kw *k) {
   int64_t n;
-  char what[64], w[64];
-  int rc = decl_number(d, k->name, tds_surf_con_slot, &n, what, sizeof what);
+  char what[64], w[64], name[32] = "";
+  int have, rc = df_more(d, &have);
   if (rc) return rc;
+  size_t nl = have ? df_word_len(d->p) : 0;
+  if (nl) { /* a named constraint: the smallest free number */
+    const char *a = d->p;
+    if (nl >= sizeof name)
+      return df_err(d, a, TDS_ESYNTAX, "CONSTRAINT: name longer than %d characters",
+                    (int)sizeof name - 1);
+    if (df_expr_word(a, nl))
+      return df_err(d, a, TDS_ESYNTAX, "CONSTRAINT: '%.*s' is a function or constant name",
+                    (int)nl, a);
+    for (size_t i = 0; i < nl; i++) name[i] = (char)(a[i] >= 'A' && a[i] <= 'Z' ? a[i] + 32 : a[i]);
+    d->p += nl;
+    snprintf(what, sizeof what, "constraint %s", name);
+    if (tds_surf_con_named(d->s, name, nl) >= 0)
+      return df_err(d, a, TDS_ESYNTAX, "%s is declared twice", what);
+    n = tds_surf_con_free_number(d->s);
+  } else if ((rc = decl_number(d, k->name, tds_surf_con_slot, &n, what, sizeof what))) {
+    return rc;
+  }
   int flags = 0;
   for (;;) {
-    int have;
     if ((rc = df_more(d, &have))) return rc;
     if (!have)
       return df_err(d, NULL, TDS_ESYNTAX, "%s: expected FORMULA, found end of file", what);
@@ -210,7 +227,9 @@ static int h_constraint(df *d, const hdr_kw *k) {
   }
   int line = df_line_of(d, NULL);
   rc = tds_model_constraint(d->ctx, d->s, (int)n, flags, f, en, ct);
-  return rc ? df_core(d, line, rc, NULL) : TDS_OK;
+  if (rc) return df_core(d, line, rc, NULL);
+  memcpy(d->s->con[tds_surf_con_slot(d->s, (int)n)].name, name, sizeof name);
+  return TDS_OK;
 }
 
 static int h_boundary(df *d, const hdr_kw *k) {

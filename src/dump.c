@@ -85,7 +85,10 @@ static void cons(out *o, const tds_surf *s, tds_cmask mask, int rev) {
   if (!mask) return;
   fputs(" constraints", o->f);
   for (int c = 0; c < TDS_MAX_CON; c++)
-    if (mask & ((tds_cmask)1 << c)) fprintf(o->f, " %s%d", rev ? "-" : "", s->con[c].number);
+    if (mask & ((tds_cmask)1 << c)) {
+      if (s->con[c].name[0]) fprintf(o->f, " %s%s", rev ? "-" : "", s->con[c].name);
+      else fprintf(o->f, " %s%d", rev ? "-" : "", s->con[c].number);
+    }
 }
 
 /* Nested braces of user array values v (dims dim[d..ndim)), from *k. */
@@ -218,7 +221,11 @@ static void header(out *o, const tds_surf *s) {
     if (best < 0) break;
     const tds_constraint *c = &s->con[best];
     last = c->number;
-    fprintf(f, "CONSTRAINT %d%s%s%s%s\nFORMULA: ", c->number,
+    /* a named one is written by name, in its number's place: reading it
+    ** back gives it the same number (the smallest free one) */
+    if (c->name[0]) fprintf(f, "CONSTRAINT %s", c->name);
+    else fprintf(f, "CONSTRAINT %d", c->number);
+    fprintf(f, "%s%s%s%s\nFORMULA: ",
             (c->flags & TDS_CON_GLOBAL) ? " GLOBAL" : "",
             (c->flags & TDS_CON_CONVEX) ? " CONVEX" : "",
             (c->flags & TDS_CON_NONNEG) ? " NONNEGATIVE" : "",
