@@ -121,8 +121,8 @@ local AGG = { max = true, min = true, sum = true, avg = true, count = true }
 local STMT = {}
 for w in ([[if while do for foreach return break continue abort local procedure
   function define print printf binary_printf errprintf eprint list set unset fix unfix refine
-  equiangulate vertex_average delete dissolve pop edgeswap pop_edge_to_tri pop_tri_to_edge
-  reverse_orientation read exec]]):gmatch("%S+") do
+  equiangulate vertex_average delete dissolve pop edgeswap t1_edgeswap pop_edge_to_tri
+  pop_tri_to_edge reverse_orientation read exec]]):gmatch("%S+") do
   STMT[w] = true
 end
 
@@ -476,7 +476,6 @@ function P:generator()
   local base, arr, kind
   if t.t == "name" and KINDS[t.s] then
     kind = KINDS[t.s]
-    if kind == "facetedge" then self:err("facetedge: not supported yet", t) end
     if self:isop("[") then
       self:next()
       local i = asnum(self:expr())
@@ -1166,7 +1165,7 @@ local function oncollection(name)
   end
 end
 for _, w in ipairs { "refine", "equiangulate", "vertex_average", "delete", "dissolve", "pop", "edgeswap",
-                     "pop_edge_to_tri", "pop_tri_to_edge", "reverse_orientation" } do
+                     "t1_edgeswap", "pop_edge_to_tri", "pop_tri_to_edge", "reverse_orientation" } do
   P["s_" .. w] = oncollection(w)
 end
 

@@ -434,6 +434,7 @@ function E.getv(name, cur)
   if v == nil and low ~= name then v = _G[low] end
   if v == nil and cur and E.has_extra(cur, low) then return E.attr(cur, low) end
   if v == nil and tds.quantity_info(low) ~= nil then return { __quantity = low } end
+  if v == nil then v = tds.constraint_named(low) end -- a named constraint is its number
   if v == nil then fail(("undefined variable '%s'"):format(name)) end
   if type(v) == "function" then
     if name == "new_body" then E.touch(); return v() end -- Evolver writes it without ()
@@ -673,6 +674,7 @@ local TOGGLE_MSG = {
   conj_grad = "Conjugate gradient now %s. (was %s)",
   quiet = "Quiet %s. (was %s)",
   gravity = "Gravity %s. (was %s)",
+  check_increase = "Increase check %s. (was %s)",
   little_endian = "little_endian %s. (was %s)",
   big_endian = "big_endian %s. (was %s)",
   hessian_normal = "hessian_normal %s. (was %s)",
@@ -688,6 +690,7 @@ local function toggle_get(name)
   if name == "conj_grad" then return tds.setting("conj_grad") end
   if name == "quiet" then return tds.quiet() end
   if name == "gravity" then local _, on = tds.gravity(); return on end
+  if name == "check_increase" then return tds.setting("check_increase") end
   if name == "little_endian" then return endian == "<" end
   if name == "big_endian" then return endian == ">" end
   if name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff" then
@@ -698,6 +701,7 @@ local function toggle_set(name, on)
   if name == "conj_grad" then tds.setting("conj_grad", on)
   elseif name == "quiet" then tds.quiet(on)
   elseif name == "gravity" then local g = tds.gravity(); tds.gravity(g, on)
+  elseif name == "check_increase" then tds.setting("check_increase", on)
   elseif name == "little_endian" then endian = on and "<" or ">"
   elseif name == "big_endian" then endian = on and ">" or "<"
   elseif name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff" then
@@ -818,13 +822,12 @@ B.edge_divide = cutcmd("edge_divide", "cutoff edge length", tds.edge_divide)
 B.K = cutcmd("K", "cutoff angle", tds.skinny)
 B.n = cutcmd("n", "cutoff angle", tds.notch)
 B.notch = cutcmd("notch", "cutoff angle", tds.notch)
-B.j = function(temp) flush(); tds.jiggle(temp ~= nil and num(temp, "j") or 0.05) end
-B.jiggle = B.j
 B.o = function()
   flush()
   local ok, err = pcall(tds.pop, nil)
   if not ok then err = tostring(err); fail("o: " .. (err:match("not supported.*") or err)) end
 end
+B.j = function(t) flush(); tds.jiggle(t ~= nil and num(t, "j") or nil) end
 B.V = function(n) for _ = 1, times(n, "V") do flush(); tds.vertex_average(nil) end end
 B.vertex_average = B.V
 B.v = function()
@@ -967,7 +970,7 @@ for w in ([[O J e A a b f k M p Q W y Z z s P D F H h X
   reset_counts metis kmetis body_metis ometis
   exprint show show_expr showq show_trans close_show transforms transform_expr
   display_text delete_text postscript binary_off_file off_file geomview
-  homothety autopop autochop ribiere check_increase
+  homothety autopop autochop ribiere
   quietgo quietload verbose approximate_curvature runge_kutta
   post_project volgrads_every area_normalization effective_area normal_motion
   ysmp bunch_kaufman sparse_constraints augmented_hessian
@@ -1102,6 +1105,9 @@ function E.oncollection(name, kind, list)
   elseif name == "edgeswap" then
     if kind ~= "edge" then fail("edgeswap needs edges") end
     tds.edgeswap(list)
+  elseif name == "t1_edgeswap" then -- the string model (doc/string.md)
+    if kind ~= "edge" then fail("t1_edgeswap needs edges") end
+    tds.string_t1(list)
   else
     fail(name .. ": not supported yet")
   end

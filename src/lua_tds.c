@@ -188,6 +188,7 @@ tds_state *tds_lua_open(lua_State *L) {
   tds_open_out(L, st);
   tds_open_topo(L, st);
   tds_open_newton(L, st);
+  tds_open_string(L, st);
   lua_setglobal(L, "tds");
 
   lua_getglobal(L, "package");

@@ -78,29 +78,6 @@ static int l_pop(lua_State *L) {
   return 1;
 }
 
-/* tds.jiggle(temp [, seed]) -> vertices moved. The stream's state lives
-** in the registry ("tds.jiggle_rng", starting at seed 1); a seed restarts
-** it, so `j(0.05, 7)` is the same jiggle every time. */
-static int l_jiggle(lua_State *L) {
-  tds_state *st = TDS_STATE(L);
-  double temp = tds_lua_checkfinite(L, 1, "temperature");
-  uint64_t rng = 1;
-  if (!lua_isnoneornil(L, 2)) {
-    rng = (uint64_t)luaL_checkinteger(L, 2);
-  } else {
-    lua_getfield(L, LUA_REGISTRYINDEX, "tds.jiggle_rng");
-    if (lua_isinteger(L, -1)) rng = (uint64_t)lua_tointeger(L, -1);
-    lua_pop(L, 1);
-  }
-  int32_t n = 0;
-  int rc = tds_jiggle(&st->ctx, &st->s, temp, &rng, &n);
-  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
-  lua_pushinteger(L, (lua_Integer)rng);
-  lua_setfield(L, LUA_REGISTRYINDEX, "tds.jiggle_rng");
-  lua_pushinteger(L, n);
-  return 1;
-}
-
 /* tds.pop_edge_to_tri([edges]), tds.pop_tri_to_edge([facets]) -> count */
 static int l_pop_edge_to_tri(lua_State *L) {
   return on_set(L, TDS_EDGE, tds_pop_edge_to_tri, "Edges popped to triangles: %d\n");
@@ -195,7 +172,6 @@ void tds_open_topo(lua_State *L, tds_state *st) {
       {"delete_facets", l_delete_facets}, {"edgeswap", l_edgeswap},
       {"delete", l_delete},
       {"pop", l_pop},
-      {"jiggle", l_jiggle},
       {"dissolve", l_dissolve},         {"reverse_orientation", l_reverse},
       {"pop_edge_to_tri", l_pop_edge_to_tri}, {"pop_tri_to_edge", l_pop_tri_to_edge},
       {NULL, NULL}};

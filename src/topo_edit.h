@@ -1,7 +1,7 @@
 /*
 ** topo_edit.h: mesh-maintenance commands beyond r, u and V (Evolver's t,
 ** w, l, K, n, delete, edgeswap, o, pop_edge_to_tri, pop_tri_to_edge,
-** jiggle).
+** dissolve, reverse_orientation).
 **
 ** Every command here is all or nothing (a snapshot, snap.h): it checks
 ** what it needs, and any failure (out of memory, a non-finite energy
@@ -75,12 +75,6 @@ int tds_edgeswap(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
 ** before. *n: vertices split. */
 int tds_pop_vertices(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
 
-/* j / jiggle: move every vertex that is not fixed or on a boundary by a
-** Gaussian displacement of deviation temp times the mean edge length in
-** each coordinate, then project it back onto its constraints. The
-** random stream is splitmix64 from *rng, which is advanced on success
-** only, so the same seed gives the same jiggle. *n: vertices moved. */
-int tds_jiggle(tds_ctx *ctx, tds_surf *s, double temp, uint64_t *rng, int32_t *n);
 
 /* pop_edge_to_tri (sel over edges): each edge of valence 3 between two
 ** free tetrahedral points (four triple edges each, all other edges of
