@@ -6,6 +6,16 @@
 #include <stdlib.h>
 #include <string.h>
 
+int tds_contract_err(tds_ctx *ctx, const char *file, int line, const char *cond) {
+  return tds_seterr(ctx, TDS_EBUG, "%s:%d: broken contract: %s", file, line, cond);
+}
+
+void tds_contract_abort(const char *file, int line, const char *cond) {
+  fprintf(stderr, "%s:%d: broken contract: %s\n", file, line, cond);
+  fflush(stderr);
+  abort();
+}
+
 void tds_ctx_init(tds_ctx *ctx) {
   memset(ctx, 0, sizeof *ctx);
 }
