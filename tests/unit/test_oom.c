@@ -288,12 +288,15 @@ typedef struct opcase {
   const char *file;  /* datafile loaded by the set-up (or by the op) */
   int refine, steps; /* set-up after the load: r's, then g steps */
   char op;           /* 'L' load, 'r', 'g', 'u', 'V', 'd' dump, 'p' pg,
-                        'h' Hessian (assembly, KKT, reduction), 'x' export */
+                        'h' Hessian (assembly, KKT, reduction), 'x' export,
+                        'q' and 'c' run-time define of a quantity and of a
+                        global constraint with an energy integrand */
 } opcase;
 
 static int prepare(tds_ctx *ctx, tds_surf *s, const opcase *c) {
   if (c->op == 'L') return TDS_OK;
   int rc = tds_datafile_load(ctx, s, c->file);
+  if (rc == TDS_OK && tds_surf_param_set(s, "wob", 0.5) < 0) rc = TDS_ENOMEM;
   if (rc == TDS_OK) rc = tds_surf_update(ctx, s);
   for (int i = 0; i < c->refine && rc == TDS_OK; i++) rc = tds_refine(ctx, s, NULL, NULL);
   if (rc == TDS_OK && c->steps) rc = tds_iterate(ctx, s, c->steps);
@@ -331,6 +334,17 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
     po.every = -1;
     return tds_pg_run(ctx, s, &po, &pr);
   case 'h': return hessian(ctx, s);
+  case 'q': {
+    static const char q[] = "quantity qq energy modulus 2 method facet_vector_integral global\n"
+                            "vector_integrand:\nq1: 0\nq2: 0\nq3: z*wob\n"
+                            "method edge_length global";
+    return tds_datafile_define(ctx, s, "(define)", 1, q, sizeof q - 1);
+  }
+  case 'c': {
+    static const char k[] = "constraint 9 global nonnegative\nformula: z + 5 = 0\n"
+                            "energy:\ne1: 0\ne2: -x*wob\ne3: 0";
+    return tds_datafile_define(ctx, s, "(define)", 1, k, sizeof k - 1);
+  }
   case 'x': return tds_export(ctx, s, dump_path, &xo);
   case 'L': return tds_datafile_load(ctx, s, c->file);
   case 'r': return tds_refine(ctx, s, NULL, &n);
@@ -505,6 +519,10 @@ static void oom_dump(void) { sweep_all('d', 1, 2); }
 static void oom_pg(void) { sweep_all('p', 1, 0); }
 static void oom_hessian(void) { sweep_all('h', 1, 2); }
 static void oom_export(void) { sweep_all('x', 1, 0); }
+static void oom_define(void) {
+  sweep_all('q', 0, 0);
+  sweep_all('c', 0, 0);
+}
 
 /* The double bubble is what it claims: two bodies of volume 1 sharing a
 ** wall, every facet on one or two bodies, and its perturbed twin loads
@@ -547,6 +565,7 @@ int main(void) {
   RUN(oom_pg);
   RUN(oom_hessian);
   RUN(oom_export);
+  RUN(oom_define);
   unlink(bubble_path);
   unlink(pbubble_path);
   unlink(dump_path);
