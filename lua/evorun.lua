@@ -376,6 +376,8 @@ local INTERNAL = {
   space_dimension = function() return 3.0 end,
   surface_dimension = function() return 2.0 end,
   torus = function() return 0.0 end,
+  -- the identity and the datafile's view transforms (display only in tds)
+  transform_count = function() return tds.setting("view_transforms") + 1.0 end,
   symmetry_group = function() return 0.0 end,
   simplex_representation = function() return 0.0 end,
   lagrange_order = function() return 1.0 end,
@@ -663,17 +665,69 @@ local TOGGLE_MSG = {
   conj_grad = "Conjugate gradient now %s. (was %s)",
   quiet = "Quiet %s. (was %s)",
   gravity = "Gravity %s. (was %s)",
+  little_endian = "little_endian %s. (was %s)",
+  big_endian = "big_endian %s. (was %s)",
 }
+
+-- Byte order of binary_printf: "<" little endian (Evolver's default on
+-- this machine), ">" big endian.
+local endian = "<"
 
 local function toggle_get(name)
   if name == "conj_grad" then return tds.setting("conj_grad") end
   if name == "quiet" then return tds.quiet() end
   if name == "gravity" then local _, on = tds.gravity(); return on end
+  if name == "little_endian" then return endian == "<" end
+  if name == "big_endian" then return endian == ">" end
 end
 local function toggle_set(name, on)
   if name == "conj_grad" then tds.setting("conj_grad", on)
   elseif name == "quiet" then tds.quiet(on)
-  elseif name == "gravity" then local g = tds.gravity(); tds.gravity(g, on) end
+  elseif name == "gravity" then local g = tds.gravity(); tds.gravity(g, on)
+  elseif name == "little_endian" then endian = on and "<" or ">"
+  elseif name == "big_endian" then endian = on and ">" or "<" end
+end
+
+-- binary_printf: Evolver's binary formats (%c one byte, %d two-byte and
+-- %ld four-byte integers, %f float, %lf double, %s a string without its
+-- NUL) in the byte order of the endian toggles; other characters are
+-- copied as bytes.
+function E.binary_printf(fmt, ...)
+  if type(fmt) ~= "string" then fail("binary_printf needs a format string") end
+  local args, k, out = table.pack(...), 0, {}
+  local function arg(conv)
+    k = k + 1
+    if k > args.n then fail(("binary_printf: no value for %%%s"):format(conv)) end
+    return args[k]
+  end
+  local i = 1
+  while i <= #fmt do
+    local c = fmt:sub(i, i)
+    if c ~= "%" then
+      out[#out + 1] = c
+      i = i + 1
+    else
+      local conv = fmt:match("^%%(l?[cdfs%%])", i)
+      if not conv then fail(("binary_printf: unknown conversion %s"):format(fmt:sub(i, i + 2))) end
+      i = i + 1 + #conv
+      if conv == "%" then out[#out + 1] = "%"
+      elseif conv == "s" or conv == "ls" then out[#out + 1] = tostring(arg(conv))
+      else
+        local x = num(arg(conv), "binary_printf %" .. conv)
+        if conv == "f" or conv == "lf" then
+          out[#out + 1] = string.pack(endian .. (conv == "f" and "f" or "d"), x)
+        else
+          local bytes = conv == "c" and 1 or conv == "d" and 2 or 4
+          x = x < 0 and math.ceil(x) or math.floor(x)
+          local lim = 1 << (8 * bytes)
+          x = math.tointeger(x) % lim -- two's complement, as C's conversion
+          out[#out + 1] = string.pack(endian .. "I" .. bytes, x)
+        end
+      end
+    end
+  end
+  if k < args.n then fail(("binary_printf: %d values for %d conversions"):format(args.n, k)) end
+  E.out(table.concat(out))
 end
 
 -- Toggles tds has no switch for, accepted in the state tds always is in
@@ -685,7 +739,7 @@ local FIXED_TOGGLE = {
   transforms = "any", clipped = "any", connected = "any", raw_cells = "any",
   show_inner = "any", show_outer = "any", thicken = "any", pscolorflag = "any",
   ps_colorflag = "any", gridflag = "any", crossingflag = "any", labelflag = "any",
-  show_all_edges = "any", big_endian = "any", little_endian = "any", rgb_colors = false,
+  show_all_edges = "any", rgb_colors = false,
   smooth_graph = "any", view_transforms_use_unique_point = "any", visibility_test = "any",
 }
 E.FIXED_TOGGLE = FIXED_TOGGLE

@@ -495,6 +495,7 @@ static int h_view_transforms(df *d, const hdr_kw *k) {
   if (rc) return rc;
   if (n > 100000)
     return df_err(d, NULL, TDS_ESYNTAX, "VIEW_TRANSFORMS: too many (%lld)", (long long)n);
+  d->s->view_transforms = (int)n;
   for (int64_t t = 0; t < n; t++) {
     int have;
     for (;;) {

@@ -80,6 +80,8 @@ typedef struct tds_surf {
   double gravity;         /* G */
   int gravity_on;         /* gravity energy active */
   int symmetric_content;  /* volume via (x,y,z)/3 . dS */
+  int view_transforms;    /* VIEW_TRANSFORMS count of the datafile (display
+                             only: the matrices are not kept) */
   double gap_constant;    /* spring constant for convex constraints */
   double constraint_tol;  /* level-set projection tolerance */
 
