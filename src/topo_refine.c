@@ -79,13 +79,17 @@ static void split_facet(tds_mesh *m, tds_id f, const tds_id *midv,
     mm[k] = mid[(k + r) % 3];
   }
   if (nsplit == 3) {
-    tds_id e01 = inner_edge(m, f, mm[0], mm[1]);
-    tds_id e12 = inner_edge(m, f, mm[1], mm[2]);
-    tds_id e20 = inner_edge(m, f, mm[2], mm[0]);
-    new_facet(m, f, half(e2, o[0], 1), half(e2, o[1], 0), TDS_OREF(e01, 1));
-    new_facet(m, f, half(e2, o[1], 1), half(e2, o[2], 0), TDS_OREF(e12, 1));
-    new_facet(m, f, TDS_OREF(e01, 0), TDS_OREF(e12, 0), TDS_OREF(e20, 0));
-    set3(m, f, half(e2, o[0], 0), TDS_OREF(e20, 1), half(e2, o[2], 1));
+    /* Numbered as Evolver numbers them, so element ids after r agree: the
+    ** inner edges cut off the corners a0, a1, a2 in turn, each oriented
+    ** along its corner triangle; the corner triangles are new facets in
+    ** that order, and f becomes the middle one, starting at m1. */
+    tds_id c0 = inner_edge(m, f, mm[0], mm[2]);
+    tds_id c1 = inner_edge(m, f, mm[1], mm[0]);
+    tds_id c2 = inner_edge(m, f, mm[2], mm[1]);
+    new_facet(m, f, half(e2, o[0], 0), TDS_OREF(c0, 0), half(e2, o[2], 1));
+    new_facet(m, f, half(e2, o[0], 1), half(e2, o[1], 0), TDS_OREF(c1, 0));
+    new_facet(m, f, TDS_OREF(c2, 0), half(e2, o[1], 1), half(e2, o[2], 0));
+    set3(m, f, TDS_OREF(c2, 1), TDS_OREF(c0, 1), TDS_OREF(c1, 1));
   } else if (nsplit == 2) {
     /* Edges 0 (a0->a1) and 1 (a1->a2) split: corner at a1, then the quad
     ** a0, m0, m1, a2 cut along its shorter diagonal. */
