@@ -18,7 +18,9 @@ LUA_CFLAGS = $(shell pkg-config --cflags lua5.4)
 LUA_LIBS = $(shell pkg-config --libs lua5.4)
 CAIRO_CFLAGS = $(shell pkg-config --cflags cairo)
 CAIRO_LIBS = $(shell pkg-config --libs cairo)
-LIBS = $(LUA_LIBS) $(CAIRO_LIBS) -lreadline -lm
+# The sparse symmetric solver (la_mumps.c) and LAPACK (small dense eigenproblems).
+LA_LIBS = -ldmumps_seq -llapack
+LIBS = $(LUA_LIBS) $(CAIRO_LIBS) $(LA_LIBS) -lreadline -lm
 
 BIND_SRC := $(wildcard src/lua_*.c) src/repl.c src/main.c
 # The live view's server: linked into the program only (libmicrohttpd).
@@ -86,7 +88,7 @@ $(BUILD)/chk/%.o: src/%.c | deps $(BUILD)/chk
 -include $(CHK_OBJ:.o=.d)
 
 $(BUILD)/test_%: tests/unit/test_%.c tests/unit/*.h $(LIBTDS_CHK) | deps
-	$(CC) $(CFLAGS_ALL) -DTDS_CHECKS -fopenmp -Isrc -Itests/unit -o $@ $< $(LIBTDS_CHK) $(CAIRO_LIBS) -lm
+	$(CC) $(CFLAGS_ALL) -DTDS_CHECKS -fopenmp -Isrc -Itests/unit -o $@ $< $(LIBTDS_CHK) $(CAIRO_LIBS) $(LA_LIBS) -lm
 
 $(BUILD):
 	mkdir -p $(BUILD)
@@ -158,6 +160,7 @@ demo: $(TDS_BIN)
 
 bench: $(TDS_BIN) | deps-test
 	sh bench/cube.sh ./$(TDS_BIN)
+	sh bench/hessian.sh ./$(TDS_BIN)
 	sh bench/pictures.sh ./$(TDS_BIN)
 
 bench-paper: $(TDS_BIN) | deps-test

@@ -1194,8 +1194,16 @@ function M.translate(text, line0)
   line0 = line0 or 1
   local parts
   local ok, res = pcall(function()
+    -- the user attributes the surface has now (datafile DEFINEs, Lua's
+    -- attribute{}) are attribute names, as those the text defines
+    local extra = {}
+    if tds and tds.attributes then
+      for _, k in ipairs { tds.vertex, tds.edge, tds.facet, tds.body } do
+        for _, a in ipairs(tds.attributes(k)) do if a.user then extra[a.name] = true end end
+      end
+    end
     local p = setmetatable({ text = text, toks = lex(text, line0), i = 1, nsym = 0, depth = 0, scopes = { {} },
-                             elems = {}, loops = {}, extra = {} }, P)
+                             elems = {}, loops = {}, extra = extra }, P)
     -- Each input line (with its continuations) is one command for abort,
     -- as at Evolver's prompt: E.top runs it.
     local unit

@@ -155,7 +155,7 @@ static int finish(df *d) {
         tds_warnf(d->ctx, "%s: vertex %d: projection onto its constraints did not converge\n",
                   d->name, v + 1);
     }
-  s->gravity_on = d->density_given;
+  /* gravity_on: set by the body density setter (attr_rows.c) */
   if (tds_mesh_check(d->ctx, m) != TDS_OK) {
     char msg[sizeof d->ctx->errmsg];
     memcpy(msg, d->ctx->errmsg, sizeof msg);
@@ -217,6 +217,7 @@ int tds_datafile_load_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
   df_lex_free(&d.lx);
   tds_free(&ctx->alloc, d.faces);
   tds_free(&ctx->alloc, d.oe);
+  tds_free(&ctx->alloc, d.pv);
   if (rc != TDS_OK) {
     if (rc < 0) rc = -rc;
     tds_surf_free(s); /* leaves ctx->errmsg alone */

@@ -21,7 +21,7 @@
 static const char *const unsupported[] = {
     "torus", "torus_filled", "periods", "display_periods", "display_origin",
     "string", "quadratic", "lagrange", "lagrange_order", "simplex_representation",
-    "symmetry_group", "metric", "conformal_metric", "klein_metric", "define",
+    "symmetry_group", "metric", "conformal_metric", "klein_metric",
     "method_instance", "optimizing_parameter", "optimising_parameter", "wulff",
     "phasefile", "diffusion", "pressure", "squared_curvature",
     "square_curvature", "mean_curvature_integral", "gauss_curvature",
@@ -521,6 +521,12 @@ static int h_nothing(df *d, const hdr_kw *k) {
   return TDS_OK;
 }
 
+/* DEFINE kind ATTRIBUTE ... (datafile_define.c) */
+static int h_define(df *d, const hdr_kw *k) {
+  (void)k;
+  return df_define(d, d->p);
+}
+
 /* EVOLVER_VERSION "x" */
 static int h_version(df *d, const hdr_kw *k) {
   (void)k;
@@ -539,6 +545,7 @@ static int h_version(df *d, const hdr_kw *k) {
 
 static const hdr_kw header_kw[] = {
     {"parameter", h_parameter, 0, 0},
+    {"define", h_define, 0, 0},
     {"constraint", h_constraint, 0, 0},
     {"boundary", h_boundary, 0, 0},
     {"quantity", h_quantity, 0, 0},

@@ -47,7 +47,7 @@ static double facet_field(const tds_mesh *m, int field, tds_id f) {
   case 3:
     return m->ften[f];
   default:
-    return m->fcolor[f] ? m->fcolor[f] : 15;
+    return m->fcolor[f]; /* 15 (white) unless given */
   }
 }
 

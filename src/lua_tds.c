@@ -186,6 +186,7 @@ tds_state *tds_lua_open(lua_State *L) {
   tds_open_render(L, st);
   tds_open_check(L, st);
   tds_open_out(L, st);
+  tds_open_newton(L, st);
   lua_setglobal(L, "tds");
 
   lua_getglobal(L, "package");

@@ -83,6 +83,7 @@ int tds_lua_safe(lua_State *L, tds_state *st, const char *outdir);
 ** the reason (the io.open convention). */
 int tds_lua_may_write(lua_State *L, tds_state *st, const char *path);
 void tds_open_out(lua_State *L, tds_state *st);       /* lua_out.c */
+void tds_open_newton(lua_State *L, tds_state *st);    /* lua_newton.c */
 
 /* Push a handle for element (kind, 0-based id). */
 void tds_push_elem(lua_State *L, int kind, tds_id id);

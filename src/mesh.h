@@ -36,6 +36,8 @@ enum { TDS_VERTEX = 0, TDS_EDGE, TDS_FACET, TDS_BODY, TDS_NKINDS };
 
 typedef uint64_t tds_cmask; /* bit c set: on constraint slot c (0..63) */
 
+struct tds_ucol;            /* a user attribute's column (attr.h) */
+
 typedef struct tds_mesh {
   /* vertices */
   int32_t nv, capv;         /* slots used, capacity */
@@ -72,6 +74,11 @@ typedef struct tds_mesh {
   double *bdensity;         /* for gravity */
   double *bpressure;        /* Lagrange multiplier, or prescribed pressure */
   double *bvol;             /* actual volume, as last computed */
+
+  /* user attributes per kind (attr.h): grown, copied and freed with the
+  ** element columns above */
+  struct tds_ucol *ucol[TDS_NKINDS];
+  int nucol[TDS_NKINDS];
 
   uint64_t topo_gen;        /* bumped by every topology change */
   uint64_t coord_gen;       /* bumped by every coordinate change */
@@ -169,6 +176,10 @@ int tds_mesh_check(tds_ctx *ctx, tds_mesh *m);
 ** WARNING 8745) — and about facets of zero area. Returns how many such
 ** edges and facets there are; changes nothing. */
 int32_t tds_mesh_body_warnings(tds_ctx *ctx, const tds_mesh *m, const char *where);
+
+/* Copy the user attribute values of element src to dst (same kind): an
+** element split from another inherits them, as in Evolver. */
+void tds_mesh_inherit(tds_mesh *m, int kind, tds_id dst, tds_id src);
 
 /* Bytes of storage held by the mesh per live facet (for the benchmark). */
 size_t tds_mesh_bytes(const tds_mesh *m);

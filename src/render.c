@@ -195,8 +195,8 @@ static void facet_color(const tds_mesh *m, tds_id f, int mode, double v,
     break;
   }
   case TDS_RCOL_COLOR:
-    /* tds stores 0 for a facet given no colour: Evolver's default, white. */
-    tds_render_evolver_color(m->fcolor[f] == 0 ? 15 : m->fcolor[f], rgb);
+    /* a facet given no colour has Evolver's default, 15 (white) */
+    tds_render_evolver_color(m->fcolor[f], rgb);
     break;
   case TDS_RCOL_NONE:
     v3_copy(rgb, neutral);

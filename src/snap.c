@@ -2,6 +2,8 @@
 ** of the check mode (contracts in snap.h). */
 #include "snap.h"
 
+#include "attr.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -143,6 +145,17 @@ int tds_snap_same(tds_ctx *ctx, const tds_surf *s, const tds_snap *sn) {
   SAME(bdensity, a->nb, "body");
   SAME(bpressure, a->nb, "body");
   SAME(bvolconst, a->nb, "body");
+  const int32_t cnt[TDS_NKINDS] = {a->nv, a->ne, a->nf, a->nb};
+  for (int k = 0; k < TDS_NKINDS; k++) {
+    if (a->nucol[k] != b->nucol[k])
+      return tds_seterr(ctx, TDS_ENUM, "%s attributes were defined", tds_kind_name[k]);
+    for (int c = 0; c < a->nucol[k]; c++) {
+      const tds_ucol *u = &a->ucol[k][c];
+      int32_t i = diff_rows(u->v, b->ucol[k][c].v, cnt[k], sizeof(double) * (size_t)u->size);
+      if (i >= 0)
+        return tds_seterr(ctx, TDS_ENUM, "%s %d changed (%s)", tds_kind_name[k], i + 1, u->name);
+    }
+  }
   if (s->nquant != sn->nquant)
     return tds_seterr(ctx, TDS_ENUM, "number of quantities changed");
   for (int i = 0; i < s->nquant; i++)
@@ -183,6 +196,15 @@ int tds_surf_all_finite(tds_ctx *ctx, const tds_surf *s, int derived) {
       if (!isfinite(val[k]))
         return tds_seterr(ctx, TDS_ENUM, "body %d: %s is %g", b + 1, name[k], val[k]);
   }
+  for (int k = 0; k < TDS_NKINDS; k++)
+    for (int c = 0; c < m->nucol[k]; c++) {
+      const tds_ucol *u = &m->ucol[k][c];
+      int32_t n = k == TDS_VERTEX ? m->nv : k == TDS_EDGE ? m->ne : k == TDS_FACET ? m->nf : m->nb;
+      for (size_t i = 0; i < (size_t)n * (size_t)u->size; i++)
+        if (!isfinite(u->v[i]))
+          return tds_seterr(ctx, TDS_ENUM, "%s %d: %s is %g", tds_kind_name[k],
+                            (int)(i / (size_t)u->size) + 1, u->name, u->v[i]);
+    }
   for (int i = 0; i < s->npar; i++)
     if (!isfinite(s->parval[i]))
       return tds_seterr(ctx, TDS_ENUM, "parameter %s is %g", s->parname[i], s->parval[i]);

@@ -91,7 +91,16 @@ int tds_spmat_from_trip(const tds_sptrip *t, int upper, tds_spmat *out) {
   for (int32_t j = 0; j < nc; j++) {
     rv *c = e + cnt[j];
     int64_t len = cnt[j + 1] - cnt[j];
-    qsort(c, (size_t)len, sizeof *c, by_row);
+    if (len <= 48) { /* short columns (a mesh's): insertion sort */
+      for (int64_t a = 1; a < len; a++) {
+        rv x = c[a];
+        int64_t b = a;
+        for (; b > 0 && c[b - 1].r > x.r; b--) c[b] = c[b - 1];
+        c[b] = x;
+      }
+    } else {
+      qsort(c, (size_t)len, sizeof *c, by_row);
+    }
     int64_t start = n;
     for (int64_t k = 0; k < len; k++) {
       if (n > start && e[n - 1].r == c[k].r) e[n - 1].v += c[k].v;

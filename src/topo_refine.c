@@ -25,6 +25,7 @@ static void inherit_facet(tds_mesh *m, tds_id dst, tds_id src) {
   m->fb[dst][0] = m->fb[src][0];
   m->fb[dst][1] = m->fb[src][1];
   m->forig[dst] = m->forig[src] != TDS_NONE ? m->forig[src] : src;
+  tds_mesh_inherit(m, TDS_FACET, dst, src);
 }
 
 /* A new edge inside facet f, from v0 to v1. */
@@ -135,6 +136,7 @@ static tds_id split_edge(tds_surf *s, tds_id e, int32_t *e2) {
   m->ebdry[n] = m->ebdry[e];
   m->eten[n] = m->eten[e];
   m->ecolor[n] = m->ecolor[e];
+  tds_mesh_inherit(m, TDS_EDGE, n, e);
   e2[e] = n;
   return v;
 }
