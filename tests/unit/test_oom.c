@@ -37,6 +37,7 @@
 #include "hess.h"
 #include "helpers.h"
 #include "iterate.h"
+#include "newton.h"
 #include "pg.h"
 #include "topo.h"
 
@@ -54,6 +55,8 @@ typedef struct oom {
   int failed;       /* a failure was injected */
   uint64_t failed_key;
   long live;        /* blocks held */
+  void *fr[16];     /* the stack of the injected failure (OOM_DEBUG) */
+  int nfr;
   int record;       /* store each allocation's site key in keys[] */
   uint64_t *keys;
   long nkeys, capkeys;
@@ -94,6 +97,7 @@ static void *oom_fn(void *ud, void *p, size_t n) {
   if (!o->failed && (o->count == o->fail_at || (o->fail_key && key == o->fail_key))) {
     o->failed = 1;
     o->failed_key = key;
+    o->nfr = backtrace(o->fr, 16);
     return NULL;
   }
   void *q = realloc(p, n);
@@ -290,7 +294,9 @@ typedef struct opcase {
   char op;           /* 'L' load, 'r', 'g', 'u', 'V', 'd' dump, 'p' pg,
                         'h' Hessian (assembly, KKT, reduction), 'x' export,
                         'q' and 'c' run-time define of a quantity and of a
-                        global constraint with an energy integrand */
+                        global constraint with an energy integrand, 'n' a
+                        Newton step (hessian), 's' hessian_seek, 'e'
+                        eigenvalues (ritz: 3 lowest), 'S' saddle */
 } opcase;
 
 static int prepare(tds_ctx *ctx, tds_surf *s, const opcase *c) {
@@ -334,6 +340,25 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
     po.every = -1;
     return tds_pg_run(ctx, s, &po, &pr);
   case 'h': return hessian(ctx, s);
+  case 'n':
+  case 's': {
+    tds_newton_opts no = {.normal = 1, .metric_mix = 0.5};
+    return tds_newton_step(ctx, s, &no, c->op == 's' ? 2 : 0, NULL, NULL);
+  }
+  case 'e': {
+    tds_newton_opts no = {.normal = 1, .linear_metric = 1, .metric_mix = 0.5};
+    double vals[3];
+    int32_t got;
+    int iters;
+    tds_inertia in;
+    return tds_newton_ritz(ctx, s, &no, NAN, 3, vals, &got, &in, NULL, &iters);
+  }
+  case 'S': {
+    tds_newton_opts no = {.normal = 1, .metric_mix = 0.5};
+    double lowest;
+    int moved;
+    return tds_newton_saddle(ctx, s, &no, 0, &lowest, &moved);
+  }
   case 'q': {
     static const char q[] = "quantity qq energy modulus 2 method facet_vector_integral global\n"
                             "vector_integrand:\nq1: 0\nq2: 0\nq3: z*wob\n"
@@ -397,7 +422,11 @@ static int trial(tds_ctx *ctx, tds_surf *S, tds_surf *R, tds_surf *E, const opca
   if (!key_seen(failed, *nfailed, O.failed_key)) failed[(*nfailed)++] = O.failed_key;
   if (rc == TDS_OK) { /* absorbed: the result must be the normal one */
     total_absorbed++;
-    if (getenv("OOM_DEBUG")) printf("  absorbed: %s %c allocation %ld: %s\n", c->file, c->op, at, ctx->errmsg);
+    if (getenv("OOM_DEBUG")) {
+      printf("  absorbed: %s %c allocation %ld: %s\n", c->file, c->op, at, ctx->errmsg);
+      fflush(stdout);
+      backtrace_symbols_fd(O.fr, O.nfr, 1);
+    }
     if (!same_surf(S, E)) {
       CHECK(!"an absorbed allocation failure changed the result");
       printf("  %s %c, allocation %ld: %s\n", c->file, c->op, at, why);
@@ -435,8 +464,8 @@ static void sweep(const opcase *c) {
   O.nkeys = 0;
   int rc0 = run_op(&ctx, &E, c);
   O.record = 0;
-  if (rc0 != TDS_OK && c->op == 'p') { /* pg does not take every model */
-    fprintf(stderr, "test_oom: %s: pg refuses it (%s)\n", c->file, ctx.errmsg);
+  if (rc0 != TDS_OK && strchr("pnseS", c->op)) { /* not every model */
+    fprintf(stderr, "test_oom: %s: %c refuses it (%s)\n", c->file, c->op, ctx.errmsg);
     tds_surf_free(&S);
     tds_surf_free(&R);
     tds_surf_free(&E);
@@ -519,6 +548,12 @@ static void oom_dump(void) { sweep_all('d', 1, 2); }
 static void oom_pg(void) { sweep_all('p', 1, 0); }
 static void oom_hessian(void) { sweep_all('h', 1, 2); }
 static void oom_export(void) { sweep_all('x', 1, 0); }
+static void oom_newton(void) {
+  sweep_all('n', 1, 5);
+  sweep_all('s', 1, 5);
+  sweep_all('e', 1, 5);
+  sweep_all('S', 1, 5);
+}
 static void oom_define(void) {
   sweep_all('q', 0, 0);
   sweep_all('c', 0, 0);
@@ -566,6 +601,7 @@ int main(void) {
   RUN(oom_hessian);
   RUN(oom_export);
   RUN(oom_define);
+  RUN(oom_newton);
   unlink(bubble_path);
   unlink(pbubble_path);
   unlink(dump_path);
