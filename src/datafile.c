@@ -15,6 +15,7 @@
 
 #include "model.h"
 #include "motion.h"
+#include "string_model.h"
 
 static const char *const section_name[] = {"top", "VERTICES", "EDGES", "FACES",
                                            "BODIES"};
@@ -48,7 +49,18 @@ static int begin_section(df *d, int sec, const char *at) {
   int rc = end_section(d);
   if (rc) return rc;
   d->section = sec;
-  if (sec == S_VERTICES) d->seen_vertices = 1;
+  if (sec == S_VERTICES) {
+    d->seen_vertices = 1;
+    /* the model, now that the top section has said which */
+    if (d->string_model) {
+      rc = tds_strings_enable(d->ctx, d->s, d->space_dim ? d->space_dim : 3);
+      if (rc) return df_core(d, df_line_of(d, at), rc, NULL);
+      if ((rc = df_string_model(d))) return rc;
+    } else if (d->space_dim == 2) {
+      return df_err(d, at, TDS_ESYNTAX,
+                    "SPACE_DIMENSION 2 is supported only in the string model (STRING)");
+    }
+  }
   if (!df_at_eol(d)) {
     char b[64];
     return df_err(d, d->p, TDS_ESYNTAX, "unexpected %s after %s",
@@ -156,6 +168,10 @@ static int finish(df *d) {
                   d->name, v + 1);
     }
   /* gravity_on: set by the body density setter (attr_rows.c) */
+  if (s->str) {
+    int rc = df_string_finish(d);
+    if (rc) return rc;
+  }
   if (tds_mesh_check(d->ctx, m) != TDS_OK) {
     char msg[sizeof d->ctx->errmsg];
     memcpy(msg, d->ctx->errmsg, sizeof msg);
@@ -218,6 +234,7 @@ int tds_datafile_load_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
   tds_free(&ctx->alloc, d.faces);
   tds_free(&ctx->alloc, d.oe);
   tds_free(&ctx->alloc, d.pv);
+  df_free_ids(&d);
   if (rc != TDS_OK) {
     if (rc < 0) rc = -rc;
     tds_surf_free(s); /* leaves ctx->errmsg alone */

@@ -187,6 +187,7 @@ tds_state *tds_lua_open(lua_State *L) {
   tds_open_check(L, st);
   tds_open_out(L, st);
   tds_open_newton(L, st);
+  tds_open_string(L, st);
   lua_setglobal(L, "tds");
 
   lua_getglobal(L, "package");
