@@ -351,7 +351,7 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
     int32_t got;
     int iters;
     tds_inertia in;
-    return tds_newton_ritz(ctx, s, &no, NAN, 3, vals, &got, &in, NULL, &iters);
+    return tds_newton_ritz(ctx, s, &no, NAN, 3, vals, &got, &in, NULL, &iters, NULL);
   }
   case 'S': {
     tds_newton_opts no = {.normal = 1, .metric_mix = 0.5};
