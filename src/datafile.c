@@ -209,6 +209,8 @@ static int surface_empty(const tds_surf *s) {
 
 int tds_datafile_load_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
                              const char *text, size_t len) {
+  TDS_REQUIRE(ctx, s && (text || !len));
+  TDS_REQUIRE(ctx, tds_alloc_same(&ctx->alloc, &s->m.alloc));
   if (!name) name = "(datafile)";
   if (!surface_empty(s))
     return tds_seterr(ctx, TDS_ERANGE,
@@ -241,6 +243,7 @@ int tds_datafile_load_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
 }
 
 int tds_datafile_load(tds_ctx *ctx, tds_surf *s, const char *path) {
+  TDS_REQUIRE(ctx, s && path);
   FILE *f = fopen(path, "rb");
   if (!f) return tds_seterr(ctx, TDS_EIO, "cannot open '%s': %s", path, strerror(errno));
   size_t cap = 1 << 16, n = 0;

@@ -178,6 +178,7 @@ int tds_fixq_multipliers(tds_ctx *ctx, tds_fixq *fq, double (*gradE)[3]) {
 }
 
 int tds_fixq_restore(tds_ctx *ctx, tds_fixq *fq, int32_t nv, double (*dx)[3]) {
+  TDS_REQUIRE(ctx, dx && nv >= fq->nv);
   memset(dx, 0, (size_t)nv * sizeof *dx);
   if (fq->nq == 0) return TDS_OK;
   double *mu = fq->mult;

@@ -31,6 +31,7 @@ static void *dup_mem(const tds_alloc *a, const void *p, size_t n) {
 
 int tds_snap_take(tds_ctx *ctx, const tds_surf *s, tds_snap *sn) {
   memset(sn, 0, sizeof *sn);
+  TDS_REQUIRE(ctx, tds_alloc_same(&ctx->alloc, &s->m.alloc));
   sn->alloc = s->m.alloc;
   if (tds_mesh_copy(&sn->m, &s->m) != TDS_OK)
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory (saving the surface)");

@@ -43,6 +43,10 @@ int tds_flip_ok(const tds_surf *s, tds_id e, tds_id *f1, tds_id *f2) {
 
 void tds_flip(tds_surf *s, tds_id e, tds_id f1, tds_id f2) {
   tds_mesh *m = &s->m;
+#ifdef TDS_CHECKS
+  tds_id g1, g2;
+  TDS_ASSERT(tds_flip_ok(s, e, &g1, &g2) && g1 == f1 && g2 == f2);
+#endif
   int k1 = side_of(m, f1, e), k2 = side_of(m, f2, e);
   /* f1 = (a, b, c) with e = a->b; f2 = (b, a, d). */
   int32_t bc = m->fe[f1][(k1 + 1) % 3], ca = m->fe[f1][(k1 + 2) % 3];
