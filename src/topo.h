@@ -22,6 +22,12 @@
 ** elements go to *nsplit (edges split) if not NULL. */
 int tds_refine(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nsplit);
 
+/* A new vertex at the midpoint of edge e, with the edge's fixed flag,
+** constraints and boundary (its parameter found from the nearer end on
+** it); the edge itself is not changed (topo_refine.c). Storage must be
+** reserved. */
+tds_id tds_edge_midpoint(tds_surf *s, tds_id e);
+
 /* Equiangulate: flip every edge between exactly two facets whose angles
 ** opposite the edge sum to more than pi, until none is left (a work set,
 ** as in Delaunay flipping). Never flips fixed edges, edges on constraints

@@ -113,8 +113,7 @@ static void split_facet(tds_mesh *m, tds_id f, const tds_id *midv,
   }
 }
 
-/* Midpoint vertex of edge e (tail->head), attributes from the edge. */
-static tds_id split_edge(tds_surf *s, tds_id e, int32_t *e2) {
+tds_id tds_edge_midpoint(tds_surf *s, tds_id e) {
   tds_mesh *m = &s->m;
   tds_id t = m->ev[e][0], h = m->ev[e][1];
   double x[3];
@@ -130,6 +129,14 @@ static tds_id split_edge(tds_surf *s, tds_id e, int32_t *e2) {
     tds_id from = m->vbdry[h] == m->ebdry[e] ? h : t;
     tds_boundary_param_toward(s, m->ebdry[e], x, m->vp[from], m->vp[v]);
   }
+  return v;
+}
+
+/* Split edge e at its midpoint: e runs tail->mid, e2[e] mid->head. */
+static tds_id split_edge(tds_surf *s, tds_id e, int32_t *e2) {
+  tds_mesh *m = &s->m;
+  tds_id h = m->ev[e][1];
+  tds_id v = tds_edge_midpoint(s, e);
   tds_id n = tds_mesh_add_edge(m, v, h);
   m->ev[e][1] = v;
   m->eflags[n] = m->eflags[e];

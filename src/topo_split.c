@@ -35,20 +35,8 @@ static int check_cut(tds_ctx *ctx, double v, const char *what) {
 ** vertex, 1 + valence edges, valence facets. */
 static void split_one(tds_surf *s, tds_id e) {
   tds_mesh *m = &s->m;
-  tds_id t = m->ev[e][0], h = m->ev[e][1];
-  tds_corners C;
-  tds_gather_edge(m, TDS_OREF(e, 0), &C);
-  double x[3];
-  v3_add(x, C.x[0], C.x[1]);
-  v3_scale(x, 0.5);
-  tds_id v = tds_mesh_add_vertex(m, x);
-  m->vflags[v] = m->eflags[e] & TDS_FIXED;
-  m->vcon[v] = m->econ[e] | tds_surf_global_cons(s);
-  m->vbdry[v] = m->ebdry[e];
-  if (m->ebdry[e] != TDS_NONE) {
-    tds_id from = m->vbdry[h] == m->ebdry[e] ? h : t;
-    tds_boundary_param_toward(s, m->ebdry[e], x, m->vp[from], m->vp[v]);
-  }
+  tds_id h = m->ev[e][1];
+  tds_id v = tds_edge_midpoint(s, e);
   /* The facets on e, before the rings change. */
   int nfe = tds_edge_valence(m, e);
   tds_id fs[nfe > 0 ? nfe : 1];
