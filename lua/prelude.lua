@@ -1,9 +1,16 @@
 -- prelude.lua: the friendly tds API, built on the raw primitives in `tds`.
--- Loaded into every tds session before the user's script. Declarations
--- raise their errors at the user's line (the line that called
--- vertices{...} etc.).
+-- Loaded into every surface's namespace (its _ENV: the global table for
+-- the tds program's surface, or the table tds.new() returns;
+-- src/lua_surface.c). Declarations raise their errors at the user's line
+-- (the line that called vertices{...} etc.).
 
 local tds = tds
+-- Where names the namespace does not define come from (nil when the
+-- namespace is the global table itself).
+local base = tds.env_base
+-- The namespace's __index below calls these: kept as locals, since in a
+-- private namespace a global name is itself looked up through __index.
+local type, rawset, error = type, rawset, error
 local KIND = { vertex = tds.vertex, edge = tds.edge, facet = tds.facet, body = tds.body }
 local NAME = { [tds.vertex] = "vertex", [tds.edge] = "edge", [tds.facet] = "face",
                [tds.body] = "body" }
@@ -303,7 +310,11 @@ setmetatable(_G, {
   __index = function(_, k)
     local f = live[k]
     if f then return f() end
-    if type(k) == "string" then return tds.param(k) end
+    if type(k) == "string" then
+      local p = tds.param(k)
+      if p ~= nil then return p end
+    end
+    if base then return base[k] end
   end,
   __newindex = function(t, k, val)
     if type(k) == "string" and tds.param(k) ~= nil then
@@ -321,6 +332,7 @@ setmetatable(_G, {
 
 -- export(path, options) and mark(): doc/output.md (src/lua_export.c).
 export, mark = tds.export, tds.mark
+dump = tds.dump_raise
 tds.props.vertex.gauss_curvature = function(h) return tds.vertex_gauss_curvature(h) end
 
 -- Evolver's command language: the runtime (tds.E, evolver [[...]]), read

@@ -22,7 +22,8 @@
 **   tds.datafile_name()          the loaded datafile's path (or nil)
 **   After a load, tds.on_load(path) is called if set: it runs the read
 **   section (lua/evorun.lua); its errors are the load's errors.
-**   dump(path)                   global alias of tds.dump
+**   tds.dump_raise(path)         dump(path) of the namespace: raises
+**                                the message instead of returning it
 */
 #include <stdlib.h>
 #include <string.h>
@@ -59,7 +60,7 @@ static void load(lua_State *L, tds_state *st, const char *path) {
     st->datafile = copy;
   }
   /* The read section runs now, as in Evolver (tds.on_load, lua/evorun.lua). */
-  lua_getglobal(L, "tds");
+  tds_lua_push_lib(L, st);
   lua_getfield(L, -1, "on_load");
   lua_remove(L, -2);
   if (lua_isfunction(L, -1)) {
@@ -127,7 +128,7 @@ static int l_load_chunk(lua_State *L) {
   int named_lua = (n >= 4 && !strcmp(path + n - 4, ".tds")) ||
                   (n >= 4 && !strcmp(path + n - 4, ".lua"));
   if (st->safe ? !named_lua : tds_datafile_detect(path)) {
-    lua_pushlightuserdata(L, st);
+    tds_lua_push_state(L, st);
     lua_pushvalue(L, 1);
     lua_pushcclosure(L, datafile_chunk, 2);
     return 1;
@@ -280,7 +281,7 @@ void tds_open_datafile(lua_State *L, tds_state *st) {
                                  {"datafile_name", l_datafile_name},
                                  {NULL, NULL}};
   tds_lua_register(L, st, fns);
-  lua_pushlightuserdata(L, st);
+  tds_lua_push_state(L, st);
   lua_pushcclosure(L, l_dump_global, 1);
-  lua_setglobal(L, "dump");
+  lua_setfield(L, -2, "dump_raise"); /* the namespace's dump (lua/prelude.lua) */
 }

@@ -8,8 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "prelude.inc"
-
 /* Push "file:line: " of the innermost user code on the stack from level
 ** up (skipping C functions and the embedded prelude), or "" if none. */
 static void where_user_from(lua_State *L, int level) {
@@ -71,20 +69,10 @@ int tds_lua_nilmsg(lua_State *L, const char *fmt, ...) {
 
 void tds_lua_register(lua_State *L, tds_state *st, const luaL_Reg *fns) {
   for (; fns->name; fns++) {
-    lua_pushlightuserdata(L, st);
+    tds_lua_push_state(L, st);
     lua_pushcclosure(L, fns->func, 1);
     lua_setfield(L, -2, fns->name);
   }
-}
-
-static int state_gc(lua_State *L) {
-  tds_state *st = lua_touserdata(L, 1);
-  tds_surf_free(&st->s);
-  free(st->datafile);
-  st->datafile = NULL;
-  free(st->outdir);
-  st->outdir = NULL;
-  return 0;
 }
 
 int tds_lua_is_quit(lua_State *L, int idx, int *code) {
@@ -94,18 +82,6 @@ int tds_lua_is_quit(lua_State *L, int idx, int *code) {
   if (isq && code) *code = (int)lua_tointeger(L, -1);
   lua_pop(L, 1);
   return isq;
-}
-
-/* package.preload loader for an embedded module (upvalue: its index). */
-static int load_embedded(lua_State *L) {
-  int i = (int)lua_tointeger(L, lua_upvalueindex(1));
-  char chunk[64];
-  snprintf(chunk, sizeof chunk, "=[tds %s]", lua_sources[i].name);
-  if (luaL_loadbuffer(L, (const char *)lua_sources[i].data,
-                      lua_sources[i].size, chunk) != LUA_OK)
-    return lua_error(L);
-  lua_call(L, 0, 1);
-  return 1;
 }
 
 /* SIGINT: flag the core's loops and stop running Lua code (as lua.c).
@@ -161,43 +137,3 @@ void tds_lua_sigint(lua_State *L, tds_state *st, int on) {
 int tds_lua_interrupted(void) { return sig_seen != 0; }
 
 void tds_lua_sigterm_stops(int on) { sig_also_term = on; }
-
-tds_state *tds_lua_open(lua_State *L) {
-  luaL_openlibs(L);
-  tds_state *st = lua_newuserdatauv(L, sizeof *st, 0);
-  memset(st, 0, sizeof *st);
-  tds_ctx_init(&st->ctx);
-  tds_surf_init(&st->s);
-  lua_newtable(L); /* metatable */
-  lua_pushcfunction(L, state_gc);
-  lua_setfield(L, -2, "__gc");
-  lua_setmetatable(L, -2);
-  lua_setfield(L, LUA_REGISTRYINDEX, "tds.state");
-
-  lua_newtable(L); /* the raw library */
-  tds_open_elem(L, st);
-  tds_open_decl(L, st);
-  tds_open_cmd(L, st);
-  tds_open_model(L, st);
-  tds_open_datafile(L, st);
-  tds_open_pg(L, st);
-  tds_open_export(L, st);
-  tds_open_live(L, st);
-  tds_open_render(L, st);
-  tds_open_check(L, st);
-  tds_open_out(L, st);
-  lua_setglobal(L, "tds");
-
-  lua_getglobal(L, "package");
-  lua_getfield(L, -1, "preload");
-  for (int i = 0; lua_sources[i].name; i++) {
-    lua_pushinteger(L, i);
-    lua_pushcclosure(L, load_embedded, 1);
-    lua_setfield(L, -2, lua_sources[i].name);
-  }
-  lua_pop(L, 2);
-  lua_getglobal(L, "require");
-  lua_pushstring(L, "prelude");
-  if (lua_pcall(L, 1, 0, 0) != LUA_OK) return NULL;
-  return st;
-}
