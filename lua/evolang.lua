@@ -48,7 +48,7 @@ local function lex(text, line0)
       else break end
     end
     if i > n then break end
-    local tok = { line = line, nl = nl }
+    local tok = { line = line, nl = nl, at = i }
     nl = false
     local c = text:sub(i, i)
     local num = text:match("^0[xX]%x+", i)
@@ -87,7 +87,7 @@ local function lex(text, line0)
     toks[#toks + 1] = tok
   end
   end)
-  local eof = { t = "eof", line = line, nl = true }
+  local eof = { t = "eof", line = line, nl = true, at = n + 1 }
   if not ok then
     if type(e) ~= "table" or not e.evo then error(e, 0) end
     eof.lexerr = e
@@ -409,7 +409,8 @@ function P:postfix()
     return ("E.agg(%s, %s, function(%s) %s return %s end end)"):format(q(w), g.arr, g.var, cond, asnum(v, vk)), "n"
   end
   if (w == "is_defined" or w == "sizeof" or w == "valid_element" or w == "valid_constraint"
-      or w == "valid_boundary") and self:isop("(", 1) then
+      or w == "valid_boundary" or w == "matrix_inverse" or w == "matrix_multiply"
+      or w == "matrix_determinant") and self:isop("(", 1) then
     self:next(); self:next()
     if w == "valid_element" then
       local kt = self:next()
@@ -974,11 +975,22 @@ function P:s_define()
     self.extra[nt.s] = true
     return "E.defattr(" .. q(KINDS[t.s]) .. ", " .. q(nt.s) .. ", " .. q(ty.s) .. ", {" .. table.concat(dims, ", ") .. "})"
   end
+  if t.t == "name" and (t.s == "constraint" or t.s == "boundary" or t.s == "quantity" or t.s == "method_instance") then
+    -- a datafile declaration, to the end of the line or statement
+    local last = t
+    while true do
+      local nt = self:peek()
+      if nt.t == "eof" or nt.nl or (nt.t == "op" and (nt.v == ";" or nt.v == "}")) then break end
+      last = self:next()
+    end
+    local text = self.text:sub(t.at, self:peek().at - 1):gsub("%s+$", "")
+    return ("E.defmodel(%s, %d)"):format(q(text), t.line)
+  end
   if t.t ~= "name" then self:err("expected a name after define", t) end
   local ty = self:next()
   if ty.t ~= "name" or not TYPES[ty.s] then
     self:err("define " .. (t.raw or "?") .. ": expected a type (real, integer, string)" ..
-             (KINDS[t.s] and "; constraints and quantities at run time are not supported yet" or ""), ty)
+             "", ty)
   end
   local dims = {}
   while self:acceptop("[") do
@@ -1166,7 +1178,7 @@ function M.translate(text, line0)
   line0 = line0 or 1
   local parts
   local ok, res = pcall(function()
-    local p = setmetatable({ toks = lex(text, line0), i = 1, nsym = 0, depth = 0, scopes = { {} },
+    local p = setmetatable({ text = text, toks = lex(text, line0), i = 1, nsym = 0, depth = 0, scopes = { {} },
                              elems = {}, loops = {}, extra = {} }, P)
     -- Each input line (with its continuations) is one command for abort,
     -- as at Evolver's prompt: E.top runs it.

@@ -250,9 +250,109 @@ E.fn = {
     if type(v) == "table" then return #v end
     fail("sizeof: expected an array or a string")
   end,
-  valid_constraint = function() fail("valid_constraint: not supported yet") end,
-  valid_boundary = function() fail("valid_boundary: not supported yet") end,
+  -- Matrices (arrays of arrays): the result goes into an existing array of
+  -- the right size, as Evolver requires; the operands may be the result.
+  matrix_determinant = function(a)
+    local m = E.matrix(a, "matrix_determinant")
+    local _, det = E.lu_inverse(m)
+    return det
+  end,
+  matrix_inverse = function(a, b)
+    local m = E.matrix(a, "matrix_inverse")
+    local inv = E.lu_inverse(m)
+    E.matrix_into(b, inv, #m, #m, "matrix_inverse")
+    return inv and 1 or 0
+  end,
+  matrix_multiply = function(a, b, c)
+    local A, B = E.vecmat(a, "matrix_multiply"), E.vecmat(b, "matrix_multiply")
+    if type(b[1]) ~= "table" then -- matrix * vector: the vector is a column
+      B = {}
+      for i = 1, #b do B[i] = { b[i] } end
+    end
+    local n, k, m = #A, #A[1], #B[1]
+    if #B ~= k then fail(("matrix_multiply: sizes %dx%d and %dx%d do not fit"):format(n, k, #B, m)) end
+    local P = {}
+    for i = 1, n do
+      P[i] = {}
+      for j = 1, m do
+        local sum = 0.0
+        for l = 1, k do sum = sum + A[i][l] * B[l][j] end
+        P[i][j] = sum
+      end
+    end
+    if type(a[1]) ~= "table" then P = P[1]; n = 0 end -- vector * matrix
+    if type(b[1]) ~= "table" then -- matrix * vector: a column
+      local v = {}
+      for i = 1, #P do v[i] = P[i][1] end
+      P = v; m = 0
+    end
+    E.matrix_into(c, P, n, m, "matrix_multiply")
+    return 0.0
+  end,
+  valid_constraint = function(n) return tds.declared("constraint", math.floor(num(n))) and 1 or 0 end,
+  valid_boundary = function(n) return tds.declared("boundary", math.floor(num(n))) and 1 or 0 end,
 }
+
+-- A square matrix argument (an array of equal-length number arrays).
+function E.matrix(a, what)
+  local ok = type(a) == "table" and #a > 0
+  for i = 1, ok and #a or 0 do ok = ok and type(a[i]) == "table" and #a[i] == #a end
+  if not ok then fail(what .. ": expected a square matrix (a two-dimensional array)") end
+  return a
+end
+-- A vector (a row) or matrix argument as a matrix.
+function E.vecmat(a, what)
+  if type(a) ~= "table" or #a == 0 then fail(what .. ": expected an array") end
+  if type(a[1]) ~= "table" then
+    return { a }
+  end
+  return a
+end
+-- Inverse (nil if singular) and determinant by Gaussian elimination with
+-- partial pivoting.
+function E.lu_inverse(m)
+  local n = #m
+  local a, inv, det = {}, {}, 1.0
+  for i = 1, n do
+    a[i], inv[i] = {}, {}
+    for j = 1, n do a[i][j] = num(m[i][j]); inv[i][j] = i == j and 1.0 or 0.0 end
+  end
+  for c = 1, n do
+    local p = c
+    for r = c + 1, n do if math.abs(a[r][c]) > math.abs(a[p][c]) then p = r end end
+    if a[p][c] == 0 then return nil, 0.0 end
+    if p ~= c then a[p], a[c] = a[c], a[p]; inv[p], inv[c] = inv[c], inv[p]; det = -det end
+    local d = a[c][c]
+    det = det * d
+    for j = 1, n do a[c][j] = a[c][j] / d; inv[c][j] = inv[c][j] / d end
+    for r = 1, n do
+      if r ~= c and a[r][c] ~= 0 then
+        local f = a[r][c]
+        for j = 1, n do a[r][j] = a[r][j] - f * a[c][j]; inv[r][j] = inv[r][j] - f * inv[c][j] end
+      end
+    end
+  end
+  return inv, det
+end
+-- Copy rows x cols values into the existing array dst (cols 0: a vector
+-- of rows entries; rows 0: a vector of cols entries). A nil src (singular)
+-- leaves dst alone.
+function E.matrix_into(dst, src, rows, cols, what)
+  if src == nil then return end
+  local ok = type(dst) == "table"
+  if ok and rows > 0 and cols > 0 then
+    ok = #dst == rows
+    for i = 1, ok and rows or 0 do ok = ok and type(dst[i]) == "table" and #dst[i] == cols end
+  elseif ok then
+    ok = #dst == (rows > 0 and rows or cols) and type(dst[1]) ~= "table"
+  end
+  if not ok then fail(what .. ": the result array must be defined with the result's size") end
+  if rows > 0 and cols > 0 then
+    for i = 1, rows do for j = 1, cols do dst[i][j] = src[i][j] end end
+  else
+    for i = 1, #src do dst[i] = src[i] end
+  end
+end
 
 -- Elements, generators and attributes (lua/evoelem.lua).
 require("evoelem")
@@ -412,6 +512,13 @@ function E.define(name, ty, dims, init)
   rawset(_G, name, E.newvalue(ty, dims, init))
 end
 
+-- define constraint|boundary|quantity TEXT: a datafile declaration added
+-- to the surface (messages at the command's file and line).
+function E.defmodel(text, line)
+  local file = where():match("^(.*):%d+: $")
+  tds.define_text(text, file or "(define)", line)
+end
+
 -- Assignment of v to a variable holding old: a number assigned to an
 -- array sets every element (Evolver's whole-array assignment).
 local function copy(a)
@@ -438,13 +545,15 @@ end
 ---------------------------------------------------------------- quantities
 
 function E.qattr(q, name)
-  local value, target, pressure = tds.quantity_info(q.__quantity)
-  local v = ({ value = value, target = target, pressure = pressure })[name]
+  local value, target, pressure, _, modulus, volconst = tds.quantity_info(q.__quantity)
+  local v = ({ value = value, target = target, pressure = pressure, modulus = modulus,
+               volconst = volconst })[name]
   if v == nil then fail(("quantity %s: attribute '%s' not supported yet"):format(q.__quantity, name)) end
   return v
 end
-function E.setqattr(q, name)
-  fail(("setting %s.%s: not supported yet"):format(q.__quantity, name))
+function E.setqattr(q, name, v)
+  local ok, msg = tds.quantity_set(q.__quantity, name, num(v, name))
+  if not ok then fail(msg) end
 end
 
 ---------------------------------------------------------------- output
@@ -687,6 +796,13 @@ B.system = function(cmd)
   flush()
   os.execute(cmd)
 end
+B.matrix_multiply = function(...) E.fn.matrix_multiply(...) end
+B.matrix_inverse = function(...) E.fn.matrix_inverse(...) end
+B.chdir = function(path)
+  if type(path) ~= "string" then fail("chdir needs a folder name string") end
+  local ok, msg = tds.chdir(path)
+  if not ok then fail(msg) end
+end
 B.shell = function() flush(); os.execute(os.getenv("SHELL") or "/bin/sh") end
 B.help = function() help() end
 B.N = function()
@@ -728,9 +844,9 @@ for w in ([[t o O w l K n j J e A a b f k M p Q W y Z z s P D F H h X hessian he
   edge_merge facet_merge facet_crosscut reverse_orientation rebody zoom detorus wrap_vertex 
   addload
   logfile keylogfile history pause subcommand breakpoint whereami flush_counts
-  reset_counts metis kmetis body_metis ometis matrix_inverse matrix_multiply
+  reset_counts metis kmetis body_metis ometis
   exprint show show_expr showq show_trans close_show transforms transform_expr
-  display_text delete_text chdir postscript binary_off_file off_file geomview
+  display_text delete_text postscript binary_off_file off_file geomview
   jiggle homothety autopop autochop ribiere check_increase hessian_normal
   linear_metric quietgo quietload verbose approximate_curvature runge_kutta
   post_project volgrads_every area_normalization effective_area normal_motion

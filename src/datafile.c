@@ -13,6 +13,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "model.h"
 #include "motion.h"
 
 static const char *const section_name[] = {"top", "VERTICES", "EDGES", "FACES",
@@ -255,6 +256,92 @@ int tds_datafile_load(tds_ctx *ctx, tds_surf *s, const char *path) {
   if (rc == TDS_OK) rc = tds_datafile_load_buffer(ctx, s, path, buf, n);
   free(buf);
   return rc;
+}
+
+/* ---- run-time definitions ---- */
+
+static void free3(tds_expr **e) {
+  for (int i = 0; i < 3; i++) tds_expr_free(e[i]), e[i] = NULL;
+}
+
+/* Remove what a failed definition added: constraint slots not in had,
+** quantities and boundaries beyond the counts before (both append). */
+static void undefine(tds_surf *s, const int *had, int nquant0, int nbdry0) {
+  for (int c = 0; c < TDS_MAX_CON; c++) {
+    tds_constraint *k = &s->con[c];
+    if (!k->number || had[c]) continue;
+    tds_expr_free(k->formula);
+    free3(k->energy);
+    free3(k->content);
+    memset(k, 0, sizeof *k);
+  }
+  while (s->nbdry > nbdry0) {
+    tds_boundary *bd = &s->bdry[--s->nbdry];
+    free3(bd->x);
+    free3(bd->energy);
+    free3(bd->content);
+    memset(bd, 0, sizeof *bd);
+  }
+  while (s->nquant > nquant0) {
+    tds_quantity none;
+    memset(&none, 0, sizeof none);
+    tds_model_quantity_undo(s, s->nquant - 1, &none);
+  }
+}
+
+int tds_datafile_define(tds_ctx *ctx, tds_surf *s, const char *name, int line,
+                        const char *text, size_t len) {
+  if (!name) name = "(define)";
+  df d;
+  memset(&d, 0, sizeof d);
+  d.ctx = ctx;
+  d.s = s;
+  d.name = name;
+  d.p = "";
+  df_lex_init(&d.lx, ctx, name, text ? text : "", text ? len : 0);
+  d.lx.line = line > 0 ? line : 1;
+  int had[TDS_MAX_CON];
+  for (int c = 0; c < TDS_MAX_CON; c++) had[c] = s->con[c].number;
+  int nquant0 = s->nquant, nbdry0 = s->nbdry;
+  char w[64], b[64];
+  int have, rc = df_more(&d, &have);
+  const char *at = d.p;
+  if (!rc && (!have || !df_take_word(&d, w, sizeof w)))
+    rc = df_err(&d, at, TDS_ESYNTAX, "define: expected CONSTRAINT, BOUNDARY or QUANTITY, found %s",
+                df_describe(at, b, sizeof b));
+  else if (!rc && strcmp(w, "constraint") && strcmp(w, "boundary") && strcmp(w, "quantity"))
+    rc = df_err(&d, at, TDS_ESYNTAX,
+                df_unsupported(w) ? "define %s: not supported yet"
+                                  : "define: expected CONSTRAINT, BOUNDARY or QUANTITY, found '%s'",
+                w);
+  else if (!rc)
+    rc = df_header_keyword(&d, w, at);
+  if (rc < 0) rc = -rc;
+  if (!rc && (rc = df_more(&d, &have)) == TDS_OK && have)
+    rc = df_err(&d, d.p, TDS_ESYNTAX, "define %s: unexpected %s after the definition", w,
+                df_describe(d.p, b, sizeof b));
+  if (rc < 0) rc = -rc;
+  df_lex_free(&d.lx);
+  free(d.faces);
+  free(d.oe);
+  if (rc != TDS_OK) {
+    undefine(s, had, nquant0, nbdry0);
+    return rc;
+  }
+  /* A new GLOBAL constraint applies to every vertex, as at load. */
+  for (int c = 0; c < TDS_MAX_CON; c++) {
+    if (!s->con[c].number || had[c] || !(s->con[c].flags & TDS_CON_GLOBAL)) continue;
+    tds_mesh *m = &s->m;
+    for (tds_id v = 0; v < m->nv; v++) {
+      if (!tds_alive(m->vflags, v)) continue;
+      m->vcon[v] |= (tds_cmask)1 << c;
+      if (m->vbdry[v] == TDS_NONE && tds_motion_enforce(s, v) != TDS_OK)
+        tds_warnf(ctx, "%s:%d: vertex %d: projection onto constraint %d did not converge\n",
+                  name, line, v + 1, (int)s->con[c].number);
+    }
+    m->coord_gen++;
+  }
+  return TDS_OK;
 }
 
 /* ---- detection ---- */

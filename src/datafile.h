@@ -60,6 +60,15 @@ int tds_datafile_load(tds_ctx *ctx, tds_surf *s, const char *path);
 int tds_datafile_load_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
                              const char *text, size_t len);
 
+/* Evolver's run-time `define constraint|boundary|quantity ...`: one
+** top-section declaration in text[0..len), given as in a datafile, added
+** to the live surface s. Messages are "name:LINE: ..." with the text's
+** first line numbered `line`. Nothing is added unless the whole text is
+** one valid declaration (a new GLOBAL constraint is then applied to every
+** vertex, as at load). Same statuses as tds_datafile_load_buffer. */
+int tds_datafile_define(tds_ctx *ctx, tds_surf *s, const char *name, int line,
+                        const char *text, size_t len);
+
 /* Write s as a datafile Evolver reads back to the same element counts and
 ** energy: parameters with their current values, constraints, boundaries
 ** and quantities with their formula texts, the elements with their

@@ -386,8 +386,8 @@ static int edge_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
   return rc;
 }
 
-/* Named quantities: value = modulus * sum of instance modulus * method
-** value + volconst. ENERGY ones add to the energy (and its gradient),
+/* Named quantities: value = modulus * (sum of instance modulus * method
+** value + volconst), as Evolver has it. ENERGY ones add to the energy (and its gradient),
 ** FIXED ones fill their fixq gradient (their q indices follow the
 ** bodies'), INFO_ONLY ones are only reported. */
 static int quantity_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
@@ -412,7 +412,7 @@ static int quantity_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
       if (rc != TDS_OK) return rc;
       v += t.total;
     }
-    Q->value = v + Q->volconst;
+    Q->value = v + Q->modulus * Q->volconst;
     if (Q->kind == TDS_Q_ENERGY) out->energy += Q->value;
     if (gq >= 0) out->fq->value[gq] = Q->value;
   }

@@ -79,6 +79,20 @@ static int l_read_text(lua_State *L) {
   return 1;
 }
 
+/* tds.define_text(text [, name, line]): Evolver's run-time `define
+** constraint|boundary|quantity ...` (text without the word define), added
+** to the surface as a datafile declaration; messages are name:line. */
+static int l_define_text(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  size_t n;
+  const char *text = luaL_checklstring(L, 1, &n);
+  const char *name = luaL_optstring(L, 2, "(define)");
+  int line = (int)luaL_optinteger(L, 3, 1);
+  if (tds_datafile_define(&st->ctx, &st->s, name, line, text, n) != TDS_OK)
+    return raise_msg(L, st->ctx.errmsg);
+  return 0;
+}
+
 /* tds.datafile_name() -> the loaded datafile's path, or nil */
 static int l_datafile_name(lua_State *L) {
   tds_state *st = TDS_STATE(L);
@@ -279,6 +293,7 @@ void tds_open_datafile(lua_State *L, tds_state *st) {
                                  {"read_text", l_read_text},
                                  {"load_replace", l_load_replace},
                                  {"datafile_name", l_datafile_name},
+                                 {"define_text", l_define_text},
                                  {NULL, NULL}};
   tds_lua_register(L, st, fns);
   tds_lua_push_state(L, st);

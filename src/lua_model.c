@@ -247,7 +247,8 @@ static int l_quantity(lua_State *L) {
   return 1;
 }
 
-/* tds.quantity_info(name) -> value, target, pressure, kind; nil if none */
+/* tds.quantity_info(name) -> value, target, pressure, kind, modulus,
+** volconst; nil if none */
 static int l_quantity_info(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   int qi = tds_model_quantity_find(&st->s, luaL_checkstring(L, 1));
@@ -259,7 +260,48 @@ static int l_quantity_info(lua_State *L) {
   lua_pushnumber(L, q->target);
   lua_pushnumber(L, q->pressure);
   lua_pushstring(L, kinds[q->kind]);
-  return 4;
+  lua_pushnumber(L, q->modulus);
+  lua_pushnumber(L, q->volconst);
+  return 6;
+}
+
+/* tds.declared("constraint"|"boundary", n) -> whether number n is declared */
+static int l_declared(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  static const char *const kinds[] = {"constraint", "boundary", NULL};
+  int kind = luaL_checkoption(L, 1, NULL, kinds);
+  lua_Integer n = luaL_checkinteger(L, 2);
+  int ok = n >= 1 && n <= 1000000000 &&
+           (kind == 0 ? tds_surf_con_slot(&st->s, (int)n) : tds_model_boundary_slot(&st->s, (int)n)) >= 0;
+  lua_pushboolean(L, ok);
+  return 1;
+}
+
+/* tds.quantity_set(name, attr, value): set the target, modulus or volconst
+** of a named quantity (Evolver's `qname.target := 3.12`); true, or nil and
+** a message. */
+static int l_quantity_set(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  const char *name = luaL_checkstring(L, 1);
+  const char *attr = luaL_checkstring(L, 2);
+  double v = tds_lua_checkfinite(L, 3, attr);
+  int qi = tds_model_quantity_find(&st->s, name);
+  if (qi < 0) return tds_lua_nilmsg(L, "no quantity named '%s'", name);
+  tds_quantity *q = &st->s.quant[qi];
+  if (!strcmp(attr, "target")) {
+    if (q->kind != TDS_Q_FIXED)
+      return tds_lua_nilmsg(L, "quantity %s: only a FIXED quantity has a target", name);
+    q->target = v;
+  } else if (!strcmp(attr, "modulus")) {
+    q->modulus = v;
+  } else if (!strcmp(attr, "volconst")) {
+    q->volconst = v;
+  } else {
+    return tds_lua_nilmsg(L, "quantity %s: '%s' cannot be set (target, modulus, volconst can)",
+                          name, attr);
+  }
+  lua_pushboolean(L, 1);
+  return 1;
 }
 
 void tds_open_model(lua_State *L, tds_state *st) {
@@ -267,6 +309,8 @@ void tds_open_model(lua_State *L, tds_state *st) {
                                  {"boundary", l_boundary},
                                  {"quantity", l_quantity},
                                  {"quantity_info", l_quantity_info},
+                                 {"quantity_set", l_quantity_set},
+                                 {"declared", l_declared},
                                  {NULL, NULL}};
   tds_lua_register(L, st, fns);
 }

@@ -10,9 +10,13 @@
 **   tds.output_write(handle, text) write text to handle
 **   tds.output_close(handle)       close it (also done by the collector);
 **                                  for a pipe, waits for the command
+**   tds.chdir(path)                Evolver's chdir: the current folder
+**                                  (refused in safe mode); true or nil, msg
 */
 #include <stdio.h>
+#include <errno.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "lua_tds.h"
 
@@ -106,6 +110,15 @@ static int target_gc(lua_State *L) {
   return l_output_close(L);
 }
 
+static int l_chdir(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  const char *path = luaL_checkstring(L, 1);
+  if (st->safe) return tds_lua_nilmsg(L, "chdir: not allowed in safe mode");
+  if (chdir(path) != 0) return tds_lua_nilmsg(L, "chdir: %s: %s", path, strerror(errno));
+  lua_pushboolean(L, 1);
+  return 1;
+}
+
 void tds_open_out(lua_State *L, tds_state *st) {
   /* The collector closes a target through its own surface (user value 1). */
   if (luaL_newmetatable(L, OUT_META)) {
@@ -113,8 +126,8 @@ void tds_open_out(lua_State *L, tds_state *st) {
     lua_setfield(L, -2, "__gc");
   }
   lua_pop(L, 1);
-  (void)st;
-  static const luaL_Reg fns[] = {{"output_open", l_output_open},
+  static const luaL_Reg fns[] = {{"chdir", l_chdir},
+                                 {"output_open", l_output_open},
                                  {"output_set", l_output_set},
                                  {"output_write", l_output_write},
                                  {"output_close", l_output_close},
