@@ -10,7 +10,9 @@ local tds = tds
 local base = tds.env_base
 -- The namespace's __index below calls these: kept as locals, since in a
 -- private namespace a global name is itself looked up through __index.
-local type, rawset, error = type, rawset, error
+-- The raw parameter reader too: the check mode wraps tds.param with Lua
+-- code whose own global lookups would come back here.
+local type, rawset, error, rawparam = type, rawset, error, tds.param
 local KIND = { vertex = tds.vertex, edge = tds.edge, facet = tds.facet, body = tds.body }
 local NAME = { [tds.vertex] = "vertex", [tds.edge] = "edge", [tds.facet] = "face",
                [tds.body] = "body" }
@@ -311,7 +313,7 @@ setmetatable(_G, {
     local f = live[k]
     if f then return f() end
     if type(k) == "string" then
-      local p = tds.param(k)
+      local p = rawparam(k)
       if p ~= nil then return p end
     end
     if base then return base[k] end
@@ -333,6 +335,36 @@ setmetatable(_G, {
 -- export(path, options) and mark(): doc/output.md (src/lua_export.c).
 export, mark = tds.export, tds.mark
 dump = tds.dump_raise
+
+-- load_datafile(path): read a Surface Evolver datafile into this surface
+-- (which must still be empty) and run its read section.
+function load_datafile(path)
+  if type(path) ~= "string" then error("load_datafile(path) expected", 2) end
+  tds.load_datafile(path)
+end
+
+-- In a namespace of its own (tds.new()), chunks loaded by its code get
+-- the namespace as their environment unless told otherwise, so a script
+-- run with s.dofile(path) declares into s. (A safe surface's library does
+-- this already, and loads text only.)
+if base then
+  local lload, lloadfile = base.load, base.loadfile
+  function load(...)
+    if select("#", ...) >= 4 then return lload(...) end
+    local chunk, name, mode = ...
+    return lload(chunk, name, mode, _ENV)
+  end
+  function loadfile(...)
+    if select("#", ...) >= 3 then return lloadfile(...) end
+    local path, mode = ...
+    return lloadfile(path, mode, _ENV)
+  end
+  function dofile(path)
+    local f, err = loadfile(path)
+    if not f then error(err, 2) end
+    return f()
+  end
+end
 tds.props.vertex.gauss_curvature = function(h) return tds.vertex_gauss_curvature(h) end
 
 -- Evolver's command language: the runtime (tds.E, evolver [[...]]), read

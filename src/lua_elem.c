@@ -84,7 +84,9 @@ tds_id tds_check_elem(lua_State *L, tds_state *st, int i, int kind, int *kindp) 
   handle *h = to_handle(L, i);
   if (!h || (kind >= 0 && h->kind != kind)) {
     const char *want = kind >= 0 ? kind_name[kind] : "element";
-    luaL_typeerror(L, i, want);
+    if (h)
+      tds_lua_error(L, "%s expected, got %s %d", want, kind_name[h->kind], (int)h->id + 1);
+    tds_lua_error(L, "%s expected, got %s", want, luaL_typename(L, i));
   }
   if (h->st != st)
     tds_lua_error(L, "%s %d belongs to another surface", kind_name[h->kind], (int)h->id + 1);
@@ -522,10 +524,13 @@ void tds_open_elem(lua_State *L, tds_state *st) {
                                      {NULL, NULL}};
   lua_newtable(L); /* tds.methods: per kind, methods (C ones, Lua extensions) */
   lua_newtable(L); /* tds.props: per kind, computed attributes */
-  tds_lua_push_state(L, st); /* tds methods props st */
+  lua_createtable(L, 0, TDS_NKINDS); /* tds.metatables: the handles' */
+  lua_pushvalue(L, -1);
+  lua_setfield(L, -5, "metatables");
+  tds_lua_push_state(L, st); /* tds methods props metatables st */
   for (int k = 0; k < TDS_NKINDS; k++) {
     /* The surface's own metatable: its metamethods are bound to it. */
-    lua_newtable(L); /* tds methods props st mt */
+    lua_newtable(L); /* tds methods props metatables st mt */
     lua_pushstring(L, meta_name[k]);
     lua_setfield(L, -2, "__name"); /* for luaL_typeerror's messages */
     tds_lua_register(L, st, meta);
@@ -534,15 +539,17 @@ void tds_open_elem(lua_State *L, tds_state *st) {
     lua_newtable(L);
     tds_lua_register(L, st, methods);
     lua_pushvalue(L, -1);
-    lua_setfield(L, -6, kind_name[k]); /* methods.vertex = ... */
+    lua_setfield(L, -7, kind_name[k]); /* methods.vertex = ... */
     lua_setfield(L, -2, "methods");
     lua_newtable(L);
     lua_pushvalue(L, -1);
-    lua_setfield(L, -5, kind_name[k]); /* props.vertex = ... */
+    lua_setfield(L, -6, kind_name[k]); /* props.vertex = ... */
     lua_setfield(L, -2, "props");
+    lua_pushvalue(L, -1);
+    lua_setfield(L, -4, kind_name[k]); /* metatables.vertex = ... */
     lua_setiuservalue(L, -2, TDS_UV_META + k);
   }
-  lua_pop(L, 1); /* tds methods props */
+  lua_pop(L, 2); /* tds methods props */
   lua_setfield(L, -3, "props");
   lua_setfield(L, -2, "methods");
   static const luaL_Reg fns[] = {{"next", l_next}, {"get", l_get},

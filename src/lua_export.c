@@ -199,6 +199,8 @@ static int l_export(lua_State *L) {
   if (lua_type(L, 1) != LUA_TSTRING)
     fail(L, st, "export(path [, options]): path must be a string");
   const char *path = lua_tostring(L, 1);
+  if (!tds_lua_may_write(L, st, path)) /* safe mode: only in its folder */
+    return tds_lua_error(L, "%s", lua_tostring(L, -1));
   if (!lua_isnoneornil(L, 2) && !lua_istable(L, 2))
     fail(L, st, "export(path [, options]): options must be a table");
   lua_settop(L, 2);

@@ -156,6 +156,8 @@ static void setvec(lua_State *L, const char *k, const double v[3]) {
 static int l_snapshot(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   const char *path = luaL_checkstring(L, 1);
+  if (!tds_lua_may_write(L, st, path)) /* safe mode: only in its folder */
+    return tds_lua_error(L, "%s", lua_tostring(L, -1));
   tds_render_opts o;
   tds_render_defaults(&o);
   if (!lua_isnoneornil(L, 2)) {
@@ -250,6 +252,8 @@ static void push_layout(lua_State *L, const tds_plot_info *pi, int npanels) {
 static int l_plot(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   const char *path = luaL_checkstring(L, 1);
+  if (!tds_lua_may_write(L, st, path)) /* safe mode: only in its folder */
+    return tds_lua_error(L, "%s", lua_tostring(L, -1));
   int w = 800, h = 600, mode = 0; /* energy: 0 linear, 1 log, 2 excess */
   if (!lua_isnoneornil(L, 2)) {
     luaL_checktype(L, 2, LUA_TTABLE);
@@ -297,6 +301,8 @@ static int l_plot(lua_State *L) {
 static int l_histogram_png(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   const char *path = luaL_checkstring(L, 1);
+  if (!tds_lua_may_write(L, st, path)) /* safe mode: only in its folder */
+    return tds_lua_error(L, "%s", lua_tostring(L, -1));
   luaL_checktype(L, 2, LUA_TTABLE);
   double lo = luaL_checknumber(L, 3), hi = luaL_checknumber(L, 4);
   const char *title = luaL_checkstring(L, 5), *xtitle = luaL_checkstring(L, 6);

@@ -304,6 +304,18 @@ static int l_new(lua_State *L) {
       return tds_lua_error(L, "tds.new: outdir is the output folder of a safe surface; "
                            "give safe = true too");
   }
+  /* In a safe session (tds --safe) every surface is safe, with its folder. */
+  if (lua_getfield(L, LUA_REGISTRYINDEX, GLOBALS_KEY) == LUA_TUSERDATA) {
+    const tds_state *g = lua_touserdata(L, -1);
+    if (g->safe) {
+      if (outdir)
+        return tds_lua_error(L, "tds.new: in safe mode a surface's outdir is the "
+                             "session's output folder");
+      safe = 1;
+      outdir = g->outdir;
+    }
+  }
+  lua_pop(L, 1);
   lua_settop(L, 1);
   lua_newtable(L); /* 2: the namespace */
   tds_state *st = tds_lua_surface_new(L, 2, safe, outdir);
