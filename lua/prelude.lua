@@ -12,7 +12,7 @@ local base = tds.env_base
 -- private namespace a global name is itself looked up through __index.
 -- The raw parameter reader too: the check mode wraps tds.param with Lua
 -- code whose own global lookups would come back here.
-local type, rawset, error, rawparam = type, rawset, error, tds.param
+local type, rawset, rawget, error, rawparam = type, rawset, rawget, error, tds.param
 local KIND = { vertex = tds.vertex, edge = tds.edge, facet = tds.facet, body = tds.body }
 local NAME = { [tds.vertex] = "vertex", [tds.edge] = "edge", [tds.facet] = "face",
                [tds.body] = "body" }
@@ -316,7 +316,9 @@ setmetatable(_G, {
       local p = rawparam(k)
       if p ~= nil then return p end
     end
-    if base then return base[k] end
+    -- rawget: another surface's parameters and live values (the global
+    -- table's own __index) are not this surface's
+    if base then return rawget(base, k) end
   end,
   __newindex = function(t, k, val)
     if type(k) == "string" and tds.param(k) ~= nil then
