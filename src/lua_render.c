@@ -20,13 +20,9 @@
 #include "progress.h"
 #include "render.h"
 
-#define PROGRESS_KEY "tds.progress"
-
+/* The surface's history, anchored to its state (tds_open_render). */
 static tds_progress *progress_of(lua_State *L) {
-  lua_getfield(L, LUA_REGISTRYINDEX, PROGRESS_KEY);
-  tds_progress *p = lua_touserdata(L, -1);
-  lua_pop(L, 1);
-  return p;
+  return TDS_STATE(L)->ctx.progress;
 }
 
 static int progress_gc(lua_State *L) {
@@ -372,6 +368,6 @@ void tds_open_render(lua_State *L, tds_state *st) {
   lua_pushcfunction(L, progress_gc);
   lua_setfield(L, -2, "__gc");
   lua_setmetatable(L, -2);
-  lua_setfield(L, LUA_REGISTRYINDEX, PROGRESS_KEY);
+  tds_lua_keep(L, st, "progress");
   st->ctx.progress = p;
 }

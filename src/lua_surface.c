@@ -31,6 +31,7 @@
 
 static int state_gc(lua_State *L) {
   tds_state *st = lua_touserdata(L, 1);
+  tds_lua_track(st, 0);
   tds_surf_free(&st->s);
   free(st->datafile);
   st->datafile = NULL;
@@ -56,6 +57,22 @@ void tds_lua_push_state(lua_State *L, tds_state *st) {
   push_states(L);
   lua_rawgetp(L, -1, st);
   lua_remove(L, -2);
+}
+
+void tds_lua_keep(lua_State *L, tds_state *st, const char *name) {
+  tds_lua_push_state(L, st);
+  lua_getiuservalue(L, -1, TDS_UV_KEEP); /* v st keep */
+  lua_rotate(L, -3, -1);                 /* st keep v */
+  lua_setfield(L, -2, name);
+  lua_pop(L, 2);
+}
+
+void tds_lua_kept(lua_State *L, tds_state *st, const char *name) {
+  tds_lua_push_state(L, st);
+  lua_getiuservalue(L, -1, TDS_UV_KEEP);
+  lua_getfield(L, -1, name);
+  lua_replace(L, -3);
+  lua_pop(L, 1);
 }
 
 void tds_lua_push_lib(lua_State *L, tds_state *st) {
@@ -210,6 +227,7 @@ tds_state *tds_lua_surface_new(lua_State *L, int env, int safe, const char *outd
     lua_setfield(L, -2, "__gc");
   }
   lua_setmetatable(L, -2);
+  tds_lua_track(st, 1); /* untracked by state_gc */
   int sti = lua_gettop(L);
   push_states(L);
   lua_pushvalue(L, sti);
@@ -221,6 +239,8 @@ tds_state *tds_lua_surface_new(lua_State *L, int env, int safe, const char *outd
   lua_setfield(L, -2, "__mode");
   lua_setmetatable(L, -2);
   lua_setiuservalue(L, sti, TDS_UV_HANDLES);
+  lua_newtable(L);
+  lua_setiuservalue(L, sti, TDS_UV_KEEP);
 
   lua_newtable(L); /* the raw library */
   lua_pushvalue(L, -1);

@@ -89,7 +89,32 @@ int tds_lua_is_quit(lua_State *L, int idx, int *code) {
 ** pcall that catches the interruption is interrupted again at its next
 ** instruction, and the whole chunk (script, -e code, prompt line) stops. */
 static lua_State *sig_L;
-static tds_state *sig_st;
+/* Every live surface: the handler flags all of them, so a command running
+** on a tds.new() surface stops too. Changed with the signals blocked. */
+static tds_state *all_states;
+
+void tds_lua_track(tds_state *st, int on) {
+  sigset_t set, old;
+  sigemptyset(&set);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &set, &old);
+  if (on) {
+    st->next_state = all_states;
+    all_states = st;
+  } else {
+    for (tds_state **p = &all_states; *p; p = &(*p)->next_state)
+      if (*p == st) {
+        *p = st->next_state;
+        break;
+      }
+  }
+  pthread_sigmask(SIG_SETMASK, &old, NULL);
+}
+
+static void set_interrupt(int v) {
+  for (tds_state *p = all_states; p; p = p->next_state) p->ctx.interrupt = v;
+}
 static volatile sig_atomic_t sig_seen; /* an interruption since the chunk began */
 static int sig_also_term;              /* --on-interrupt: SIGTERM stops too */
 
@@ -102,7 +127,7 @@ static void stop_hook(lua_State *L, lua_Debug *ar) {
   if (lua_getinfo(L, "S", ar) &&
       (ar->what[0] == 'C' || strncmp(ar->source, "=[tds ", 6) == 0))
     return;
-  if (sig_st) sig_st->ctx.interrupt = 0;
+  set_interrupt(0);
   where_user_from(L, 0); /* the user's line, not the prelude's */
   lua_pushliteral(L, "interrupted");
   lua_concat(L, 2);
@@ -112,7 +137,7 @@ static void stop_hook(lua_State *L, lua_Debug *ar) {
 static void on_sigint(int sig) {
   signal(sig, SIG_DFL); /* a second Ctrl-C kills the process */
   sig_seen = 1;
-  if (sig_st) sig_st->ctx.interrupt = 1;
+  set_interrupt(1);
   if (sig_L)
     lua_sethook(sig_L, stop_hook, LUA_MASKCALL | LUA_MASKRET | LUA_MASKCOUNT, 1);
 }
@@ -120,9 +145,9 @@ static void on_sigint(int sig) {
 void tds_lua_sigint(lua_State *L, tds_state *st, int on) {
   if (on) {
     sig_L = L;
-    sig_st = st;
+    (void)st; /* every surface is flagged (all_states) */
     sig_seen = 0;
-    st->ctx.interrupt = 0;
+    set_interrupt(0);
     signal(SIGINT, on_sigint);
     if (sig_also_term) signal(SIGTERM, on_sigint);
   } else {
@@ -130,7 +155,6 @@ void tds_lua_sigint(lua_State *L, tds_state *st, int on) {
     if (sig_also_term) signal(SIGTERM, SIG_DFL);
     lua_sethook(L, NULL, 0, 0);
     sig_L = NULL;
-    sig_st = NULL;
   }
 }
 

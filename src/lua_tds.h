@@ -23,6 +23,7 @@ typedef struct tds_state {
   void *after_ud;                 /* (the live view publishes through it) */
   int safe;          /* safe mode (lua_safe.c) */
   char *outdir;      /* safe mode: the only folder written to (resolved) */
+  struct tds_state *next_state; /* the process's surfaces (tds_lua_track) */
 } tds_state;
 
 /* User values of a state's userdata: the interned handles (a weak-valued
@@ -32,7 +33,10 @@ typedef struct tds_state {
 #define TDS_UV_HANDLES 1
 #define TDS_UV_LIB 2
 #define TDS_UV_META 3
-#define TDS_STATE_NUV (TDS_UV_META + TDS_NKINDS)
+/* A table where bindings anchor userdata that live as long as the surface
+** (tds_lua_keep). */
+#define TDS_UV_KEEP (TDS_UV_META + TDS_NKINDS)
+#define TDS_STATE_NUV (TDS_UV_KEEP + 1)
 
 #define TDS_STATE(L) ((tds_state *)lua_touserdata(L, lua_upvalueindex(1)))
 
@@ -74,6 +78,11 @@ void tds_lua_register(lua_State *L, tds_state *st, const luaL_Reg *fns);
 /* Push the full userdata of st (a live surface of L; lua_surface.c). A
 ** closure that needs st takes this as an upvalue, which keeps st alive. */
 void tds_lua_push_state(lua_State *L, tds_state *st);
+/* Pop the value on top into surface st's anchors under `name`: it lives
+** as long as st (a per-surface object the C side points to). */
+void tds_lua_keep(lua_State *L, tds_state *st, const char *name);
+/* Push the value anchored to st under `name` (nil if none). */
+void tds_lua_kept(lua_State *L, tds_state *st, const char *name);
 /* Push the raw library (the `tds` table) of surface st. */
 void tds_lua_push_lib(lua_State *L, tds_state *st);
 
@@ -135,6 +144,10 @@ uint8_t *tds_lua_selection(lua_State *L, tds_state *st, int arg, int kind);
 /* Sigint support for the REPL and main: install / restore the handler that
 ** sets ctx.interrupt and interrupts running Lua code. */
 void tds_lua_sigint(lua_State *L, tds_state *st, int on);
+
+/* Add (on) or remove a surface from those Ctrl-C interrupts: every
+** surface's command stops, not only the program's surface's. */
+void tds_lua_track(tds_state *st, int on);
 
 /* Whether the last chunk run under tds_lua_sigint was interrupted. */
 int tds_lua_interrupted(void);

@@ -61,6 +61,14 @@ assert(math.abs(b.total_area / a.total_area - 4) <= 4e-12,
 assert(math.abs(b.body[1].volume - 8) <= 8e-12, b.body[1].volume)
 assert(math.abs(b.body[1].pressure * 2 / a.body[1].pressure - 1) <= 1e-12)
 
+-- Each surface has its own iteration history (pictures' history()).
+local d = tds.new{ quiet = true }
+cube(d, 1)
+d.g(3)
+assert(#d.history() == 3, #d.history())
+assert(#a.history() == 215 and #b.history() == 215,
+       #a.history())
+
 -- Parameters and live values belong to their surface.
 a.parameter{ SIDE = 3 }
 assert(a.SIDE == 3 and b.SIDE == nil)
