@@ -191,7 +191,7 @@ end
 
 -- Commands, with Evolver's single letters and long names.
 function g(n)
-  if n ~= nil and math.type(n) ~= "integer" then
+  if n ~= nil and (math.type(n) ~= "integer" or n < 0) then
     error("g(n): n must be a whole number of iterations", 2)
   end
   tds.iterate(n or 1)
@@ -292,6 +292,9 @@ function help() print(HELP) end
 
 -- near(a, b, tol): |a - b| <= tol * max(1, |b|), for self-checking scripts.
 function near(a, b, tol)
+  if type(a) ~= "number" or type(b) ~= "number" or (tol ~= nil and type(tol) ~= "number") then
+    error("near(a, b [, tol]) expects numbers", 2)
+  end
   tol = tol or 1e-9
   return math.abs(a - b) <= tol * math.max(1, math.abs(b))
 end

@@ -49,11 +49,27 @@ static void user_traceback(lua_State *L) {
   }
 }
 
+/* A message positioned in tds's embedded Lua ("[tds pg]:113: ...", an
+** error the module did not foresee) gets the user's position instead. */
+static void user_position(lua_State *L) {
+  const char *msg = lua_tostring(L, -1), *p;
+  if (strncmp(msg, "[tds ", 5) != 0 || !(p = strstr(msg, "]:"))) return;
+  p += 2;
+  while (isdigit((unsigned char)*p)) p++;
+  if (p[0] != ':' || p[1] != ' ') return;
+  tds_lua_where(L);
+  lua_pushstring(L, p + 2);
+  lua_concat(L, 2);
+  lua_remove(L, -2);
+}
+
 static int message_handler(lua_State *L) {
   if (tds_lua_is_quit(L, 1, NULL)) return 1;
   if (lua_type(L, 1) != LUA_TSTRING &&
       !(luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING))
     lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
+  if (lua_gettop(L) == 1) lua_pushvalue(L, 1);
+  user_position(L);
   user_traceback(L);
   return 1;
 }
