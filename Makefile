@@ -18,7 +18,9 @@ LUA_CFLAGS = $(shell pkg-config --cflags lua5.4)
 LUA_LIBS = $(shell pkg-config --libs lua5.4)
 CAIRO_CFLAGS = $(shell pkg-config --cflags cairo)
 CAIRO_LIBS = $(shell pkg-config --libs cairo)
-LIBS = $(LUA_LIBS) $(CAIRO_LIBS) -lreadline -lm
+# The sparse symmetric solver (la_mumps.c) and LAPACK (small dense eigenproblems).
+LA_LIBS = -ldmumps_seq -llapack
+LIBS = $(LUA_LIBS) $(CAIRO_LIBS) $(LA_LIBS) -lreadline -lm
 
 BIND_SRC := $(wildcard src/lua_*.c) src/repl.c src/main.c
 # The live view's server: linked into the program only (libmicrohttpd).
@@ -69,7 +71,7 @@ $(TDS_BIN): $(BIND_OBJ) $(LIVE_OBJ) $(LIBTDS) | deps
 # stay reachable instead of showing as leaks under ASan.
 module: $(TDS_SO)
 $(TDS_SO): $(MOD_OBJ) | deps
-	$(CC) $(CFLAGS_ALL) -fopenmp -shared -Wl,-z,nodelete -o $@ $^ $(CAIRO_LIBS) $(LIVE_LIBS) -lm
+	$(CC) $(CFLAGS_ALL) -fopenmp -shared -Wl,-z,nodelete -o $@ $^ $(CAIRO_LIBS) $(LA_LIBS) $(LIVE_LIBS) -lm
 
 $(PIC)/%.o: src/%.c | deps $(BUILD)
 	@mkdir -p $(PIC)
@@ -99,7 +101,7 @@ $(BUILD)/prelude.inc: $(LUA_SRC) scripts/embed.sh | $(BUILD)
 	sh scripts/embed.sh $(LUA_SRC) > $@
 
 $(BUILD)/test_%: tests/unit/test_%.c tests/unit/*.h $(LIBTDS) | deps
-	$(CC) $(CFLAGS_ALL) -fopenmp -Isrc -Itests/unit -o $@ $< $(LIBTDS) $(CAIRO_LIBS) -lm
+	$(CC) $(CFLAGS_ALL) -fopenmp -Isrc -Itests/unit -o $@ $< $(LIBTDS) $(CAIRO_LIBS) $(LA_LIBS) -lm
 
 $(BUILD):
 	mkdir -p $(BUILD)
@@ -168,6 +170,7 @@ demo: $(TDS_BIN)
 
 bench: $(TDS_BIN) | deps-test
 	sh bench/cube.sh ./$(TDS_BIN)
+	sh bench/hessian.sh ./$(TDS_BIN)
 	sh bench/pictures.sh ./$(TDS_BIN)
 
 bench-paper: $(TDS_BIN) | deps-test

@@ -52,6 +52,7 @@ function E.live(h) return true end
 -- needs it and dropped whenever the topology may have changed (E.touch:
 -- around every top-level command, after commands and Lua calls).
 local adj
+local USER -- user attributes, see userattr
 local function adjacency()
   if adj then return adj end
   local a = { efacets = {}, vedges = {}, vfacets = {}, bfacets = {} }
@@ -70,7 +71,7 @@ local function adjacency()
   adj = a
   return a
 end
-function E.touch() adj = nil end
+function E.touch() adj = nil; USER = nil end
 
 -- Elements around an element (sub-element generators).
 local function around(x, kind)
@@ -144,14 +145,53 @@ function E.subelem(h, kind, i)
   return x
 end
 
--- Extra attributes defined at run time: extra[kind][name] = { type, dim, vals }.
-local extra = { vertex = {}, edge = {}, facet = {}, body = {}, facetedge = {} }
+-- Element attributes come from tds's attribute registry (src/attr.h);
+-- user attributes (define kind attribute ...) are columns of it, shared
+-- with Lua (vertex[1].weight) and datafiles. USER[kind][name] = { type =,
+-- user =, dims = } caches what tds.attributes reports, aliases included;
+-- E.touch drops it.
+local function attrinfo(kind, name)
+  if not USER then
+    USER = {}
+    for k, n in pairs(KINDNUM) do
+      local t = {}
+      for _, a in ipairs(tds.attributes(n)) do
+        t[a.name] = a
+        for al in (a.alias or ""):gmatch("%S+") do t[al] = a end
+      end
+      USER[k] = t
+    end
+  end
+  return USER[kind] and USER[kind][name]
+end
+local function userattr(kind, name)
+  local a = attrinfo(kind, name)
+  return a and a.user and a
+end
 
 function E.defattr(kind, name, ty, dims)
-  if extra[kind][name] then return end
   local d = {}
-  for i, n in ipairs(dims) do d[i] = math.floor(num(n)) end
-  extra[kind][name] = { type = ty, dims = d, vals = {} }
+  for i, n in ipairs(dims) do d[i] = num(n) end
+  local ok, err = pcall(tds.define_attribute, kind, name, ty, d)
+  USER = nil
+  if not ok then fail(tostring(err):gsub("^.-:%d+: ", "")) end
+end
+
+local function setuser(h, name, u, v)
+  if u.dims then
+    if type(v) ~= "table" then -- a number assigned to an array sets every element
+      local function fill(d)
+        local t = {}
+        for i = 1, u.dims[d] do t[i] = d < #u.dims and fill(d + 1) or num(v) end
+        return t
+      end
+      v = fill(1)
+    end
+  else
+    v = num(v)
+  end
+  local ok, err = pcall(function() h[name] = v end)
+  if not ok then fail(tostring(err):gsub("^.-:%d+: ", "")) end
 end
 
 local function vec(x)
@@ -174,9 +214,6 @@ end
 local ATTR = {
   id = function(h) return h.id + 0.0 end,
   oid = function(h, rev) return (rev and -h.id or h.id) + 0.0 end,
-  fixed = function(h) return h.fixed and 1.0 or 0.0 end,
-  no_refine = function(h) return h.no_refine and 1.0 or 0.0 end,
-  bare = function(h) return h.bare and 1.0 or 0.0 end,
   frontbody = function(h) local b = h.frontbody; return b and b.id + 0.0 or 0.0 end,
   backbody = function(h) local b = h.backbody; return b and b.id + 0.0 or 0.0 end,
   target = function(h) return (h.target or 0) + 0.0 end,
@@ -226,14 +263,10 @@ function E.attr(o, name)
   if not isel(o) then fail(("'.%s' needs an element, got %s"):format(name, type(o))) end
   if name == "x" or name == "y" or name == "z" then return ATTR[name](o) end
   local h, rev = unwrap(o)
-  local x = extra[kindof(h)][name]
-  if x then
-    local v = x.vals[h.id]
-    if v == nil then
-      if #x.dims > 0 then v = E.newvalue(x.type, x.dims); x.vals[h.id] = v
-      else v = 0.0 end
-    end
-    return v
+  local u = userattr(kindof(h), name)
+  if u then
+    if u.dims then return h[name] end -- a proxy: a[i] reads, a[i] = x writes the element
+    return h[name] + 0.0
   end
   local f = ATTR[name]
   if f then return f(h, rev) end
@@ -271,10 +304,10 @@ function E.setattr(h, name, v, fromset)
   if not isel(h) then fail(("cannot set '%s' of a %s"):format(name, type(h))) end
   h = unwrap(h)
   local k = kindof(h)
-  local x = extra[k][name]
-  if x then x.vals[h.id] = v; return end
-  if name == "fixed" or name == "no_refine" or name == "bare" or name == "nodisplay" or name == "no_display" then
-    if name == "no_display" then name = "nodisplay" end
+  local u = userattr(k, name)
+  if u then return setuser(h, name, u, v == true and 1 or v) end
+  local info = attrinfo(k, name)
+  if info and info.type == "boolean" then -- flags: fixed, no_refine, bare, nodisplay ...
     h[name] = E.truth(v == true and 1 or v)
   elseif name == "constraint" then
     local n = math.floor(num(v))
@@ -299,7 +332,8 @@ end
 function E.unsetattr(h, name, v)
   h = unwrap(h)
   local k = kindof(h)
-  if name == "fixed" or name == "no_refine" or name == "bare" then h[name] = false
+  local info = attrinfo(k, name)
+  if info and info.type == "boolean" then h[name] = false
   elseif name == "constraint" then
     local cs, out = h.constraints or {}, {}
     local n = v and math.floor(num(v))
@@ -307,7 +341,7 @@ function E.unsetattr(h, name, v)
     h.constraints = out
   elseif (name == "target" or name == "volume") and k == "body" then h.target = nil
   elseif name == "pressure" and k == "body" then h.pressure = nil
-  elseif extra[k][name] then extra[k][name].vals[h.id] = nil
+  elseif userattr(k, name) then h[name] = nil
   else fail(("unset %s %s: not supported"):format(k, name)) end
 end
 
@@ -368,40 +402,61 @@ function E.histogram(log, list, f)
 end
 
 
-function E.has_extra(h, name) return E.isel(h) and extra[kindof(h)][name] ~= nil end
+function E.has_extra(h, name) return E.isel(h) and userattr(kindof(h), name) ~= nil end
 
 -- list GEN in Evolver's layout.
 local COLOR_NAME = { [-1] = "clear", [0] = "black", "blue", "green", "cyan", "red", "magenta",
   "brown", "lightgray", "darkgray", "lightblue", "lightgreen", "lightcyan", "lightred",
   "lightmagenta", "yellow", "white" }
 
+-- The user attributes of h as list writes them: " name value", arrays
+-- in braces ({1,2,3} for integers, {1.5, 2} for reals, as Evolver).
+local function userlist(h, kind)
+  local out = {}
+  for _, a in ipairs(tds.attributes(KINDNUM[kind])) do
+    if a.user then
+      local function fmt(v)
+        if type(v) ~= "table" then return ("%.15g"):format(v) end
+        local t = {}
+        for i, x in ipairs(v) do t[i] = fmt(x) end
+        return "{" .. table.concat(t, a.type == "integer" and "," or ", ") .. "}"
+      end
+      out[#out + 1] = " " .. a.name .. " " .. fmt(h[a.name])
+    end
+  end
+  return table.concat(out)
+end
+
 -- list GEN in Evolver's layout: coordinates or ids, then the element's
 -- constraints and flags, then its length or area (%g) in a comment.
 function E.list(h, kind, first)
   h = unwrap(h)
-  local cons = h.constraints and #h.constraints > 0 and table.concat(h.constraints, " ")
+  local cons = kind ~= "body" and #h.constraints > 0 and table.concat(h.constraints, " ")
   if kind == "vertex" then
     if first then E.out("// Id               X                Y               Z\n") end
-    E.out(("%3d  %17.15g %17.15g %17.15g%s%s\n"):format(h.id, h.x, h.y, h.z,
-      cons and ("  constraints " .. cons .. " ") or "", h.fixed and " fixed " or ""))
+    E.out(("%3d  %17.15g %17.15g %17.15g%s%s%s\n"):format(h.id, h.x, h.y, h.z,
+      cons and ("  constraints " .. cons .. " ") or "", h.fixed and " fixed " or "",
+      userlist(h, kind)))
   elseif kind == "edge" then
     if first then E.out("// Id    endpoints\n") end
-    E.out(("%3d    %4d %4d   %s%s%s  /*length %g*/ \n"):format(h.id, h.tail.id, h.head.id,
+    E.out(("%3d    %4d %4d   %s%s%s  /*length %g*/ %s\n"):format(h.id, h.tail.id, h.head.id,
       cons and ("   constraints " .. cons) or "", h.fixed and " fixed" or "",
-      h.no_refine and "  no_refine" or "", h.length))
+      h.no_refine and "  no_refine" or "", h.length, userlist(h, kind)))
   elseif kind == "facet" then
     if first then E.out("// Id    edges\n") end
     local ids = {}
     for i, e in ipairs(h.edges) do ids[i] = tostring(e) end
     local flags = (h.fixed and " fixed " or "") .. (h.tension ~= 1 and ("  density %g "):format(h.tension) or "")
-      .. (h.color ~= 0 and (" color " .. (COLOR_NAME[h.color] or tostring(h.color)) .. " ") or "")
+      .. (h.color ~= 15 and (" color " .. (COLOR_NAME[h.color] or tostring(h.color)) .. " ") or "")
       .. (h.no_refine and " no_refine " or "")
-    E.out(("%3d   %s%s /*area %g*/\n"):format(h.id, table.concat(ids, " "), flags, h.area))
+    E.out(("%3d   %s%s /*area %g*/%s\n"):format(h.id, table.concat(ids, " "), flags, h.area,
+      userlist(h, kind)))
   elseif kind == "body" then
     if first then E.out("// Id    facets\n") end
     local ids = {}
     for _, f in ipairs(around(h, "facet")) do ids[#ids + 1] = tostring(f.backbody == h and -f.id or f.id) end
-    E.out(("%3d    %s  volume %.15g\n"):format(h.id, table.concat(ids, " "), h.volume))
+    E.out(("%3d    %s  volume %.15g%s\n"):format(h.id, table.concat(ids, " "), h.volume,
+      userlist(h, kind)))
   end
 end
 

@@ -120,7 +120,7 @@ local AGG = { max = true, min = true, sum = true, avg = true, count = true }
 -- Words that begin a statement of their own kind.
 local STMT = {}
 for w in ([[if while do for foreach return break continue abort local procedure
-  function define print printf errprintf eprint list set unset fix unfix refine
+  function define print printf binary_printf errprintf eprint list set unset fix unfix refine
   equiangulate vertex_average delete dissolve pop edgeswap read exec]]):gmatch("%S+") do
   STMT[w] = true
 end
@@ -548,15 +548,24 @@ function P:atend(t)
   return false
 end
 
+-- Evolver takes a ':' that ends a line or comes before '}' as the end of
+-- the command (3ds.cmd has one); step over it.
+function P:stray_colon()
+  if not self:isop(":") then return false end
+  local n = self:peek(1)
+  if n.t == "eof" or n.nl or (n.t == "op" and n.v == "}") then self:next(); return true end
+  return false
+end
+
 function P:block_until_brace()
   local parts = {}
   self.depth = self.depth + 1
   while true do
-    while self:acceptop(";") do end
+    while self:acceptop(";") or self:stray_colon() do end
     if self:isop("}") then break end
     if self:peek().t == "eof" then self:err("'{' not closed by '}'") end
     parts[#parts + 1] = self:statement()
-    if not (self:isop(";") or self:isop("}")) then
+    if not (self:isop(";") or self:isop("}") or self:stray_colon()) then
       local t = self:peek()
       if not t.nl then self:err("expected ';' or '}' after a command, found " .. self:desc()) end
     end
@@ -976,14 +985,20 @@ function P:s_define()
     return "E.defattr(" .. q(KINDS[t.s]) .. ", " .. q(nt.s) .. ", " .. q(ty.s) .. ", {" .. table.concat(dims, ", ") .. "})"
   end
   if t.t == "name" and (t.s == "constraint" or t.s == "boundary" or t.s == "quantity" or t.s == "method_instance") then
-    -- a datafile declaration, to the end of the line or statement
+    -- a datafile declaration, to the end of the statement: a `;`, `}` or
+    -- a line end that does not follow an operator (`x +` continues)
     local last = t
     while true do
       local nt = self:peek()
-      if nt.t == "eof" or nt.nl or (nt.t == "op" and (nt.v == ";" or nt.v == "}")) then break end
+      local open = last.t == "op" and last.v ~= ")" and last.v ~= "]"
+      if nt.t == "eof" or (nt.nl and not open) or (nt.t == "op" and (nt.v == ";" or nt.v == "}")) then
+        break
+      end
       last = self:next()
     end
-    local text = self.text:sub(t.at, self:peek().at - 1):gsub("%s+$", "")
+    -- one logical line for the datafile reader (comments dropped first)
+    local text = self.text:sub(t.at, self:peek().at - 1):gsub("//[^\n]*", ""):gsub("%s+", " ")
+      :gsub(" $", "")
     return ("E.defmodel(%s, %d)"):format(q(text), t.line)
   end
   if t.t ~= "name" then self:err("expected a name after define", t) end
@@ -1032,6 +1047,7 @@ function P:printf_args()
   return table.concat(a, ", ")
 end
 function P:s_printf() self:next(); return "E.printf(" .. self:printf_args() .. ")" end
+function P:s_binary_printf() self:next(); return "E.binary_printf(" .. self:printf_args() .. ")" end
 function P:s_errprintf() self:next(); return "E.errprintf(" .. self:printf_args() .. ")" end
 function P:s_eprint() self:next(); return "E.eprint(" .. asnum(self:expr()) .. ")" end
 function P:s_exec() self:next(); return "E.exec(" .. asnum(self:expr()) .. ")" end
@@ -1178,8 +1194,16 @@ function M.translate(text, line0)
   line0 = line0 or 1
   local parts
   local ok, res = pcall(function()
+    -- the user attributes the surface has now (datafile DEFINEs, Lua's
+    -- attribute{}) are attribute names, as those the text defines
+    local extra = {}
+    if tds and tds.attributes then
+      for _, k in ipairs { tds.vertex, tds.edge, tds.facet, tds.body } do
+        for _, a in ipairs(tds.attributes(k)) do if a.user then extra[a.name] = true end end
+      end
+    end
     local p = setmetatable({ text = text, toks = lex(text, line0), i = 1, nsym = 0, depth = 0, scopes = { {} },
-                             elems = {}, loops = {}, extra = {} }, P)
+                             elems = {}, loops = {}, extra = extra }, P)
     -- Each input line (with its continuations) is one command for abort,
     -- as at Evolver's prompt: E.top runs it.
     local unit
@@ -1189,7 +1213,7 @@ function M.translate(text, line0)
       unit = nil
     end
     while true do
-      while p:acceptop(";") do end
+      while p:acceptop(";") or p:stray_colon() do end
       if p:peek().t == "eof" then
         if p:peek().lexerr then close(); p:err("") end
         break
@@ -1198,7 +1222,7 @@ function M.translate(text, line0)
       unit = unit or {}
       unit[#unit + 1] = p:statement()
       local t = p:peek()
-      if not (t.t == "eof" or t.nl or p:isop(";")) then
+      if not (t.t == "eof" or t.nl or p:isop(";") or p:stray_colon()) then
         p:err("expected ';' or a new line after a command, found " .. p:desc(t))
       end
     end

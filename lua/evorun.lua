@@ -376,6 +376,8 @@ local INTERNAL = {
   space_dimension = function() return 3.0 end,
   surface_dimension = function() return 2.0 end,
   torus = function() return 0.0 end,
+  -- the identity and the datafile's view transforms (display only in tds)
+  transform_count = function() return tds.setting("view_transforms") + 1.0 end,
   symmetry_group = function() return 0.0 end,
   simplex_representation = function() return 0.0 end,
   lagrange_order = function() return 1.0 end,
@@ -390,6 +392,9 @@ local INTERNAL = {
   conj_grad = function() return tds.setting("conj_grad") and 1.0 or 0.0 end,
   quiet = function() return tds.quiet() and 1.0 or 0.0 end,
   gravity = function() local _, on = tds.gravity(); return on and 1.0 or 0.0 end,
+  hessian_normal = function() return tds.hessian_setting("hessian_normal") and 1.0 or 0.0 end,
+  linear_metric = function() return tds.hessian_setting("linear_metric") and 1.0 or 0.0 end,
+  linear_metric_mix = function() return tds.hessian_setting("linear_metric_mix") end,
   total_length = function()
     local s = 0.0
     for _, e in ipairs(E.all("edge")) do s = s + e.length end
@@ -415,6 +420,7 @@ local SETTABLE = {
   constraint_tolerance = function(v) tds.setting("constraint_tolerance", num(v)) end,
   scale_limit = function(v) tds.setting("scale_limit", num(v)) end,
   random_seed = function(v) math.randomseed(math.floor(num(v))) end,
+  linear_metric_mix = function(v) tds.hessian_setting("linear_metric_mix", num(v)) end,
 }
 
 function E.getv(name, cur)
@@ -663,17 +669,78 @@ local TOGGLE_MSG = {
   conj_grad = "Conjugate gradient now %s. (was %s)",
   quiet = "Quiet %s. (was %s)",
   gravity = "Gravity %s. (was %s)",
+  little_endian = "little_endian %s. (was %s)",
+  big_endian = "big_endian %s. (was %s)",
+  hessian_normal = "hessian_normal %s. (was %s)",
+  linear_metric = "Linear interpolation metric with Hessian %s.(was %s)",
+  hessian_diff = "hessian_diff %s. (was %s)",
 }
+
+-- Byte order of binary_printf: "<" little endian (Evolver's default on
+-- this machine), ">" big endian.
+local endian = "<"
 
 local function toggle_get(name)
   if name == "conj_grad" then return tds.setting("conj_grad") end
   if name == "quiet" then return tds.quiet() end
   if name == "gravity" then local _, on = tds.gravity(); return on end
+  if name == "little_endian" then return endian == "<" end
+  if name == "big_endian" then return endian == ">" end
+  if name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff" then
+    return tds.hessian_setting(name)
+  end
 end
 local function toggle_set(name, on)
   if name == "conj_grad" then tds.setting("conj_grad", on)
   elseif name == "quiet" then tds.quiet(on)
-  elseif name == "gravity" then local g = tds.gravity(); tds.gravity(g, on) end
+  elseif name == "gravity" then local g = tds.gravity(); tds.gravity(g, on)
+  elseif name == "little_endian" then endian = on and "<" or ">"
+  elseif name == "big_endian" then endian = on and ">" or "<"
+  elseif name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff" then
+    tds.hessian_setting(name, on)
+  end
+end
+
+-- binary_printf: Evolver's binary formats (%c one byte, %d two-byte and
+-- %ld four-byte integers, %f float, %lf double, %s a string without its
+-- NUL) in the byte order of the endian toggles; other characters are
+-- copied as bytes.
+function E.binary_printf(fmt, ...)
+  if type(fmt) ~= "string" then fail("binary_printf needs a format string") end
+  local args, k, out = table.pack(...), 0, {}
+  local function arg(conv)
+    k = k + 1
+    if k > args.n then fail(("binary_printf: no value for %%%s"):format(conv)) end
+    return args[k]
+  end
+  local i = 1
+  while i <= #fmt do
+    local c = fmt:sub(i, i)
+    if c ~= "%" then
+      out[#out + 1] = c
+      i = i + 1
+    else
+      local conv = fmt:match("^%%(l?[cdfs%%])", i)
+      if not conv then fail(("binary_printf: unknown conversion %s"):format(fmt:sub(i, i + 2))) end
+      i = i + 1 + #conv
+      if conv == "%" then out[#out + 1] = "%"
+      elseif conv == "s" or conv == "ls" then out[#out + 1] = tostring(arg(conv))
+      else
+        local x = num(arg(conv), "binary_printf %" .. conv)
+        if conv == "f" or conv == "lf" then
+          out[#out + 1] = string.pack(endian .. (conv == "f" and "f" or "d"), x)
+        else
+          local bytes = conv == "c" and 1 or conv == "d" and 2 or 4
+          x = x < 0 and math.ceil(x) or math.floor(x)
+          local lim = 1 << (8 * bytes)
+          x = math.tointeger(x) % lim -- two's complement, as C's conversion
+          out[#out + 1] = string.pack(endian .. "I" .. bytes, x)
+        end
+      end
+    end
+  end
+  if k < args.n then fail(("binary_printf: %d values for %d conversions"):format(args.n, k)) end
+  E.out(table.concat(out))
 end
 
 -- Toggles tds has no switch for, accepted in the state tds always is in
@@ -685,7 +752,7 @@ local FIXED_TOGGLE = {
   transforms = "any", clipped = "any", connected = "any", raw_cells = "any",
   show_inner = "any", show_outer = "any", thicken = "any", pscolorflag = "any",
   ps_colorflag = "any", gridflag = "any", crossingflag = "any", labelflag = "any",
-  show_all_edges = "any", big_endian = "any", little_endian = "any", rgb_colors = false,
+  show_all_edges = "any", rgb_colors = false,
   smooth_graph = "any", view_transforms_use_unique_point = "any", visibility_test = "any",
 }
 E.FIXED_TOGGLE = FIXED_TOGGLE
@@ -834,10 +901,30 @@ for name in pairs(FIXED_TOGGLE) do B[name] = function() E.toggle(name, true) end
 -- Energies are computed one way in tds: nothing to convert.
 B.convert_to_quantities = function() end
 
+-- Newton steps and eigenvalues (src/lua_newton.c, doc/newton.md).
+local function need_surface(what)
+  if tds.count(tds.vertex) == 0 then fail(what .. ": there is no surface (load a datafile first)") end
+  flush()
+end
+B.hessian = function() need_surface("hessian"); tds.hessian() end
+B.hessian_seek = function(s) need_surface("hessian_seek"); tds.hessian_seek(s ~= nil and num(s, "hessian_seek") or nil) end
+B.saddle = function(s) need_surface("saddle"); tds.saddle(s ~= nil and num(s, "saddle") or nil) end
+B.eigenprobe = function(c) need_surface("eigenprobe"); tds.eigenprobe(c ~= nil and num(c, "eigenprobe") or 0) end
+B.ritz = function(c, n)
+  need_surface("ritz")
+  if n ~= nil then n = times(n, "ritz") end
+  tds.ritz(c ~= nil and num(c, "ritz") or 0, n or 5)
+end
+B.lanczos = B.ritz
+B.move = function(t)
+  if t == nil then fail("move needs a step: move 0.1") end
+  tds.move(num(t, "move"))
+end
+
 -- Evolver commands tds does not have: named in the error.
 local UNSUPPORTED = {}
-for w in ([[t o O w l K n j J e A a b f k M p Q W y Z z s P D F H h X hessian hessian_seek
-  saddle ritz eigenprobe lanczos hessian_menu move lagrange edgeweed areaweed edge_divide
+for w in ([[t o O w l K n j J e A a b f k M p Q W y Z z s P D F H h X
+  hessian_menu lagrange edgeweed areaweed edge_divide
   notch dirichlet dirichlet_seek sobolev sobolev_seek delete dissolve pop pop_edge_to_tri
   pop_tri_to_edge pop_quad_to_quad t1_edgeswap edgeswap raw_vertex_average
   rawest_vertex_average rawv rawestv new_vertex new_edge new_facet new_body vertex_merge
@@ -847,10 +934,10 @@ for w in ([[t o O w l K n j J e A a b f k M p Q W y Z z s P D F H h X hessian he
   reset_counts metis kmetis body_metis ometis
   exprint show show_expr showq show_trans close_show transforms transform_expr
   display_text delete_text postscript binary_off_file off_file geomview
-  jiggle homothety autopop autochop ribiere check_increase hessian_normal
-  linear_metric quietgo quietload verbose approximate_curvature runge_kutta
+  jiggle homothety autopop autochop ribiere check_increase
+  quietgo quietload verbose approximate_curvature runge_kutta
   post_project volgrads_every area_normalization effective_area normal_motion
-  hessian_diff ysmp bunch_kaufman sparse_constraints augmented_hessian
+  ysmp bunch_kaufman sparse_constraints augmented_hessian
   torus_filled kusner conf_edge normal_curvature boundary_curvature
   show_all_quantities interp_bdry_param break_after_warning break_on_warning
   itdebug memdebug debug estimate extrapolate set_body_target quantity]]):gmatch("%S+") do UNSUPPORTED[w] = true end

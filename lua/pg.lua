@@ -175,66 +175,15 @@ function trimesh(t)
 end
 
 -- write_fe(path, { header = text, read = text }): the current surface as a
--- Surface Evolver datafile (vertices, edges, facets, bodies, gravity).
--- header goes first (parameters, constraint declarations in Evolver
--- syntax); constraint numbers are written as the surface has them.
--- The file is written all or nothing by tds.write_text (temporary file,
--- fsync, rename); a failure is an error at the caller's line.
+-- Surface Evolver datafile: header first (parameters, constraint
+-- declarations in Evolver syntax), then the gravity constant and the
+-- elements exactly as dump writes them (tds.write_fe, src/dump.c: one
+-- writer), then the read section. Written all or nothing; a failure is an
+-- error at the caller's line.
 function write_fe(path, o)
   if type(path) ~= "string" then error("write_fe(path [, options]): path must be a string", 2) end
   o = o or {}
-  local buf = {}
-  local w = function(...) buf[#buf + 1] = string.format(...) end
-  w("// %s: written by tds write_fe\n", path)
-  if o.header then w("%s\n", o.header) end
-  local G, on = tds.gravity()
-  if on then w("gravity_constant %.17g\n", G) end
-  local function cons(e)
-    local c = e.constraints
-    if #c == 0 then return "" end
-    return " constraint " .. table.concat(c, " ")
-  end
-  w("\nvertices\n")
-  for v in vertices() do
-    w("%d %.17g %.17g %.17g%s%s\n", v.id, v.x, v.y, v.z, v.fixed and " fixed" or "", cons(v))
-  end
-  w("\nedges\n")
-  for e in edges() do
-    w("%d %d %d%s%s%s\n", e.id, e.tail.id, e.head.id, e.fixed and " fixed" or "",
-      e.no_refine and " no_refine" or "", cons(e))
-  end
-  w("\nfaces\n")
-  for f in facets() do
-    local ed = f.edges
-    local extra = ""
-    if f.tension ~= 1 then extra = extra .. (" density %.17g"):format(f.tension) end
-    if f.fixed then extra = extra .. " fixed" end
-    if f.no_refine then extra = extra .. " no_refine" end
-    w("%d %d %d %d%s%s\n", f.id, ed[1], ed[2], ed[3], extra, cons(f))
-  end
-  local nb = tds.count(tds.body)
-  if nb > 0 then
-    local list = {}
-    for f in facets() do
-      local fb, bb = f.frontbody, f.backbody
-      if fb then list[fb.id] = list[fb.id] or {}; table.insert(list[fb.id], f.id) end
-      if bb then list[bb.id] = list[bb.id] or {}; table.insert(list[bb.id], -f.id) end
-    end
-    w("\nbodies\n")
-    for b in bodies() do
-      local fl = list[b.id] or {}
-      local parts = {}
-      for i = 1, #fl, 12 do
-        parts[#parts + 1] = table.concat(fl, " ", i, math.min(#fl, i + 11))
-      end
-      w("%d %s", b.id, table.concat(parts, " \\\n  "))
-      if b.target then w(" volume %.17g", b.target) end
-      if b.density ~= 0 then w(" density %.17g", b.density) end
-      w("\n")
-    end
-  end
-  if o.read then w("\nread\n%s\n", o.read) end
-  local ok, err = tds.write_text(path, table.concat(buf))
+  local ok, err = tds.write_fe(path, o.header, o.read)
   if not ok then error(err, 2) end
 end
 

@@ -189,6 +189,39 @@ function gravity_constant(value)
   tds.gravity(value)
 end
 
+-- attribute{ vertex = { weight = "real" }, facet = { flags = "integer[3]" } }:
+-- user attributes, columns of the attribute registry (doc/language.md).
+-- Every kind, name and type is checked before any is defined.
+local ATTR_KINDS = { vertex = "table", edge = "table", facet = "table", face = "table",
+                     body = "table" }
+function attribute(t)
+  if type(t) ~= "table" then error('attribute{ vertex = { name = "real" }, ... } expected', 2) end
+  check_options(t, "attribute", ATTR_KINDS, 2)
+  local list = {}
+  for kind, names in pairs(t) do
+    for name, ty in pairs(names) do
+      if type(name) ~= "string" or type(ty) ~= "string"
+         or not (ty:match("^real[%[%]%d]*$") or ty:match("^integer[%[%]%d]*$")) then
+        error(("attribute: %s %s: expected name = \"real\" or \"integer\" (with dimensions "
+              .. "such as \"real[3]\")"):format(kind, tostring(name)), 2)
+      end
+      list[#list + 1] = { kind, name, ty }
+    end
+  end
+  table.sort(list, function(a, b) return a[1] .. " " .. a[2] < b[1] .. " " .. b[2] end)
+  for _, a in ipairs(list) do -- clashes with what exists, before anything is defined
+    for _, have in ipairs(tds.attributes(KIND[a[1]] or tds.facet)) do
+      local shape = have.type
+      for _, d in ipairs(have.dims or {}) do shape = shape .. "[" .. d .. "]" end
+      if have.name == a[2] and (not have.user or shape ~= a[3]) then
+        error(("attribute: %s %s is %s"):format(a[1], a[2], have.user
+              and "already defined as " .. shape or "a built-in attribute"), 2)
+      end
+    end
+  end
+  for _, a in ipairs(list) do tds.define_attribute(a[1], a[2], a[3]) end
+end
+
 -- Commands, with Evolver's single letters and long names.
 function g(n)
   if n ~= nil and (math.type(n) ~= "integer" or n < 0) then
@@ -372,6 +405,26 @@ if base then
 end
 tds.props.vertex.gauss_curvature = function(h) return tds.vertex_gauss_curvature(h) end
 
+-- Newton steps and Hessian eigenvalues (doc/newton.md; src/lua_newton.c).
+function hessian() return tds.hessian() end
+function hessian_seek(maxscale) return tds.hessian_seek(maxscale) end
+function saddle(maxscale) return tds.saddle(maxscale) end
+function eigenprobe(c) return tds.eigenprobe(c or 0) end
+function ritz(shift, n) return tds.ritz(shift or 0, n or 5) end
+lanczos = ritz
+function move(t) return tds.move(t) end
+local function newton_toggle(name, msg)
+  return function(on)
+    if on == nil then on = true end
+    local was = tds.hessian_setting(name)
+    tds.hessian_setting(name, on)
+    print(msg:format(on and "ON" or "OFF", was and "on" or "off"))
+  end
+end
+hessian_normal = newton_toggle("hessian_normal", "hessian_normal %s. (was %s)")
+linear_metric = newton_toggle("linear_metric", "Linear interpolation metric with Hessian %s.(was %s)")
+hessian_diff = newton_toggle("hessian_diff", "hessian_diff %s. (was %s)")
+
 -- Evolver's command language: the runtime (tds.E, evolver [[...]]), read
 -- sections run at load, and the prompt's Lua/Evolver rule.
 require("evorun")
@@ -390,3 +443,4 @@ if os.getenv("TDS_CHECK") == "1" then require("check") end
 tds.E.protect()
 
 return true
+

@@ -7,9 +7,10 @@
 #   test:  also what the tests and benchmarks compare against
 set -e
 # The program: Lua, readline, libmicrohttpd (the live view's server),
-# cairo and a font (pictures).
+# cairo and a font (pictures); MUMPS (sequential) and LAPACK (hessian,
+# eigenvalues: src/la_mumps.c, src/newton*.c).
 BUILD_PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev libmicrohttpd-dev
-  libcairo2-dev fonts-dejavu-core"
+  libcairo2-dev fonts-dejavu-core libmumps-seq-dev liblapack-dev"
 # The tests: Surface Evolver; meshio, VTK and NumPy for /usr/bin/python3
 # (export round trips, tests/export); Chromium (the live view's browser
 # test, tests/web); the stock Lua interpreter (the module tds.so, tests/module).

@@ -134,11 +134,11 @@ int tds_decl_edge(tds_ctx *ctx, tds_surf *s, tds_id e, tds_id t, tds_id h,
 static int orig_index(tds_surf *s) {
   tds_mesh *m = &s->m;
   if (s->orig_start && s->orig_gen == m->topo_gen) return TDS_OK;
-  int32_t *start = calloc((size_t)m->nf + 2, sizeof *start);
-  int32_t *list = malloc((size_t)(m->nf > 0 ? m->nf : 1) * sizeof *list);
+  int32_t *start = tds_calloc(&s->m.alloc, (size_t)m->nf + 2, sizeof *start);
+  int32_t *list = tds_malloc(&s->m.alloc, (size_t)(m->nf > 0 ? m->nf : 1) * sizeof *list);
   if (!start || !list) {
-    free(start);
-    free(list);
+    tds_free(&s->m.alloc, start);
+    tds_free(&s->m.alloc, list);
     return TDS_ENOMEM;
   }
   for (tds_id f = 0; f < m->nf; f++)
@@ -147,8 +147,8 @@ static int orig_index(tds_surf *s) {
   for (tds_id f = 0; f < m->nf; f++)
     if (tds_alive(m->fflags, f) && m->forig[f] != TDS_NONE)
       list[start[m->forig[f] + 1]++] = f;
-  free(s->orig_start);
-  free(s->orig_facets);
+  tds_free(&s->m.alloc, s->orig_start);
+  tds_free(&s->m.alloc, s->orig_facets);
   s->orig_start = start; /* now start[o] .. start[o + 1] */
   s->orig_facets = list;
   s->orig_gen = m->topo_gen;

@@ -45,17 +45,80 @@ void tds_warnf(tds_ctx *ctx, const char *fmt, ...) {
   va_end(ap);
 }
 
-void *tds_calloc(size_t n, size_t size) {
-  if (n == 0 || size == 0) n = size = 1;
-  return calloc(n, size);
+static void *sys_alloc(void *ud, void *ptr, size_t n) {
+  (void)ud;
+  if (n == 0) {
+    free(ptr);
+    return NULL;
+  }
+  return realloc(ptr, n);
 }
 
-int tds_grow(void **p, size_t size, int32_t *cap, int32_t need) {
+static void *call(const tds_alloc *a, void *p, size_t n) {
+  if (a && a->fn) return a->fn(a->ud, p, n);
+  return sys_alloc(NULL, p, n);
+}
+
+void *tds_malloc(const tds_alloc *a, size_t n) {
+  return call(a, NULL, n ? n : 1);
+}
+
+void *tds_calloc(const tds_alloc *a, size_t n, size_t size) {
+  if (n == 0 || size == 0) n = size = 1;
+  if (n > SIZE_MAX / size) return NULL;
+  void *p = call(a, NULL, n * size);
+  if (p) memset(p, 0, n * size);
+  return p;
+}
+
+void *tds_realloc(const tds_alloc *a, void *p, size_t n) {
+  return call(a, p, n ? n : 1);
+}
+
+void *tds_reallocarray(const tds_alloc *a, void *p, size_t n, size_t size) {
+  if (n == 0 || size == 0) n = size = 1;
+  if (n > SIZE_MAX / size) return NULL;
+  return call(a, p, n * size);
+}
+
+void tds_free(const tds_alloc *a, void *p) {
+  if (p) call(a, p, 0);
+}
+
+char *tds_strdup(const tds_alloc *a, const char *s) {
+  if (!s) return NULL;
+  size_t n = strlen(s) + 1;
+  char *d = call(a, NULL, n);
+  if (d) memcpy(d, s, n);
+  return d;
+}
+
+/* The block from the hook has n + 64 + sizeof(void *) bytes; the pointer
+** it returned is stored just below the aligned address. */
+void *tds_calloc_aligned(const tds_alloc *a, size_t n) {
+  if (n > SIZE_MAX - 128) return NULL;
+  char *raw = call(a, NULL, n + 64 + sizeof(void *));
+  if (!raw) return NULL;
+  uintptr_t u = ((uintptr_t)raw + sizeof(void *) + 63) & ~(uintptr_t)63;
+  char *p = raw + (u - (uintptr_t)raw);
+  memcpy(p - sizeof(void *), &raw, sizeof raw);
+  memset(p, 0, n);
+  return p;
+}
+
+void tds_free_aligned(const tds_alloc *a, void *p) {
+  if (!p) return;
+  void *raw;
+  memcpy(&raw, (char *)p - sizeof(void *), sizeof raw);
+  call(a, raw, 0);
+}
+
+int tds_grow(const tds_alloc *a, void **p, size_t size, int32_t *cap, int32_t need) {
   if (need <= *cap) return TDS_OK;
   size_t ncap = *cap > 0 ? (size_t)*cap : 16;
   while (ncap < (size_t)need) ncap *= 2;
   if (ncap > INT32_MAX / 4) return TDS_ENOMEM;
-  void *q = realloc(*p, ncap * size);
+  void *q = call(a, *p, ncap * size);
   if (!q) return TDS_ENOMEM;
   memset((char *)q + (size_t)*cap * size, 0, (ncap - (size_t)*cap) * size);
   *p = q;

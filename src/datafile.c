@@ -155,7 +155,7 @@ static int finish(df *d) {
         tds_warnf(d->ctx, "%s: vertex %d: projection onto its constraints did not converge\n",
                   d->name, v + 1);
     }
-  s->gravity_on = d->density_given;
+  /* gravity_on: set by the body density setter (attr_rows.c) */
   if (tds_mesh_check(d->ctx, m) != TDS_OK) {
     char msg[sizeof d->ctx->errmsg];
     memcpy(msg, d->ctx->errmsg, sizeof msg);
@@ -169,7 +169,7 @@ static int finish(df *d) {
     const char *r = d->lx.src + d->read_at;
     size_t n = d->lx.n - d->read_at;
     if (has_commands(r, n)) {
-      s->read_text = malloc(n + 1);
+      s->read_text = tds_malloc(&s->m.alloc, n + 1);
       if (!s->read_text) return tds_seterr(d->ctx, TDS_ENOMEM, "out of memory");
       memcpy(s->read_text, r, n);
       s->read_text[n] = 0;
@@ -213,8 +213,9 @@ int tds_datafile_load_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
   int rc = parse(&d);
   if (rc == TDS_OK) rc = finish(&d);
   df_lex_free(&d.lx);
-  free(d.faces);
-  free(d.oe);
+  tds_free(&ctx->alloc, d.faces);
+  tds_free(&ctx->alloc, d.oe);
+  tds_free(&ctx->alloc, d.pv);
   if (rc != TDS_OK) {
     if (rc < 0) rc = -rc;
     tds_surf_free(s); /* leaves ctx->errmsg alone */
@@ -226,14 +227,14 @@ int tds_datafile_load(tds_ctx *ctx, tds_surf *s, const char *path) {
   FILE *f = fopen(path, "rb");
   if (!f) return tds_seterr(ctx, TDS_EIO, "cannot open '%s': %s", path, strerror(errno));
   size_t cap = 1 << 16, n = 0;
-  char *buf = malloc(cap);
+  char *buf = tds_malloc(&ctx->alloc, cap);
   int rc = TDS_OK;
   while (buf) {
     if (n == cap) {
       if (cap > TDS_DF_MAXFILE) break;
-      char *nb = realloc(buf, cap * 2);
+      char *nb = tds_realloc(&ctx->alloc, buf, cap * 2);
       if (!nb) {
-        free(buf);
+        tds_free(&ctx->alloc, buf);
         buf = NULL;
         break;
       }
@@ -254,7 +255,7 @@ int tds_datafile_load(tds_ctx *ctx, tds_surf *s, const char *path) {
   }
   fclose(f);
   if (rc == TDS_OK) rc = tds_datafile_load_buffer(ctx, s, path, buf, n);
-  free(buf);
+  tds_free(&ctx->alloc, buf);
   return rc;
 }
 
@@ -322,8 +323,8 @@ int tds_datafile_define(tds_ctx *ctx, tds_surf *s, const char *name, int line,
                 df_describe(d.p, b, sizeof b));
   if (rc < 0) rc = -rc;
   df_lex_free(&d.lx);
-  free(d.faces);
-  free(d.oe);
+  tds_free(&ctx->alloc, d.faces);
+  tds_free(&ctx->alloc, d.oe);
   if (rc != TDS_OK) {
     undefine(s, had, nquant0, nbdry0);
     return rc;

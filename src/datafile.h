@@ -78,6 +78,14 @@ int tds_datafile_define(tds_ctx *ctx, tds_surf *s, const char *name, int line,
 ** destroys an existing file. TDS_OK, or TDS_EIO with a message. */
 int tds_datafile_dump(tds_ctx *ctx, tds_surf *s, const char *path);
 
+/* The plain element lists of s as a datafile (write_fe): `header` (the
+** caller's top section: parameters, constraints in Evolver syntax; NULL
+** for none), the gravity constant and user attribute definitions, the
+** elements exactly as tds_datafile_dump writes them, and `read` as the
+** read section (NULL: none). Written the same all-or-nothing way. */
+int tds_datafile_write_fe(tds_ctx *ctx, tds_surf *s, const char *path, const char *header,
+                          const char *read);
+
 /* Whether path names a datafile: extension .fe or .dmp (any case) -> 1;
 ** .tds or .lua -> 0; anything else: 1 if the file starts (after comments
 ** and #define lines) with a datafile keyword such as VERTICES, PARAMETER

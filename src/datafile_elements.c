@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "attr.h"
 #include "model.h"
 #include "topo.h"
 
@@ -34,27 +35,6 @@ static int unknown_attr(df *d, const char *at, const char *w, const char *what) 
                   df_describe(at, b, sizeof b));
   }
   return df_err(d, at, TDS_ESYNTAX, "%s: unknown attribute '%s'", what, w);
-}
-
-/* Flag words of element lines; each kind accepts some of them. */
-static const struct { const char *word; uint32_t flag; } flag_words[] = {
-    {"fixed", TDS_FIXED},           {"bare", TDS_BARE},
-    {"no_refine", TDS_NO_REFINE},   {"norefine", TDS_NO_REFINE},
-    {"noncontent", TDS_NONCONTENT}, {"nodisplay", TDS_NODISPLAY},
-    {"no_display", TDS_NODISPLAY},  {NULL, 0}};
-
-/* If w is a flag word among `allowed`, add its flag to *flags: 1, else 0. */
-static int flag_word(const char *w, uint32_t allowed, uint32_t *flags) {
-  for (int i = 0; flag_words[i].word; i++)
-    if ((flag_words[i].flag & allowed) && !strcmp(w, flag_words[i].word)) {
-      *flags |= flag_words[i].flag;
-      return 1;
-    }
-  return 0;
-}
-
-static int is_color_word(const char *w) {
-  return !strcmp(w, "color") || !strcmp(w, "colour");
 }
 
 /* ORIGINAL n: the id of the element this one came from, ignored. */
@@ -88,10 +68,6 @@ static int con_list(df *d, const char *what, tds_cmask *mask, int *rev) {
                   df_describe(d->p, b, sizeof b));
   }
   return TDS_OK;
-}
-
-static int is_con_word(const char *w) {
-  return !strcmp(w, "constraint") || !strcmp(w, "constraints");
 }
 
 /* BOUNDARY b: its slot. */
@@ -138,9 +114,160 @@ static int next_attr(df *d, char *w, size_t cap, const char **at, const char *wh
   return 1;
 }
 
+/* ---- attribute words, through the registry (attr.h) ---- */
+
+/* Push one value onto the pending list d->pv. */
+static int push_pv(df *d, double v) {
+  if (tds_grow(&d->ctx->alloc, (void **)&d->pv, sizeof *d->pv, &d->cappv, d->npv + 1))
+    return df_err(d, NULL, TDS_ENOMEM, "out of memory");
+  d->pv[d->npv++] = v;
+  return TDS_OK;
+}
+
+/* The values of an array attribute: `{ v, v, ... }`, braces nested as
+** the user likes (Evolver writes `{1,2,3}`; commas are blanks). */
+static int read_array(df *d, const tds_attr *a, const char *what, int depth, int *n) {
+  df_ws(d);
+  if (*d->p != '{') {
+    char b[64];
+    return df_err(d, d->p, TDS_ESYNTAX, "%s: %s needs %d values in braces {...}, found %s",
+                  what, a->name, a->size, df_describe(d->p, b, sizeof b));
+  }
+  d->p++;
+  for (;;) {
+    df_ws(d);
+    if (*d->p == '}') {
+      d->p++;
+      return TDS_OK;
+    }
+    int rc;
+    if (*d->p == '{' && depth < TDS_ATTR_MAXDIM) {
+      rc = read_array(d, a, what, depth + 1, n);
+    } else if (!*d->p) {
+      return df_err(d, d->p, TDS_ESYNTAX, "%s: %s: missing '}'", what, a->name);
+    } else if (*n >= a->size) {
+      return df_err(d, d->p, TDS_ESYNTAX, "%s: %s takes %d values, got more", what, a->name,
+                    a->size);
+    } else {
+      double v;
+      rc = df_read_value(d, &v, what);
+      if (!rc) rc = push_pv(d, v);
+      (*n)++;
+    }
+    if (rc) return rc;
+  }
+}
+
+/* The value of attribute a after its word, appended to d->pv as
+** [row, n, values...] and checked against a's type. */
+static int read_attr_value(df *d, int kind, int row, const tds_attr *a, const char *what,
+                           const char *at) {
+  int32_t start = d->npv;
+  int rc = push_pv(d, row);
+  if (!rc) rc = push_pv(d, 0);
+  if (rc) return rc;
+  int n = 0;
+  if (a->type == TDS_AT_FLAG) {
+    rc = push_pv(d, 1);
+    n = 1;
+  } else if (a->type == TDS_AT_COLOR) {
+    int16_t c;
+    rc = df_read_color(d, &c, what);
+    if (!rc) rc = push_pv(d, c);
+    n = 1;
+  } else if (a->size > 1) {
+    rc = read_array(d, a, what, 0, &n);
+  } else {
+    double v;
+    rc = df_read_value(d, &v, what);
+    if (!rc) rc = push_pv(d, v);
+    n = 1;
+  }
+  if (rc) return rc;
+  d->pv[start + 1] = n;
+  rc = tds_attr_check(d->ctx, a, what, d->pv + start + 2, n);
+  (void)kind;
+  return rc ? df_core(d, df_line_of(d, at), rc, NULL) : TDS_OK;
+}
+
+/* The attribute words of an element line of `kind`: flags collected into
+** *flags, constraints into *con (*rev when one is negative), a boundary
+** into *bd (bdat: where), the others' values onto d->pv for apply_attrs.
+** Words tds reads and ignores: ORIGINAL (any kind), a vertex's COLOR (a
+** display option), a facet's BACKCOLOR, a body's CENTEROFMASS. */
+static int attr_words(df *d, int kind, const char *what, uint32_t *flags, tds_cmask *con,
+                      int *rev, int32_t *bd, const char **bdat) {
+  char w[64];
+  const char *at;
+  int rc;
+  while (next_attr(d, w, sizeof w, &at, what, &rc)) {
+    tds_attr a;
+    if (!strcmp(w, "original")) {
+      rc = skip_original(d, what);
+    } else if ((kind == TDS_VERTEX && (!strcmp(w, "color") || !strcmp(w, "colour"))) ||
+               (kind == TDS_FACET && !strcmp(w, "backcolor"))) {
+      int16_t c; /* vertices have no colour; tds keeps one colour per facet */
+      rc = df_read_color(d, &c, what);
+    } else if (kind == TDS_BODY && !strcmp(w, "centerofmass")) {
+      /* display option of Evolver's dumps */
+    } else if (kind == TDS_FACET && !strcmp(w, "boundary")) {
+      return df_err(d, at, TDS_ESYNTAX, "%s: faces on a BOUNDARY are not supported yet", what);
+    } else if (!tds_attr_find_fe(&d->s->m, kind, w, &a)) {
+      return unknown_attr(d, at, w, what);
+    } else if (a.type == TDS_AT_CONS && con) {
+      rc = con_list(d, what, con, rev);
+    } else if (a.type == TDS_AT_BDRY && bd) {
+      if (bdat) *bdat = at;
+      rc = bdry_ref(d, what, bd);
+    } else if (a.type == TDS_AT_CONS || a.type == TDS_AT_BDRY) {
+      return unknown_attr(d, at, w, what);
+    } else if (a.type == TDS_AT_FLAG) {
+      *flags |= a.flag;
+    } else {
+      int row = 0;
+      while (row < tds_attr_count(&d->s->m, kind)) {
+        tds_attr b;
+        tds_attr_at(&d->s->m, kind, row, &b);
+        if (b.name == a.name) break; /* the same row: names are shared strings */
+        row++;
+      }
+      rc = read_attr_value(d, kind, row, &a, what, at);
+    }
+    if (rc) return rc;
+  }
+  return rc;
+}
+
+/* Refuse attributes that exclude each other (a body's VOLUME and
+** PRESSURE) among those read from d->pv[from..]. */
+static int exclusive(df *d, int kind, const char *what, int32_t from) {
+  const char *names[64];
+  int n = 0;
+  for (int32_t i = from; i < d->npv && n < 64; i += 2 + (int32_t)d->pv[i + 1]) {
+    tds_attr a;
+    tds_attr_at(&d->s->m, kind, (int)d->pv[i], &a);
+    names[n++] = a.name;
+  }
+  int rc = tds_attr_exclusive(d->ctx, &d->s->m, kind, what, 1, names, n);
+  return rc ? df_core(d, df_line_of(d, NULL), rc, NULL) : TDS_OK;
+}
+
+/* Set the values d->pv[from..to) (read by attr_words) on element id. */
+static int apply_attrs(df *d, int kind, tds_id id, int32_t from, int32_t to, int line) {
+  for (int32_t i = from; i < to;) {
+    tds_attr a;
+    tds_attr_at(&d->s->m, kind, (int)d->pv[i], &a);
+    int n = (int)d->pv[i + 1];
+    int rc = tds_attr_write(d->ctx, d->s, &a, id, d->pv + i + 2, n);
+    if (rc) return df_core(d, line, rc, NULL);
+    i += 2 + n;
+  }
+  return TDS_OK;
+}
+
 /* Append one entry to the scratch list d->oe (at: where for messages). */
 static int push_oe(df *d, const char *at, int32_t v) {
-  if (tds_grow((void **)&d->oe, sizeof *d->oe, &d->capoe, d->noe + 1))
+  if (tds_grow(&d->ctx->alloc, (void **)&d->oe, sizeof *d->oe, &d->capoe, d->noe + 1))
     return df_err(d, at, TDS_ENOMEM, "out of memory");
   d->oe[d->noe++] = v;
   return TDS_OK;
@@ -150,7 +277,7 @@ static int push_oe(df *d, const char *at, int32_t v) {
 
 static int vertex_line(df *d) {
   tds_id id;
-  char what[48], w[64];
+  char what[48];
   int rc = element_id(d, "vertex", &id, what, sizeof what);
   if (rc) return rc;
   double val[3];
@@ -165,25 +292,9 @@ static int vertex_line(df *d) {
   uint32_t flags = 0;
   tds_cmask con = 0;
   int32_t bd = TDS_NONE;
-  const char *at, *bdat = NULL;
-  while (next_attr(d, w, sizeof w, &at, what, &rc)) {
-    if (flag_word(w, TDS_FIXED | TDS_BARE, &flags)) continue;
-    if (is_con_word(w)) {
-      rc = con_list(d, what, &con, NULL);
-    } else if (!strcmp(w, "boundary")) {
-      bdat = at;
-      rc = bdry_ref(d, what, &bd);
-    } else if (is_color_word(w)) {
-      int16_t c;
-      rc = df_read_color(d, &c, what); /* vertices have no colour: display only */
-    } else if (!strcmp(w, "original")) {
-      rc = skip_original(d, what);
-    } else {
-      return unknown_attr(d, at, w, what);
-    }
-    if (rc) return rc;
-  }
-  if (rc) return rc;
+  const char *bdat = NULL;
+  int32_t pv0 = d->npv = 0;
+  if ((rc = attr_words(d, TDS_VERTEX, what, &flags, &con, NULL, &bd, &bdat))) return rc;
   double x[3] = {0, 0, 0}, p[2] = {0, 0};
   if (bd != TDS_NONE) {
     int np = d->s->bdry[bd].nparams;
@@ -201,12 +312,12 @@ static int vertex_line(df *d) {
   }
   int line = df_line_of(d, NULL);
   rc = tds_decl_vertex(d->ctx, d->s, id, x, bd, p, flags, con);
-  return rc ? df_core(d, line, rc, NULL) : TDS_OK;
+  return rc ? df_core(d, line, rc, NULL) : apply_attrs(d, TDS_VERTEX, id, pv0, d->npv, line);
 }
 
 static int edge_line(df *d) {
   tds_id id;
-  char what[48], w[64];
+  char what[48];
   int rc = element_id(d, "edge", &id, what, sizeof what);
   if (rc) return rc;
   int64_t ends[2];
@@ -228,33 +339,13 @@ static int edge_line(df *d) {
   tds_cmask con = 0;
   int rev = 0;
   int32_t bd = TDS_NONE;
-  double ten = 0;
-  int16_t color = 0;
-  const char *at;
-  while (next_attr(d, w, sizeof w, &at, what, &rc)) {
-    if (flag_word(w, TDS_FIXED | TDS_NO_REFINE | TDS_BARE | TDS_NONCONTENT, &flags))
-      continue;
-    if (is_con_word(w)) {
-      rc = con_list(d, what, &con, &rev);
-    } else if (!strcmp(w, "boundary")) {
-      rc = bdry_ref(d, what, &bd);
-    } else if (!strcmp(w, "tension") || !strcmp(w, "density")) {
-      rc = df_read_value(d, &ten, what);
-    } else if (is_color_word(w)) {
-      rc = df_read_color(d, &color, what);
-    } else if (!strcmp(w, "original")) {
-      rc = skip_original(d, what);
-    } else {
-      return unknown_attr(d, at, w, what);
-    }
-    if (rc) return rc;
-  }
-  if (rc) return rc;
+  int32_t pv0 = d->npv = 0;
+  if ((rc = attr_words(d, TDS_EDGE, what, &flags, &con, &rev, &bd, NULL))) return rc;
   if (rev) flags |= TDS_CONREV;
   int line = df_line_of(d, NULL);
   rc = tds_decl_edge(d->ctx, d->s, id, (tds_id)ends[0] - 1, (tds_id)ends[1] - 1, flags,
-                     con, bd, ten, color);
-  return rc ? df_core(d, line, rc, NULL) : TDS_OK;
+                     con, bd, 0, 0);
+  return rc ? df_core(d, line, rc, NULL) : apply_attrs(d, TDS_EDGE, id, pv0, d->npv, line);
 }
 
 /* The signed ids after an element's id (a face's edges, a body's faces),
@@ -285,7 +376,7 @@ static int id_list(df *d, int kind, const char *what, int *n) {
 
 static int face_line(df *d) {
   tds_id id;
-  char what[48], w[64];
+  char what[48];
   int rc = element_id(d, "face", &id, what, sizeof what);
   if (rc) return rc;
   int32_t off = d->noe;
@@ -293,35 +384,13 @@ static int face_line(df *d) {
   if ((rc = id_list(d, TDS_EDGE, what, &n))) return rc;
   tds_face_attr fa = {0};
   fa.tension = 1;
-  const char *at;
-  while (next_attr(d, w, sizeof w, &at, what, &rc)) {
-    if (flag_word(w, TDS_FIXED | TDS_NO_REFINE | TDS_NODISPLAY | TDS_NONCONTENT,
-                  &fa.flags))
-      continue;
-    if (is_con_word(w)) {
-      rc = con_list(d, what, &fa.con, NULL);
-    } else if (!strcmp(w, "tension") || !strcmp(w, "density")) {
-      rc = df_read_value(d, &fa.tension, what);
-    } else if (is_color_word(w) || !strcmp(w, "frontcolor")) {
-      rc = df_read_color(d, &fa.color, what);
-    } else if (!strcmp(w, "backcolor")) {
-      int16_t c; /* one colour per facet in tds: the back colour is dropped */
-      rc = df_read_color(d, &c, what);
-    } else if (!strcmp(w, "original")) {
-      rc = skip_original(d, what);
-    } else if (!strcmp(w, "boundary")) {
-      return df_err(d, at, TDS_ESYNTAX, "%s: faces on a BOUNDARY are not supported yet",
-                    what);
-    } else {
-      return unknown_attr(d, at, w, what);
-    }
-    if (rc) return rc;
-  }
-  if (rc) return rc;
+  fa.color = 15;
+  int32_t pv0 = d->npv; /* faces keep their values until df_build_faces */
+  if ((rc = attr_words(d, TDS_FACET, what, &fa.flags, &fa.con, NULL, NULL, NULL))) return rc;
   if (n < 3)
     return df_err(d, NULL, TDS_ETOPO, "%s has %d edge%s; at least 3 are needed", what, n,
                   n == 1 ? "" : "s");
-  if (tds_grow((void **)&d->faces, sizeof *d->faces, &d->capfaces, d->nfaces + 1))
+  if (tds_grow(&d->ctx->alloc, (void **)&d->faces, sizeof *d->faces, &d->capfaces, d->nfaces + 1))
     return df_err(d, NULL, TDS_ENOMEM, "out of memory");
   df_face *r = &d->faces[d->nfaces++];
   r->id = id;
@@ -329,6 +398,8 @@ static int face_line(df *d) {
   r->n = n;
   r->off = off;
   r->at = fa;
+  r->pv0 = pv0;
+  r->pv1 = d->npv;
   if (id + 1 > d->maxface) d->maxface = id + 1;
   return TDS_OK;
 }
@@ -353,70 +424,37 @@ int df_build_faces(df *d) {
     return df_err(d, NULL, TDS_ENOMEM, "out of memory");
   for (int32_t i = 0; i < d->nfaces; i++) {
     df_face *r = &d->faces[i];
+    int32_t nf0 = m->nf;
     int rc = tds_build_face(d->ctx, d->s, r->id, r->n, d->oe + r->off, &r->at);
     if (rc) return df_core(d, r->line, rc, NULL);
+    /* the attributes on every facet built from the face */
+    if ((rc = apply_attrs(d, TDS_FACET, r->id, r->pv0, r->pv1, r->line))) return rc;
+    for (tds_id f = nf0 > r->id ? nf0 : r->id + 1; f < m->nf; f++)
+      if (m->forig[f] == r->id && (rc = apply_attrs(d, TDS_FACET, f, r->pv0, r->pv1, r->line)))
+        return rc;
   }
   d->nfaces = 0;
+  d->npv = 0;
   return TDS_OK;
 }
 
-/* Values a body line may set, each with a flag of whether it was given. */
-enum { B_VOLUME, B_VOLCONST, B_DENSITY, B_PRESSURE, B_LAGRANGE, B_N };
-static const char *const body_words[B_N] = {"volume", "volconst", "density",
-                                            "pressure", "lagrange_multiplier"};
-
 static int body_line(df *d) {
   tds_id id;
-  char what[48], w[64];
+  char what[48];
   int rc = element_id(d, "body", &id, what, sizeof what);
   if (rc) return rc;
   int32_t off = d->noe;
   int n;
   if ((rc = id_list(d, TDS_FACET, what, &n))) return rc;
-  double val[B_N] = {0};
-  int has[B_N] = {0};
-  const char *at;
-  while (next_attr(d, w, sizeof w, &at, what, &rc)) {
-    int k = 0;
-    while (k < B_N && strcmp(w, body_words[k])) k++;
-    if (k < B_N) {
-      rc = df_read_value(d, &val[k], what);
-      has[k] = 1;
-    } else if (!strcmp(w, "centerofmass")) {
-      /* display option of Evolver's dumps */
-    } else if (!strcmp(w, "original")) {
-      rc = skip_original(d, what);
-    } else {
-      return unknown_attr(d, at, w, what);
-    }
-    if (rc) return rc;
-  }
-  if (rc) return rc;
-  if (has[B_VOLUME] && has[B_PRESSURE])
-    return df_err(d, NULL, TDS_ESYNTAX, "%s: give either VOLUME or PRESSURE, not both", what);
+  int32_t pv0 = d->npv = 0;
+  uint32_t flags = 0;
+  if ((rc = attr_words(d, TDS_BODY, what, &flags, NULL, NULL, NULL, NULL))) return rc;
+  if ((rc = exclusive(d, TDS_BODY, what, pv0))) return rc;
   int line = df_line_of(d, NULL);
   rc = tds_decl_body(d->ctx, d->s, id, n, d->oe + off);
   d->noe = off;
   if (rc) return df_core(d, line, rc, NULL);
-  tds_mesh *m = &d->s->m;
-  if (has[B_VOLUME]) {
-    m->btarget[id] = val[B_VOLUME];
-    m->bflags[id] |= TDS_TARGET;
-    if (has[B_LAGRANGE]) m->bpressure[id] = val[B_LAGRANGE];
-  }
-  if (has[B_PRESSURE]) {
-    m->bpressure[id] = val[B_PRESSURE];
-    m->bflags[id] |= TDS_PRESSURE;
-  }
-  if (has[B_VOLCONST]) {
-    m->bvolconst[id] = val[B_VOLCONST];
-    m->bflags[id] |= TDS_VOLCONST;
-  }
-  if (has[B_DENSITY]) {
-    m->bdensity[id] = val[B_DENSITY];
-    d->density_given = 1;
-  }
-  return TDS_OK;
+  return apply_attrs(d, TDS_BODY, id, pv0, d->npv, line);
 }
 
 int df_element_line(df *d) {

@@ -21,7 +21,7 @@
 static const char *const unsupported[] = {
     "torus", "torus_filled", "periods", "display_periods", "display_origin",
     "string", "quadratic", "lagrange", "lagrange_order", "simplex_representation",
-    "symmetry_group", "metric", "conformal_metric", "klein_metric", "define",
+    "symmetry_group", "metric", "conformal_metric", "klein_metric",
     "method_instance", "optimizing_parameter", "optimising_parameter", "wulff",
     "phasefile", "diffusion", "pressure", "squared_curvature",
     "square_curvature", "mean_curvature_integral", "gauss_curvature",
@@ -309,7 +309,7 @@ static int h_quantity(df *d, const hdr_kw *k) {
     } else if (!strcmp(w, "modulus")) {
       rc = df_header_value(d, nm ? &ms[nm - 1].modulus : &modulus, what);
     } else if (!strcmp(w, "method") || !strcmp(w, "global_method")) {
-      meth *nms = realloc(ms, (size_t)(nm + 1) * sizeof *ms);
+      meth *nms = tds_realloc(&d->ctx->alloc, ms, (size_t)(nm + 1) * sizeof *ms);
       if (!nms) {
         rc = df_err(d, at, TDS_ENOMEM, "out of memory");
         goto fail;
@@ -404,11 +404,11 @@ static int h_quantity(df *d, const hdr_kw *k) {
       goto fail;
     }
   }
-  free(ms);
+  tds_free(&d->ctx->alloc, ms);
   return TDS_OK;
 fail:
   for (int i = 0; i < nm; i++) df_free3(ms[i].in);
-  free(ms);
+  tds_free(&d->ctx->alloc, ms);
   return rc;
 }
 
@@ -495,6 +495,7 @@ static int h_view_transforms(df *d, const hdr_kw *k) {
   if (rc) return rc;
   if (n > 100000)
     return df_err(d, NULL, TDS_ESYNTAX, "VIEW_TRANSFORMS: too many (%lld)", (long long)n);
+  d->s->view_transforms = (int)n;
   for (int64_t t = 0; t < n; t++) {
     int have;
     for (;;) {
@@ -520,6 +521,12 @@ static int h_nothing(df *d, const hdr_kw *k) {
   return TDS_OK;
 }
 
+/* DEFINE kind ATTRIBUTE ... (datafile_define.c) */
+static int h_define(df *d, const hdr_kw *k) {
+  (void)k;
+  return df_define(d, d->p);
+}
+
 /* EVOLVER_VERSION "x" */
 static int h_version(df *d, const hdr_kw *k) {
   (void)k;
@@ -538,6 +545,7 @@ static int h_version(df *d, const hdr_kw *k) {
 
 static const hdr_kw header_kw[] = {
     {"parameter", h_parameter, 0, 0},
+    {"define", h_define, 0, 0},
     {"constraint", h_constraint, 0, 0},
     {"boundary", h_boundary, 0, 0},
     {"quantity", h_quantity, 0, 0},

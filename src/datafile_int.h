@@ -6,6 +6,7 @@
 **   datafile_lex.c       preprocessor: raw text -> logical lines
 **   datafile_read.c      cursor over logical lines, messages, values
 **   datafile_header.c    top-section keywords, the "not supported" table
+**   datafile_define.c    DEFINE kind ATTRIBUTE (user attributes)
 **   datafile_elements.c  VERTICES, EDGES, FACES and BODIES lines
 **
 ** Conventions of the parsing functions below: they return TDS_OK or a
@@ -99,6 +100,7 @@ typedef struct df_face {
   int n;              /* number of oriented edges */
   int32_t off;        /* first oriented edge in df.oe */
   tds_face_attr at;
+  int32_t pv0, pv1;   /* its other attributes' values in df.pv */
 } df_face;
 
 typedef struct df {
@@ -115,8 +117,10 @@ typedef struct df {
   int32_t nfaces, capfaces;
   int32_t *oe;         /* scratch: face edges, or one body's faces */
   int32_t noe, capoe;
+  double *pv;          /* scratch: attribute values of element lines, as
+                          [registry row, n, n values]... (datafile_elements.c) */
+  int32_t npv, cappv;
   tds_id maxface;      /* highest face slot + 1 */
-  int density_given;   /* some body has DENSITY: gravity is on */
   int has_read;        /* a READ section follows ... */
   size_t read_at;      /* ... from this raw offset */
   int split;           /* several values in a row: element lines, matrices */
@@ -215,6 +219,13 @@ int df_header_word(const char *w);
 /* Read the top-section keyword w (lowercase, taken from `at`) and what
 ** belongs to it; unknown and unsupported keywords are refused. */
 int df_header_keyword(df *d, const char *w, const char *at);
+
+/* ---- user attributes (datafile_define.c) ---- */
+
+/* Read "kind ATTRIBUTE name type [dim]..." after the word DEFINE (found
+** at `at`) and define the attribute; other DEFINEs are refused as not
+** supported yet. */
+int df_define(df *d, const char *at);
 
 /* ---- element sections (datafile_elements.c) ---- */
 

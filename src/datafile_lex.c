@@ -36,12 +36,12 @@ void df_lex_init(df_lex *lx, tds_ctx *ctx, const char *name, const char *text,
 
 void df_lex_free(df_lex *lx) {
   for (int i = 0; i < lx->nmac; i++) {
-    free(lx->mac[i].name);
-    free(lx->mac[i].body);
+    tds_free(&lx->ctx->alloc, lx->mac[i].name);
+    tds_free(&lx->ctx->alloc, lx->mac[i].body);
   }
-  free(lx->mac);
-  free(lx->buf);
-  free(lx->bp);
+  tds_free(&lx->ctx->alloc, lx->mac);
+  tds_free(&lx->ctx->alloc, lx->buf);
+  tds_free(&lx->ctx->alloc, lx->bp);
   lx->mac = NULL;
   lx->buf = NULL;
   lx->bp = NULL;
@@ -77,7 +77,7 @@ static int put(df_lex *lx, char c) {
                   lx->depth ? " after macro expansion" : "");
     size_t cap = lx->cap ? lx->cap * 2 : 256;
     if (cap > TDS_DF_MAXLINE) cap = TDS_DF_MAXLINE;
-    char *b = realloc(lx->buf, cap);
+    char *b = tds_realloc(&lx->ctx->alloc, lx->buf, cap);
     if (!b) return lerr(lx, TDS_ENOMEM, lx->line0, "out of memory");
     lx->buf = b;
     lx->cap = cap;
@@ -98,7 +98,7 @@ static int put_n(df_lex *lx, const char *s, size_t n) {
 /* Record that the text from offset len on comes from physical line `line`. */
 static int breakpoint(df_lex *lx) {
   if (lx->nbp > 0 && lx->bp[lx->nbp - 1].line == lx->line) return 0;
-  if (tds_grow((void **)&lx->bp, sizeof *lx->bp, &lx->capbp, lx->nbp + 1))
+  if (tds_grow(&lx->ctx->alloc, (void **)&lx->bp, sizeof *lx->bp, &lx->capbp, lx->nbp + 1))
     return lerr(lx, TDS_ENOMEM, lx->line, "out of memory");
   lx->bp[lx->nbp].off = lx->len;
   lx->bp[lx->nbp].line = lx->line;
@@ -322,22 +322,22 @@ static int directive(df_lex *lx, size_t hash) {
     int mi = find_macro(lx, s + nm, nl);
     df_macro *m = mi >= 0 ? &lx->mac[mi] : NULL;
     if (!m) {
-      if (tds_grow((void **)&lx->mac, sizeof *lx->mac, &lx->capmac, lx->nmac + 1))
+      if (tds_grow(&lx->ctx->alloc, (void **)&lx->mac, sizeof *lx->mac, &lx->capmac, lx->nmac + 1))
         return lerr(lx, TDS_ENOMEM, lx->line0, "out of memory");
       m = &lx->mac[lx->nmac];
       memset(m, 0, sizeof *m);
-      m->name = malloc(nl + 1);
+      m->name = tds_malloc(&lx->ctx->alloc, nl + 1);
       if (!m->name) return lerr(lx, TDS_ENOMEM, lx->line0, "out of memory");
       memcpy(m->name, s + nm, nl);
       m->name[nl] = 0;
       m->namelen = nl;
       lx->nmac++;
     }
-    char *body = malloc(b - a + 1);
+    char *body = tds_malloc(&lx->ctx->alloc, b - a + 1);
     if (!body) return lerr(lx, TDS_ENOMEM, lx->line0, "out of memory");
     memcpy(body, lx->buf + a, b - a);
     body[b - a] = 0;
-    free(m->body);
+    tds_free(&lx->ctx->alloc, m->body);
     m->body = body;
     lx->len = 0;
     lx->buf[0] = 0;

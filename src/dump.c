@@ -13,14 +13,17 @@
 */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
+#include "attr.h"
 #include "datafile.h"
 #include "model.h"
 #include "wfile.h"
 
 typedef struct out {
   FILE *f;
+  const tds_alloc *alloc; /* for scratch values (the ctx's hook) */
   int bad;        /* a value was not finite */
   char what[96];  /* first non-finite item */
 } out;
@@ -82,26 +85,99 @@ static void cons(out *o, const tds_surf *s, tds_cmask mask, int rev) {
     if (mask & ((tds_cmask)1 << c)) fprintf(o->f, " %s%d", rev ? "-" : "", s->con[c].number);
 }
 
-static void header(out *o, const tds_surf *s) {
-  FILE *f = o->f;
+/* Nested braces of user array values v (dims dim[d..ndim)), from *k. */
+static void array(out *o, const tds_attr *a, const double *v, int *k, int d, tds_id id) {
+  int n = a->ndim ? (int)a->dim[d] : a->size;
+  fputs(" {", o->f);
+  for (int i = 0; i < n; i++) {
+    if (i) fputc(',', o->f);
+    if (a->ndim && d + 1 < a->ndim) array(o, a, v, k, d + 1, id);
+    else num(o, v[(*k)++], tds_kind_name[a->kind], id + 1);
+  }
+  fputs(" }", o->f);
+}
+
+/* The attribute words of element id: every TDS_AT_FE attribute of the
+** registry that dump writes for it (attr.h), in registry order. */
+static void attrs(out *o, tds_surf *s, int kind, tds_id id) {
+  int na = tds_attr_count(&s->m, kind);
+  double *v = NULL;
+  for (int i = 0; i < na; i++) {
+    tds_attr a;
+    tds_attr_at(&s->m, kind, i, &a);
+    if (!(a.io & TDS_AT_FE) || !tds_attr_dumped(s, &a, id)) continue;
+    if (a.type == TDS_AT_CONS) {
+      tds_cmask mask = kind == TDS_VERTEX ? s->m.vcon[id]
+                       : kind == TDS_EDGE ? s->m.econ[id] : s->m.fcon[id];
+      cons(o, s, mask, kind == TDS_EDGE && (s->m.eflags[id] & TDS_CONREV));
+      continue;
+    }
+    double one[1];
+    v = a.size > 1 ? tds_malloc(o->alloc, sizeof *v * (size_t)a.size) : one;
+    int n = 0;
+    tds_ctx quiet;
+    tds_ctx_init(&quiet);
+    quiet.alloc = *o->alloc;
+    if (!v || tds_attr_read(&quiet, s, &a, id, v, &n) != TDS_OK || n == 0) {
+      if (v != one) tds_free(o->alloc, v);
+      if (!v && !o->bad) {
+        o->bad = 1;
+        snprintf(o->what, sizeof o->what, "memory for %s %d", tds_kind_name[kind], id + 1);
+      }
+      continue;
+    }
+    fprintf(o->f, " %s", tds_attr_word(&a));
+    if (a.type == TDS_AT_REAL && a.size == 1) {
+      num(o, v[0], tds_kind_name[kind], id + 1);
+    } else if (a.size > 1) {
+      int k = 0;
+      array(o, &a, v, &k, 0, id);
+    } else if (a.type != TDS_AT_FLAG) {
+      fprintf(o->f, " %.17g", v[0]);
+    }
+    if (v != one) tds_free(o->alloc, v);
+  }
+}
+
+/* DEFINE lines of the user attributes. */
+static void defines(out *o, const tds_surf *s) {
+  for (int k = 0; k < TDS_NKINDS; k++)
+    for (int c = 0; c < s->m.nucol[k]; c++) {
+      const tds_ucol *u = &s->m.ucol[k][c];
+      fprintf(o->f, "define %s attribute %s %s", tds_kind_name[k], u->name,
+              u->type == TDS_AT_INT ? "integer" : "real");
+      for (int d = 0; d < u->ndim; d++) fprintf(o->f, "[%d]", (int)u->dim[d]);
+      fputc('\n', o->f);
+    }
+}
+
+/* The gravity constant; G = 0 when gravity is off but bodies have a
+** density (the body lines carry it, and Evolver turns gravity on then). */
+static void gravity(out *o, const tds_surf *s) {
   const tds_mesh *m = &s->m;
   int density = 0;
   for (tds_id b = 0; b < m->nb; b++)
     if (tds_alive(m->bflags, b) && m->bdensity[b] != 0) density = 1;
+  if (!s->gravity_on && density) {
+    fputs("// gravity was off: G = 0 keeps the bodies' densities without energy\n"
+          "GRAVITY_CONSTANT 0\n", o->f);
+  } else {
+    fputs("GRAVITY_CONSTANT", o->f);
+    num(o, s->gravity, "gravity_constant", 0);
+    fputc('\n', o->f);
+  }
+}
+
+static void header(out *o, const tds_surf *s) {
+  FILE *f = o->f;
   for (int i = 0; i < s->npar; i++) {
     fprintf(f, "PARAMETER %s =", s->parname[i]);
     num(o, s->parval[i], "parameter", i + 1);
     fputc('\n', f);
   }
   if (s->npar) fputc('\n', f);
-  if (!s->gravity_on && density)
-    fputs("// gravity was off: G = 0 keeps the bodies' densities without energy\n"
-          "GRAVITY_CONSTANT 0\n", f);
-  else {
-    fputs("GRAVITY_CONSTANT", f);
-    num(o, s->gravity, "gravity_constant", 0);
-    fputc('\n', f);
-  }
+  defines(o, s);
+  gravity(o, s);
   if (s->gap_constant != 1) {
     fputs("GAP_CONSTANT", f);
     num(o, s->gap_constant, "gap_constant", 0);
@@ -206,7 +282,7 @@ static void header(out *o, const tds_surf *s) {
   }
 }
 
-static void elements(out *o, const tds_surf *s) {
+static void elements(out *o, tds_surf *s) {
   FILE *f = o->f;
   const tds_mesh *m = &s->m;
   fputs("vertices\n", f);
@@ -216,53 +292,28 @@ static void elements(out *o, const tds_surf *s) {
     int32_t bd = m->vbdry[v];
     if (bd != TDS_NONE && bd >= 0 && bd < s->nbdry) {
       for (int k = 0; k < s->bdry[bd].nparams; k++) num(o, m->vp[v][k], "vertex", v + 1);
-      fprintf(f, " boundary %d", s->bdry[bd].number);
     } else {
       for (int k = 0; k < 3; k++) num(o, m->x[v][k], "vertex", v + 1);
     }
-    cons(o, s, m->vcon[v], 0);
-    if (m->vflags[v] & TDS_FIXED) fputs(" fixed", f);
-    if (m->vflags[v] & TDS_BARE) fputs(" bare", f);
+    attrs(o, s, TDS_VERTEX, v);
     fputc('\n', f);
   }
   fputs("\nedges\n", f);
   for (tds_id e = 0; e < m->ne; e++) {
     if (!tds_alive(m->eflags, e)) continue;
-    uint32_t fl = m->eflags[e];
     fprintf(f, "%d %d %d", e + 1, m->ev[e][0] + 1, m->ev[e][1] + 1);
-    cons(o, s, m->econ[e], (fl & TDS_CONREV) != 0);
-    if (m->ebdry[e] != TDS_NONE && m->ebdry[e] >= 0 && m->ebdry[e] < s->nbdry)
-      fprintf(f, " boundary %d", s->bdry[m->ebdry[e]].number);
-    if (fl & TDS_FIXED) fputs(" fixed", f);
-    if (fl & TDS_NO_REFINE) fputs(" no_refine", f);
-    if (fl & TDS_BARE) fputs(" bare", f);
-    if (fl & TDS_NONCONTENT) fputs(" noncontent", f);
-    if (m->eten[e] != 0) {
-      fputs(" tension", f);
-      num(o, m->eten[e], "edge", e + 1);
-    }
-    if (m->ecolor[e]) fprintf(f, " color %d", m->ecolor[e]);
+    attrs(o, s, TDS_EDGE, e);
     fputc('\n', f);
   }
   fputs("\nfaces\n", f);
   for (tds_id t = 0; t < m->nf; t++) {
     if (!tds_alive(m->fflags, t)) continue;
-    uint32_t fl = m->fflags[t];
     fprintf(f, "%d", t + 1);
     for (int k = 0; k < 3; k++) {
       int32_t r = m->fe[t][k];
       fprintf(f, " %s%d", TDS_OREV(r) ? "-" : "", TDS_OID(r) + 1);
     }
-    cons(o, s, m->fcon[t], 0);
-    if (fl & TDS_FIXED) fputs(" fixed", f);
-    if (fl & TDS_NO_REFINE) fputs(" no_refine", f);
-    if (fl & TDS_NODISPLAY) fputs(" nodisplay", f);
-    if (fl & TDS_NONCONTENT) fputs(" noncontent", f);
-    if (m->ften[t] != 1) {
-      fputs(" tension", f);
-      num(o, m->ften[t], "facet", t + 1);
-    }
-    if (m->fcolor[t]) fprintf(f, " color %d", m->fcolor[t]);
+    attrs(o, s, TDS_FACET, t);
     fputc('\n', f);
   }
   int any = 0;
@@ -285,51 +336,46 @@ static void elements(out *o, const tds_surf *s) {
           col++;
         }
     }
-    uint32_t fl = m->bflags[b];
-    if (fl & TDS_TARGET) {
-      fputs(" volume", f);
-      num(o, m->btarget[b], "body", b + 1);
-      fputs(" lagrange_multiplier", f);
-      num(o, m->bpressure[b], "body", b + 1);
-    } else if (fl & TDS_PRESSURE) {
-      fputs(" pressure", f);
-      num(o, m->bpressure[b], "body", b + 1);
-    }
-    if ((fl & TDS_VOLCONST) || m->bvolconst[b] != 0) {
-      fputs(" volconst", f);
-      num(o, m->bvolconst[b], "body", b + 1);
-    }
-    if (m->bdensity[b] != 0 || s->gravity_on) {
-      fputs(" density", f);
-      num(o, m->bdensity[b], "body", b + 1);
-    }
+    attrs(o, s, TDS_BODY, b);
     fputc('\n', f);
   }
 }
 
-int tds_datafile_dump(tds_ctx *ctx, tds_surf *s, const char *path) {
+/* Write the file: the model header (model) or the caller's header text,
+** the elements, the read section. */
+static int write(tds_ctx *ctx, tds_surf *s, const char *path, int model, const char *hdr,
+                 const char *read) {
   tds_wfile w;
   int rc = tds_wfile_open(ctx, &w, path);
   if (rc != TDS_OK) return rc;
   out o = {0};
   o.f = w.f;
-  tds_ctx quiet = *ctx;
-  double energy = NAN;
-  if (tds_surf_update(&quiet, s) == TDS_OK) energy = s->energy;
+  o.alloc = &ctx->alloc;
   const tds_mesh *m = &s->m;
-  fprintf(o.f, "// %s: Surface Evolver datafile written by tds %s\n", path, TDS_VERSION);
-  fprintf(o.f, "// vertices %d, edges %d, facets %d, bodies %d", tds_mesh_count(m, TDS_VERTEX),
-          tds_mesh_count(m, TDS_EDGE), tds_mesh_count(m, TDS_FACET),
-          tds_mesh_count(m, TDS_BODY));
-  if (isfinite(energy)) fprintf(o.f, "; total energy %.17g", energy);
-  fputs("\n\n", o.f);
-  header(&o, s);
+  if (model) {
+    tds_ctx quiet = *ctx;
+    double energy = NAN;
+    if (tds_surf_update(&quiet, s) == TDS_OK) energy = s->energy;
+    fprintf(o.f, "// %s: Surface Evolver datafile written by tds %s\n", path, TDS_VERSION);
+    fprintf(o.f, "// vertices %d, edges %d, facets %d, bodies %d",
+            tds_mesh_count(m, TDS_VERTEX), tds_mesh_count(m, TDS_EDGE),
+            tds_mesh_count(m, TDS_FACET), tds_mesh_count(m, TDS_BODY));
+    if (isfinite(energy)) fprintf(o.f, "; total energy %.17g", energy);
+    fputs("\n\n", o.f);
+    header(&o, s);
+  } else {
+    fprintf(o.f, "// %s: written by tds write_fe\n", path);
+    if (hdr) fprintf(o.f, "%s\n", hdr);
+    if (s->gravity_on || m->nb) gravity(&o, s);
+    defines(&o, s);
+    fputc('\n', o.f);
+  }
   elements(&o, s);
-  if (s->read_text) {
+  if (read) {
     fputs("\nread\n", o.f);
-    fputs(s->read_text, o.f);
-    size_t k = strlen(s->read_text);
-    if (k && s->read_text[k - 1] != '\n') fputc('\n', o.f);
+    fputs(read, o.f);
+    size_t k = strlen(read);
+    if (k && read[k - 1] != '\n') fputc('\n', o.f);
   }
   if (o.bad)
     rc = tds_seterr(ctx, TDS_ENUM, "cannot dump to '%s': %s is not finite", path, o.what);
@@ -337,4 +383,13 @@ int tds_datafile_dump(tds_ctx *ctx, tds_surf *s, const char *path) {
     rc = tds_wfile_commit(ctx, &w);
   tds_wfile_abort(&w);
   return rc;
+}
+
+int tds_datafile_dump(tds_ctx *ctx, tds_surf *s, const char *path) {
+  return write(ctx, s, path, 1, NULL, s->read_text);
+}
+
+int tds_datafile_write_fe(tds_ctx *ctx, tds_surf *s, const char *path, const char *header,
+                          const char *read) {
+  return write(ctx, s, path, 0, header, read);
 }

@@ -105,10 +105,10 @@ static int check_opts(tds_ctx *ctx, const tds_surf *s, const tds_export_opts *o)
 }
 
 static void xmesh_free(xmesh *x) {
-  free(x->x);
-  free(x->tri);
-  for (int i = 0; i < x->nvf; i++) free(x->vf[i].v);
-  for (int i = 0; i < x->nff; i++) free(x->ff[i].v);
+  tds_free(&x->alloc, x->x);
+  tds_free(&x->alloc, x->tri);
+  for (int i = 0; i < x->nvf; i++) tds_free(&x->alloc, x->vf[i].v);
+  for (int i = 0; i < x->nff; i++) tds_free(&x->alloc, x->ff[i].v);
   memset(x, 0, sizeof *x);
 }
 
@@ -136,10 +136,11 @@ typedef struct build {
 } build;
 
 static void build_free(build *b) {
+  tds_alloc a = b->x.alloc;
   xmesh_free(&b->x);
-  free(b->src);
-  free(b->rev);
-  free(b->vid);
+  tds_free(&a, b->src);
+  tds_free(&a, b->rev);
+  tds_free(&a, b->vid);
 }
 
 static int in_shell(const tds_mesh *m, tds_id f, tds_id body, int *rev) {
@@ -157,9 +158,10 @@ static int make_mesh(tds_ctx *ctx, const tds_surf *s, const tds_export_opts *o,
                      tds_id body, build *b) {
   const tds_mesh *m = &s->m;
   memset(b, 0, sizeof *b);
+  b->x.alloc = ctx->alloc;
   b->body = body;
   int32_t nt = 0, nv = 0;
-  int32_t *map = tds_calloc((size_t)(m->nv > 0 ? m->nv : 1), sizeof *map);
+  int32_t *map = tds_calloc(&ctx->alloc, (size_t)(m->nv > 0 ? m->nv : 1), sizeof *map);
   if (!map) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   for (tds_id f = 0; f < m->nf; f++) {
     int rev;
@@ -172,20 +174,20 @@ static int make_mesh(tds_ctx *ctx, const tds_surf *s, const tds_export_opts *o,
   for (tds_id v = 0; v < m->nv; v++) map[v] = map[v] ? nv++ : -1;
   /* room for caps (tds_export_caps) */
   int32_t room = 6 * nt + 1;
-  b->x.x = tds_calloc((size_t)(nv > 0 ? nv : 1), sizeof *b->x.x);
-  b->vid = tds_calloc((size_t)(nv > 0 ? nv : 1), sizeof *b->vid);
-  b->x.tri = tds_calloc((size_t)room, sizeof *b->x.tri);
-  b->src = tds_calloc((size_t)room, sizeof *b->src);
-  b->rev = tds_calloc((size_t)room, 1);
+  b->x.x = tds_calloc(&ctx->alloc, (size_t)(nv > 0 ? nv : 1), sizeof *b->x.x);
+  b->vid = tds_calloc(&ctx->alloc, (size_t)(nv > 0 ? nv : 1), sizeof *b->vid);
+  b->x.tri = tds_calloc(&ctx->alloc, (size_t)room, sizeof *b->x.tri);
+  b->src = tds_calloc(&ctx->alloc, (size_t)room, sizeof *b->src);
+  b->rev = tds_calloc(&ctx->alloc, (size_t)room, 1);
   if (!b->x.x || !b->vid || !b->x.tri || !b->src || !b->rev) {
-    free(map);
+    tds_free(&ctx->alloc, map);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   }
   for (tds_id v = 0; v < m->nv; v++) {
     if (map[v] < 0) continue;
     for (int k = 0; k < 3; k++) {
       if (!isfinite(m->x[v][k])) {
-        free(map);
+        tds_free(&ctx->alloc, map);
         return tds_seterr(ctx, TDS_ENUM, "export: vertex %d has a coordinate that is not finite",
                           v + 1);
       }
@@ -206,7 +208,7 @@ static int make_mesh(tds_ctx *ctx, const tds_surf *s, const tds_export_opts *o,
     t++;
   }
   b->x.nt = t;
-  free(map);
+  tds_free(&ctx->alloc, map);
   if (body != TDS_NONE && o->caps) {
     int rc = tds_export_caps(ctx, &b->x, &b->ncap);
     if (rc != TDS_OK) return rc;
@@ -221,7 +223,7 @@ static int make_mesh(tds_ctx *ctx, const tds_surf *s, const tds_export_opts *o,
 static double *add_field(xmesh *x, int vertex, const char *name, int type, int ncomp) {
   int32_t n = vertex ? x->nv : x->nt;
   xfield *fl = vertex ? &x->vf[x->nvf] : &x->ff[x->nff];
-  fl->v = tds_calloc((size_t)(n > 0 ? n : 1) * (size_t)ncomp, sizeof(double));
+  fl->v = tds_calloc(&x->alloc, (size_t)(n > 0 ? n : 1) * (size_t)ncomp, sizeof(double));
   if (!fl->v) return NULL;
   fl->name = name;
   fl->type = type;
@@ -340,12 +342,12 @@ static int write_one(tds_ctx *ctx, FILE *f, const tds_export_opts *o, const xmes
 }
 
 /* "<stem>_body<id><ext>" for path "<stem><ext>". Caller frees. */
-static char *body_path(const char *path, tds_id body) {
+static char *body_path(const tds_alloc *a, const char *path, tds_id body) {
   const char *slash = strrchr(path, '/');
   const char *dot = strrchr(slash ? slash : path, '.');
   size_t stem = dot ? (size_t)(dot - path) : strlen(path);
   size_t n = strlen(path) + 32;
-  char *p = malloc(n);
+  char *p = tds_malloc(a, n);
   if (p) snprintf(p, n, "%.*s_body%d%s", (int)stem, path, body + 1, dot ? dot : "");
   return p;
 }
@@ -356,13 +358,13 @@ int tds_export(tds_ctx *ctx, tds_surf *s, const char *path, const tds_export_opt
   tds_mesh *m = &s->m;
   if (tds_mesh_adjacency(m) != TDS_OK) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   int32_t nfiles = o->per_body ? m->nb : 1;
-  tds_wfile *af = tds_calloc((size_t)(nfiles > 0 ? nfiles : 1), sizeof *af);
+  tds_wfile *af = tds_calloc(&ctx->alloc, (size_t)(nfiles > 0 ? nfiles : 1), sizeof *af);
   if (!af) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   int32_t opened = 0;
   for (int32_t i = 0; i < nfiles && rc == TDS_OK; i++) {
     tds_id body = o->per_body ? i : TDS_NONE;
     if (body != TDS_NONE && !tds_alive(m->bflags, body)) continue;
-    char *p = body != TDS_NONE ? body_path(path, body) : NULL;
+    char *p = body != TDS_NONE ? body_path(&ctx->alloc, path, body) : NULL;
     if (body != TDS_NONE && !p) {
       rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory");
       break;
@@ -390,12 +392,12 @@ int tds_export(tds_ctx *ctx, tds_surf *s, const char *path, const tds_export_opt
       if (rc == TDS_OK) rc = crc;
     }
     build_free(&b);
-    free(p);
+    tds_free(&ctx->alloc, p);
   }
   for (int32_t i = 0; i < opened && rc == TDS_OK; i++) rc = tds_wfile_commit(ctx, &af[i]);
   if (rc == TDS_OK && o->written)
     for (int32_t i = 0; i < opened; i++) o->written(o->ud, af[i].path);
   for (int32_t i = 0; i < opened; i++) tds_wfile_abort(&af[i]);
-  free(af);
+  tds_free(&ctx->alloc, af);
   return rc;
 }

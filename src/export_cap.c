@@ -77,25 +77,25 @@ static int clip(tds_ctx *ctx, xmesh *x, const int32_t *lp, int32_t n) {
   for (int c = 0; c < 3; c++) u[c] -= d * N[c];
   v3_scale(u, 1 / v3_norm(u));
   v3_cross(v, N, u); /* (u, v, N) right-handed: the loop runs counter-clockwise */
-  double (*p)[2] = malloc((size_t)n * sizeof *p);
+  double (*p)[2] = tds_malloc(&ctx->alloc, (size_t)n * sizeof *p);
   if (!p) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   for (int32_t i = 0; i < n; i++) {
     p[i][0] = v3_dot(x->x[lp[i]], u);
     p[i][1] = v3_dot(x->x[lp[i]], v);
   }
   /* idx: remaining corners (positions into lp and p) */
-  int32_t *idx = malloc((size_t)n * sizeof *idx);
+  int32_t *idx = tds_malloc(&ctx->alloc, (size_t)n * sizeof *idx);
   if (!idx) {
-    free(p);
+    tds_free(&ctx->alloc, p);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   }
   for (int32_t i = 0; i < n; i++) idx[i] = i;
   /* refl: corners that are not strictly convex; only they can lie in an
   ** ear's triangle, so only they are tested */
-  int32_t *refl = malloc((size_t)n * sizeof *refl);
+  int32_t *refl = tds_malloc(&ctx->alloc, (size_t)n * sizeof *refl);
   if (!refl) {
-    free(idx);
-    free(p);
+    tds_free(&ctx->alloc, idx);
+    tds_free(&ctx->alloc, p);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   }
   int32_t m = n;
@@ -135,13 +135,13 @@ static int clip(tds_ctx *ctx, xmesh *x, const int32_t *lp, int32_t n) {
     memmove(idx + ear, idx + ear + 1, (size_t)(m - ear - 1) * sizeof *idx);
     m--;
   }
-  free(refl);
+  tds_free(&ctx->alloc, refl);
   x->tri[x->nt][0] = lp[idx[0]];
   x->tri[x->nt][1] = lp[idx[1]];
   x->tri[x->nt][2] = lp[idx[2]];
   x->nt++;
-  free(idx);
-  free(p);
+  tds_free(&ctx->alloc, idx);
+  tds_free(&ctx->alloc, p);
   return TDS_OK;
 }
 
@@ -234,11 +234,11 @@ static int blocked(const xmesh *x, const plane *pl, int32_t h, int32_t o, const 
 ** a hole. A hole that cannot be bridged is capped on its own. */
 static int cap_loops(tds_ctx *ctx, xmesh *x, const int32_t *loop, const int32_t *lstart,
                      int32_t nl) {
-  double (*N)[3] = malloc((size_t)nl * sizeof *N);
-  int32_t *hole_of = malloc((size_t)nl * sizeof *hole_of);
-  int32_t *poly = malloc((size_t)(lstart[nl] + 2 * nl + 1) * sizeof *poly);
-  int32_t *holes = malloc((size_t)nl * sizeof *holes);
-  int32_t *tmp = malloc((size_t)(lstart[nl] + 2 * nl + 1) * sizeof *tmp);
+  double (*N)[3] = tds_malloc(&ctx->alloc, (size_t)nl * sizeof *N);
+  int32_t *hole_of = tds_malloc(&ctx->alloc, (size_t)nl * sizeof *hole_of);
+  int32_t *poly = tds_malloc(&ctx->alloc, (size_t)(lstart[nl] + 2 * nl + 1) * sizeof *poly);
+  int32_t *holes = tds_malloc(&ctx->alloc, (size_t)nl * sizeof *holes);
+  int32_t *tmp = tds_malloc(&ctx->alloc, (size_t)(lstart[nl] + 2 * nl + 1) * sizeof *tmp);
   int rc = TDS_OK;
   if (!N || !hole_of || !poly || !holes || !tmp) {
     rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory");
@@ -319,24 +319,24 @@ static int cap_loops(tds_ctx *ctx, xmesh *x, const int32_t *loop, const int32_t 
     rc = clip(ctx, x, poly, np);
   }
 done:
-  free(N);
-  free(hole_of);
-  free(poly);
-  free(holes);
-  free(tmp);
+  tds_free(&ctx->alloc, N);
+  tds_free(&ctx->alloc, hole_of);
+  tds_free(&ctx->alloc, poly);
+  tds_free(&ctx->alloc, holes);
+  tds_free(&ctx->alloc, tmp);
   return rc;
 }
 
 int tds_export_caps(tds_ctx *ctx, xmesh *x, int32_t *ncap) {
   int32_t nt0 = x->nt, nh = 3 * nt0;
   *ncap = 0;
-  hedge *h = malloc((size_t)(nh > 0 ? nh : 1) * sizeof *h);
-  int32_t (*need)[2] = malloc((size_t)(nh > 0 ? nh : 1) * sizeof *need);
-  int32_t *start = tds_calloc((size_t)x->nv + 1, sizeof *start);
-  int32_t *out = malloc((size_t)(nh > 0 ? nh : 1) * sizeof *out);
-  int32_t *loop = malloc((size_t)(nh > 0 ? nh : 1) * sizeof *loop);
-  uint8_t *used = tds_calloc((size_t)(nh > 0 ? nh : 1), 1);
-  int32_t *lstart = malloc((size_t)(nh + 2) * sizeof *lstart);
+  hedge *h = tds_malloc(&ctx->alloc, (size_t)(nh > 0 ? nh : 1) * sizeof *h);
+  int32_t (*need)[2] = tds_malloc(&ctx->alloc, (size_t)(nh > 0 ? nh : 1) * sizeof *need);
+  int32_t *start = tds_calloc(&ctx->alloc, (size_t)x->nv + 1, sizeof *start);
+  int32_t *out = tds_malloc(&ctx->alloc, (size_t)(nh > 0 ? nh : 1) * sizeof *out);
+  int32_t *loop = tds_malloc(&ctx->alloc, (size_t)(nh > 0 ? nh : 1) * sizeof *loop);
+  uint8_t *used = tds_calloc(&ctx->alloc, (size_t)(nh > 0 ? nh : 1), 1);
+  int32_t *lstart = tds_malloc(&ctx->alloc, (size_t)(nh + 2) * sizeof *lstart);
   int rc = TDS_OK;
   if (!h || !need || !start || !out || !loop || !used || !lstart) {
     rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory");
@@ -361,13 +361,13 @@ int tds_export_caps(tds_ctx *ctx, xmesh *x, int32_t *ncap) {
   for (int32_t i = 0; i < nneed; i++) start[need[i][0] + 1]++;
   for (int32_t v = 0; v < x->nv; v++) start[v + 1] += start[v];
   {
-    int32_t *fill = tds_calloc((size_t)x->nv + 1, sizeof *fill);
+    int32_t *fill = tds_calloc(&ctx->alloc, (size_t)x->nv + 1, sizeof *fill);
     if (!fill) {
       rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory");
       goto done;
     }
     for (int32_t i = 0; i < nneed; i++) out[start[need[i][0]] + fill[need[i][0]]++] = i;
-    free(fill);
+    tds_free(&ctx->alloc, fill);
   }
   int32_t nl = 0, nloop = 0;
   for (int32_t e0 = 0; e0 < nneed && rc == TDS_OK; e0++) {
@@ -400,12 +400,12 @@ int tds_export_caps(tds_ctx *ctx, xmesh *x, int32_t *ncap) {
   if (rc == TDS_OK && nl > 0) rc = cap_loops(ctx, x, loop, lstart, nl);
   *ncap = x->nt - nt0;
 done:
-  free(h);
-  free(need);
-  free(start);
-  free(out);
-  free(loop);
-  free(used);
-  free(lstart);
+  tds_free(&ctx->alloc, h);
+  tds_free(&ctx->alloc, need);
+  tds_free(&ctx->alloc, start);
+  tds_free(&ctx->alloc, out);
+  tds_free(&ctx->alloc, loop);
+  tds_free(&ctx->alloc, used);
+  tds_free(&ctx->alloc, lstart);
   return rc;
 }

@@ -33,6 +33,7 @@ typedef struct xmesh {
   int nvf, nff;
   xfield vf[XF_MAX], ff[XF_MAX];
   const char *title; /* one line describing the surface */
+  tds_alloc alloc;   /* of the arrays and fields (the ctx's) */
 } xmesh;
 
 /* Writers. enc is TDS_ENC_* (already checked against the format). */

@@ -32,9 +32,9 @@ static const char *vtu_type(int type) {
 static int type_size(int type) { return type == XF_DOUBLE ? 8 : type == XF_INT ? 4 : 1; }
 
 /* The array's binary block: UInt64 byte count, then little-endian data. */
-static unsigned char *block(const arr *a, size_t *len) {
+static unsigned char *block(const tds_alloc *al, const arr *a, size_t *len) {
   size_t nval = (size_t)a->n * (size_t)a->ncomp, nb = nval * (size_t)type_size(a->type);
-  unsigned char *b = malloc(8 + nb + 1);
+  unsigned char *b = tds_malloc(al, 8 + nb + 1);
   if (!b) return NULL;
   uint64_t count = nb;
   for (int i = 0; i < 8; i++) b[i] = (unsigned char)(count >> (8 * i));
@@ -96,10 +96,10 @@ static int vtu_array(tds_ctx *ctx, FILE *f, const arr *a, int enc, int appended,
   } else {
     fputs(" format=\"binary\">\n", f);
     size_t len;
-    unsigned char *b = block(a, &len);
+    unsigned char *b = block(&ctx->alloc, a, &len);
     if (!b) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
     base64(f, b, len);
-    free(b);
+    tds_free(&ctx->alloc, b);
     fputc('\n', f);
   }
   fputs("</DataArray>\n", f);
@@ -117,7 +117,7 @@ static int arrays(const xmesh *x, arr *out, double **buf) {
     out[n++] = (arr){x->ff[j].name, x->ff[j].type, x->ff[j].ncomp, x->nt, x->ff[j].v};
   out[n++] = (arr){NULL, XF_DOUBLE, 3, x->nv, &x->x[0][0]};
   size_t nt = (size_t)x->nt;
-  double *b = malloc((5 * nt + 1) * sizeof *b);
+  double *b = tds_malloc(&x->alloc, (5 * nt + 1) * sizeof *b);
   *buf = b;
   if (!b) return -1;
   for (size_t t = 0; t < nt; t++) {
@@ -156,16 +156,16 @@ int tds_write_vtu(tds_ctx *ctx, FILE *f, const xmesh *x, int enc, int appended) 
     fprintf(f, "<AppendedData encoding=\"%s\">\n_", b64 ? "base64" : "raw");
     for (int j = 0; j < na && rc == TDS_OK; j++) {
       size_t len;
-      unsigned char *b = block(&a[j], &len);
+      unsigned char *b = block(&ctx->alloc, &a[j], &len);
       if (!b) rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory");
       else if (b64) base64(f, b, len);
       else fwrite(b, 1, len, f);
-      free(b);
+      tds_free(&ctx->alloc, b);
     }
     fputs("\n</AppendedData>\n", f);
   }
   fputs("</VTKFile>\n", f);
-  free(buf);
+  tds_free(&x->alloc, buf);
   return rc;
 }
 

@@ -75,7 +75,10 @@ enum {
      "expression 'sin(x': missing ')' at column 6"
      "expression 'foo + 1': unknown name 'foo' at column 1"
    and *out is NULL. Returns TDS_ENOMEM on allocation failure. The caller
-   owns *out (free with tds_expr_free). env may be NULL (flags 0). */
+   owns *out (free with tds_expr_free). env may be NULL (flags 0). ctx
+   may be NULL (no message; the C library allocates); otherwise memory
+   comes from ctx->alloc, and the expression keeps that hook to free
+   itself. */
 int tds_expr_parse(tds_ctx *ctx, const char *text, size_t *consumed,
                    const tds_expr_env *env, tds_expr **out);
 
@@ -158,6 +161,7 @@ struct tds_expr {
   int nact;               /* differentiable variables that occur ... */
   int act[TDS_NDIFF];     /* ... local derivative index -> variable */
   int loc[TDS_NDIFF];     /* variable -> local index, -1 if absent */
+  tds_alloc alloc;        /* the allocator of this block (the ctx's) */
 };
 
 /* Apply a unary or binary opcode to constant operands (b ignored for unary

@@ -52,6 +52,7 @@ typedef struct opnd {
 
 typedef struct parser {
   tds_ctx *ctx;
+  const tds_alloc *al;    /* ctx's allocator, or NULL (the C library) */
   const char *s;
   size_t n;
   int flags;
@@ -196,8 +197,8 @@ static size_t skip_space(const parser *p, size_t i, size_t *bad) {
 
 /* Convert the decimal literal s[0..len) with strtod (correct rounding),
    independent of the C locale's decimal point. */
-static double decimal_value(const char *s, size_t len, int *ok) {
-  char small[128], *buf = len < sizeof small ? small : malloc(len + 1);
+static double decimal_value(const tds_alloc *al, const char *s, size_t len, int *ok) {
+  char small[128], *buf = len < sizeof small ? small : tds_malloc(al, len + 1);
   double v = 0;
   char *end;
   *ok = 0;
@@ -212,7 +213,7 @@ static double decimal_value(const char *s, size_t len, int *ok) {
     v = strtod(buf, &end);
   }
   *ok = (size_t)(end - buf) == len;
-  if (buf != small) free(buf);
+  if (buf != small) tds_free(al, buf);
   return v;
 }
 
@@ -260,7 +261,7 @@ static void lex_number(const parser *p, size_t i, tok *t) {
   }
   int ok;
   t->len = j - i;
-  t->num = decimal_value(s + i, t->len, &ok);
+  t->num = decimal_value(p->al, s + i, t->len, &ok);
   if (!ok)
     t->bad = "cannot read number";
   else if (!isfinite(t->num))
@@ -360,7 +361,7 @@ static void advance(parser *p) {
 
 static int emit(parser *p, int op, int flags, int32_t arg) {
   if (p->rc) return p->rc;
-  if (tds_grow((void **)&p->code, sizeof *p->code, &p->capcode, p->ncode + 1))
+  if (tds_grow(p->al, (void **)&p->code, sizeof *p->code, &p->capcode, p->ncode + 1))
     return nomem(p);
   p->code[p->ncode].op = (uint8_t)op;
   p->code[p->ncode].flags = (uint8_t)flags;
@@ -373,7 +374,7 @@ static int emit(parser *p, int op, int flags, int32_t arg) {
 static int emit_const(parser *p, opnd *o, int start, double v) {
   if (p->rc) return p->rc;
   p->ncode = start;
-  if (tds_grow((void **)&p->k, sizeof *p->k, &p->capk, p->nk + 1))
+  if (tds_grow(p->al, (void **)&p->k, sizeof *p->k, &p->capk, p->nk + 1))
     return nomem(p);
   p->k[p->nk] = v;
   o->start = start;
@@ -762,7 +763,7 @@ static int finish(parser *p, size_t a, size_t b, tds_expr **out) {
   size_t off_k = align_up(sizeof(tds_expr));
   size_t off_code = align_up(off_k + (size_t)nk * sizeof(double));
   size_t off_text = off_code + (size_t)p->ncode * sizeof(tds_instr);
-  char *mem = malloc(off_text + (b - a) + 1);
+  char *mem = tds_malloc(p->al, off_text + (b - a) + 1);
   if (!mem) return nomem(p);
   tds_expr *e = (tds_expr *)mem;
   double *k = (double *)(mem + off_k);
@@ -787,6 +788,7 @@ static int finish(parser *p, size_t a, size_t b, tds_expr **out) {
   e->maxstack = maxd;
   e->varmask = varmask;
   e->maxparam = maxparam;
+  if (p->al) e->alloc = *p->al;
   for (int v = 0; v < TDS_NDIFF; v++) {
     e->loc[v] = -1;
     if (varmask & (1 << v)) {
@@ -806,6 +808,7 @@ int tds_expr_parse(tds_ctx *ctx, const char *text, size_t *consumed,
   memset(&p, 0, sizeof p);
   *out = NULL;
   p.ctx = ctx;
+  p.al = ctx ? &ctx->alloc : NULL;
   p.s = text ? text : "";
   p.n = strlen(p.s);
   p.env = env;
@@ -818,13 +821,18 @@ int tds_expr_parse(tds_ctx *ctx, const char *text, size_t *consumed,
     unexpected(&p);
   if (p.rc == TDS_OK) finish(&p, first, p.last_end, out);
   if (p.rc == TDS_OK && consumed) *consumed = p.cur.pos;
-  free(p.code);
-  free(p.k);
+  tds_free(p.al, p.code);
+  tds_free(p.al, p.k);
   return p.rc;
 }
 
 /* Free a compiled expression (one block). */
-void tds_expr_free(tds_expr *e) { free(e); }
+void tds_expr_free(tds_expr *e) {
+  if (e) {
+    tds_alloc a = e->alloc;
+    tds_free(&a, e);
+  }
+}
 
 /* Source text (trimmed), owned by e. */
 const char *tds_expr_text(const tds_expr *e) { return e->text; }

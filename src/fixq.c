@@ -6,16 +6,17 @@
 #include <string.h>
 
 void tds_fixq_free(tds_fixq *fq) {
-  free(fq->qbody);
-  free(fq->qquant);
-  free(fq->bq);
-  free(fq->value);
-  free(fq->target);
-  free(fq->mult);
-  free(fq->gram);
-  free(fq->start);
-  free(fq->eq);
-  free(fq->g);
+  tds_alloc a = fq->alloc;
+  tds_free(&a, fq->qbody);
+  tds_free(&a, fq->qquant);
+  tds_free(&a, fq->bq);
+  tds_free(&a, fq->value);
+  tds_free(&a, fq->target);
+  tds_free(&a, fq->mult);
+  tds_free(&a, fq->gram);
+  tds_free(&a, fq->start);
+  tds_free(&a, fq->eq);
+  tds_free(&a, fq->g);
   memset(fq, 0, sizeof *fq);
 }
 
@@ -29,6 +30,7 @@ static int has_q(const tds_fixq *fq, int32_t lo, int32_t hi, int32_t q) {
 int tds_fixq_build(tds_ctx *ctx, tds_surf *s, tds_fixq *fq) {
   tds_mesh *m = &s->m;
   tds_fixq_free(fq);
+  fq->alloc = ctx->alloc;
   int32_t nq = 0, nglobal = 0;
   for (tds_id b = 0; b < m->nb; b++)
     if (tds_alive(m->bflags, b) && (m->bflags[b] & TDS_TARGET)) nq++;
@@ -37,14 +39,14 @@ int tds_fixq_build(tds_ctx *ctx, tds_surf *s, tds_fixq *fq) {
   nq += nglobal;
   fq->nq = nq;
   fq->nv = m->nv;
-  fq->qbody = tds_calloc((size_t)nq, sizeof *fq->qbody);
-  fq->qquant = tds_calloc((size_t)nq, sizeof *fq->qquant);
-  fq->bq = tds_calloc((size_t)m->nb, sizeof *fq->bq);
-  fq->value = tds_calloc((size_t)nq, sizeof *fq->value);
-  fq->target = tds_calloc((size_t)nq, sizeof *fq->target);
-  fq->mult = tds_calloc((size_t)nq, sizeof *fq->mult);
-  fq->gram = tds_calloc((size_t)nq * (size_t)nq, sizeof *fq->gram);
-  fq->start = tds_calloc((size_t)m->nv + 1, sizeof *fq->start);
+  fq->qbody = tds_calloc(&fq->alloc, (size_t)nq, sizeof *fq->qbody);
+  fq->qquant = tds_calloc(&fq->alloc, (size_t)nq, sizeof *fq->qquant);
+  fq->bq = tds_calloc(&fq->alloc, (size_t)m->nb, sizeof *fq->bq);
+  fq->value = tds_calloc(&fq->alloc, (size_t)nq, sizeof *fq->value);
+  fq->target = tds_calloc(&fq->alloc, (size_t)nq, sizeof *fq->target);
+  fq->mult = tds_calloc(&fq->alloc, (size_t)nq, sizeof *fq->mult);
+  fq->gram = tds_calloc(&fq->alloc, (size_t)nq * (size_t)nq, sizeof *fq->gram);
+  fq->start = tds_calloc(&fq->alloc, (size_t)m->nv + 1, sizeof *fq->start);
   if (!fq->qbody || !fq->qquant || !fq->bq || !fq->value || !fq->target ||
       !fq->mult || !fq->gram || !fq->start)
     goto nomem;
@@ -75,7 +77,7 @@ int tds_fixq_build(tds_ctx *ctx, tds_surf *s, tds_fixq *fq) {
   for (tds_id v = 0; v < m->nv; v++)
     bound += 2 * (int64_t)(m->vf_start[v + 1] - m->vf_start[v]) + nglobal;
   if (bound > INT32_MAX) goto nomem;
-  fq->eq = tds_calloc((size_t)bound, sizeof *fq->eq);
+  fq->eq = tds_calloc(&fq->alloc, (size_t)bound, sizeof *fq->eq);
   if (!fq->eq) goto nomem;
   int32_t n = 0;
   for (tds_id v = 0; v < m->nv; v++) {
@@ -91,7 +93,7 @@ int tds_fixq_build(tds_ctx *ctx, tds_surf *s, tds_fixq *fq) {
   }
   fq->start[m->nv] = n;
   fq->nent = n;
-  fq->g = tds_calloc((size_t)n, sizeof *fq->g);
+  fq->g = tds_calloc(&fq->alloc, (size_t)n, sizeof *fq->g);
   if (!fq->g) goto nomem;
   return TDS_OK;
 nomem:

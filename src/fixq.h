@@ -27,6 +27,7 @@ typedef struct tds_fixq {
   int32_t *eq;          /* entry -> q */
   double (*g)[3];       /* entry -> gradient */
   int32_t nent;
+  tds_alloc alloc;      /* the allocator of the arrays (the ctx's at build) */
 } tds_fixq;
 
 /* Build the quantity list and sparsity pattern for the surface as it is

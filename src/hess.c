@@ -9,13 +9,14 @@
 #include "motion.h"
 
 void tds_hess_free(tds_hess *h) {
-  free(h->vidx);
-  free(h->vert);
-  free(h->grad);
-  free(h->fgrad);
-  free(h->mult);
-  free(h->value);
-  free(h->target);
+  tds_alloc a = h->alloc;
+  tds_free(&a, h->vidx);
+  tds_free(&a, h->vert);
+  tds_free(&a, h->grad);
+  tds_free(&a, h->fgrad);
+  tds_free(&a, h->mult);
+  tds_free(&a, h->value);
+  tds_free(&a, h->target);
   tds_spmat_free(&h->H);
   tds_spmat_free(&h->A);
   memset(h, 0, sizeof *h);
@@ -23,7 +24,7 @@ void tds_hess_free(tds_hess *h) {
 
 /* Constraint gradients from fq's per-vertex entries into A (n x nq). */
 static int fill_A(const tds_fixq *fq, tds_hess *h) {
-  tds_sptrip t = {.nrow = h->n, .ncol = h->nq};
+  tds_sptrip t = {.nrow = h->n, .ncol = h->nq, .alloc = h->alloc};
   for (int32_t v = 0; v < fq->nv && v < h->nv; v++) {
     int32_t r = h->vidx[v];
     if (r < 0) continue;
@@ -45,20 +46,21 @@ int tds_hess_assemble(tds_ctx *ctx, tds_surf *s, const tds_hess_opts *opts,
   if (!opts) opts = &lagr;
   tds_mesh *m = &s->m;
   memset(out, 0, sizeof *out);
+  out->alloc = ctx->alloc;
   tds_fixq fq = {0};
-  tds_sptrip trip = {0};
+  tds_sptrip trip = {.alloc = ctx->alloc};
   double (*grad)[3] = NULL, *qw = NULL;
   int rc = tds_fixq_build(ctx, s, &fq);
   if (rc != TDS_OK) return rc;
   out->nv = m->nv;
   out->nq = fq.nq;
-  out->vidx = malloc(((size_t)m->nv + 1) * sizeof *out->vidx);
-  out->vert = malloc(((size_t)m->nv + 1) * sizeof *out->vert);
-  grad = calloc((size_t)m->nv + 1, sizeof *grad);
-  qw = calloc((size_t)fq.nq + 1, sizeof *qw);
-  out->mult = calloc((size_t)fq.nq + 1, sizeof *out->mult);
-  out->value = calloc((size_t)fq.nq + 1, sizeof *out->value);
-  out->target = calloc((size_t)fq.nq + 1, sizeof *out->target);
+  out->vidx = tds_malloc(&out->alloc, ((size_t)m->nv + 1) * sizeof *out->vidx);
+  out->vert = tds_malloc(&out->alloc, ((size_t)m->nv + 1) * sizeof *out->vert);
+  grad = tds_calloc(&out->alloc, (size_t)m->nv + 1, sizeof *grad);
+  qw = tds_calloc(&out->alloc, (size_t)fq.nq + 1, sizeof *qw);
+  out->mult = tds_calloc(&out->alloc, (size_t)fq.nq + 1, sizeof *out->mult);
+  out->value = tds_calloc(&out->alloc, (size_t)fq.nq + 1, sizeof *out->value);
+  out->target = tds_calloc(&out->alloc, (size_t)fq.nq + 1, sizeof *out->target);
   if (!out->vidx || !out->vert || !grad || !qw || !out->mult || !out->value ||
       !out->target)
     goto nomem;
@@ -82,7 +84,7 @@ int tds_hess_assemble(tds_ctx *ctx, tds_surf *s, const tds_hess_opts *opts,
   if (rc == TDS_OK && acc.status != TDS_OK) goto nomem;
   if (rc != TDS_OK) goto fail;
   out->energy = eo.energy;
-  out->grad = malloc(((size_t)out->n + 1) * sizeof *out->grad);
+  out->grad = tds_malloc(&out->alloc, ((size_t)out->n + 1) * sizeof *out->grad);
   if (!out->grad) goto nomem;
   for (int32_t j = 0; j < k; j++)
     for (int i = 0; i < 3; i++) out->grad[3 * j + i] = grad[out->vert[j]][i];
@@ -91,7 +93,7 @@ int tds_hess_assemble(tds_ctx *ctx, tds_surf *s, const tds_hess_opts *opts,
     out->target[q] = fq.target[q];
   }
   if (tds_spmat_from_trip(&trip, 1, &out->H) || fill_A(&fq, out)) goto nomem;
-  out->fgrad = malloc(((size_t)out->n + 1) * sizeof *out->fgrad);
+  out->fgrad = tds_malloc(&out->alloc, ((size_t)out->n + 1) * sizeof *out->fgrad);
   if (!out->fgrad) goto nomem;
   for (int32_t i = 0; i < out->n; i++) out->fgrad[i] = acc.ew * out->grad[i];
   for (int32_t q = 0; q < fq.nq; q++)
@@ -99,23 +101,23 @@ int tds_hess_assemble(tds_ctx *ctx, tds_surf *s, const tds_hess_opts *opts,
       out->fgrad[out->A.rowind[e]] += qw[q] * out->A.val[e];
   tds_sptrip_free(&trip);
   tds_fixq_free(&fq);
-  free(grad);
-  free(qw);
+  tds_free(&out->alloc, grad);
+  tds_free(&out->alloc, qw);
   return TDS_OK;
 nomem:
   rc = tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory");
 fail:
   tds_sptrip_free(&trip);
   tds_fixq_free(&fq);
-  free(grad);
-  free(qw);
+  tds_free(&out->alloc, grad);
+  tds_free(&out->alloc, qw);
   tds_hess_free(out);
   return rc;
 }
 
 int tds_hess_kkt(tds_ctx *ctx, const tds_hess *h, tds_spmat *K) {
   int32_t n = h->n;
-  tds_sptrip t = {.nrow = n + h->nq, .ncol = n + h->nq};
+  tds_sptrip t = {.nrow = n + h->nq, .ncol = n + h->nq, .alloc = ctx->alloc};
   for (int32_t j = 0; j < n; j++)
     for (int32_t e = h->H.colptr[j]; e < h->H.colptr[j + 1]; e++)
       if (tds_sptrip_add(&t, h->H.rowind[e], j, h->H.val[e])) goto nomem;

@@ -55,6 +55,7 @@ typedef struct tds_hess {
   double *mult;          /* nq: lambda_q used (read from the surface) */
   double *value;         /* nq: Q_q now */
   double *target;        /* nq */
+  tds_alloc alloc;        /* of the arrays (the ctx's at assembly) */
 } tds_hess;
 
 /* Assemble at the current positions (opts NULL: the Lagrangian,
@@ -94,6 +95,7 @@ typedef struct tds_hess_red {
   tds_spmat H;           /* m x m, upper triangle */
   double *grad;          /* m */
   tds_spmat A;           /* m x nq */
+  tds_alloc alloc;        /* of the arrays (the ctx's) */
 } tds_hess_red;
 
 int tds_hess_reduce(tds_ctx *ctx, const tds_surf *s, const tds_hess *h, tds_hess_red *out);

@@ -11,9 +11,10 @@
 #include "vec3.h"
 
 void tds_hess_red_free(tds_hess_red *r) {
-  free(r->start);
-  free(r->basis);
-  free(r->grad);
+  tds_alloc a = r->alloc;
+  tds_free(&a, r->start);
+  tds_free(&a, r->basis);
+  tds_free(&a, r->grad);
   tds_spmat_free(&r->H);
   tds_spmat_free(&r->A);
   memset(r, 0, sizeof *r);
@@ -99,12 +100,13 @@ static int vertex_space(const tds_surf *s, tds_id v, const double f[3], double B
 
 int tds_hess_reduce(tds_ctx *ctx, const tds_surf *s, const tds_hess *h, tds_hess_red *out) {
   memset(out, 0, sizeof *out);
+  out->alloc = ctx->alloc;
   int32_t nvm = h->n / 3;
-  double (*C)[3][3] = malloc(((size_t)nvm + 1) * sizeof *C);
-  tds_sptrip t = {0}, ta = {0};
+  double (*C)[3][3] = tds_malloc(&out->alloc, ((size_t)nvm + 1) * sizeof *C);
+  tds_sptrip t = {.alloc = ctx->alloc}, ta = {.alloc = ctx->alloc};
   out->nvm = nvm;
-  out->start = malloc(((size_t)nvm + 1) * sizeof *out->start);
-  out->basis = malloc(((size_t)nvm + 1) * sizeof *out->basis);
+  out->start = tds_malloc(&out->alloc, ((size_t)nvm + 1) * sizeof *out->start);
+  out->basis = tds_malloc(&out->alloc, ((size_t)nvm + 1) * sizeof *out->basis);
   if (!C || !out->start || !out->basis) goto nomem;
   out->start[0] = 0;
   for (int32_t k = 0; k < nvm; k++) {
@@ -112,7 +114,7 @@ int tds_hess_reduce(tds_ctx *ctx, const tds_surf *s, const tds_hess *h, tds_hess
     out->start[k + 1] = out->start[k] + d;
   }
   int32_t m = out->m = out->start[nvm];
-  out->grad = calloc((size_t)m + 1, sizeof *out->grad);
+  out->grad = tds_calloc(&out->alloc, (size_t)m + 1, sizeof *out->grad);
   if (!out->grad) goto nomem;
   for (int32_t k = 0; k < nvm; k++)
     for (int32_t a = 0; a < out->start[k + 1] - out->start[k]; a++)
@@ -151,12 +153,12 @@ int tds_hess_reduce(tds_ctx *ctx, const tds_surf *s, const tds_hess *h, tds_hess
           goto nomem;
     }
   if (tds_spmat_from_trip(&ta, 0, &out->A)) goto nomem;
-  free(C);
+  tds_free(&out->alloc, C);
   tds_sptrip_free(&t);
   tds_sptrip_free(&ta);
   return TDS_OK;
 nomem:
-  free(C);
+  tds_free(&out->alloc, C);
   tds_sptrip_free(&t);
   tds_sptrip_free(&ta);
   tds_hess_red_free(out);

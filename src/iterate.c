@@ -25,14 +25,15 @@ typedef struct work {
   double E0;         /* energy at the start of the step */
   int at_target;     /* quantities were at target at the start */
   double slope;      /* dE/ds along vel at the start (negative) */
+  tds_alloc al;      /* the ctx's allocator */
 } work;
 
 static void work_free(work *w) {
-  free(w->x0);
-  free(w->p0);
-  free(w->grad);
-  free(w->vel);
-  free(w->rest);
+  tds_free(&w->al, w->x0);
+  tds_free(&w->al, w->p0);
+  tds_free(&w->al, w->grad);
+  tds_free(&w->al, w->vel);
+  tds_free(&w->al, w->rest);
   tds_fixq_free(&w->fq);
 }
 
@@ -40,11 +41,12 @@ static int work_init(tds_ctx *ctx, tds_surf *s, work *w) {
   memset(w, 0, sizeof *w);
   size_t nv = (size_t)s->m.nv;
   w->nv = s->m.nv;
-  w->x0 = tds_calloc(nv, sizeof *w->x0);
-  w->p0 = tds_calloc(nv, sizeof *w->p0);
-  w->grad = tds_calloc(nv, sizeof *w->grad);
-  w->vel = tds_calloc(nv, sizeof *w->vel);
-  w->rest = tds_calloc(nv, sizeof *w->rest);
+  w->al = ctx->alloc;
+  w->x0 = tds_calloc(&w->al, nv, sizeof *w->x0);
+  w->p0 = tds_calloc(&w->al, nv, sizeof *w->p0);
+  w->grad = tds_calloc(&w->al, nv, sizeof *w->grad);
+  w->vel = tds_calloc(&w->al, nv, sizeof *w->vel);
+  w->rest = tds_calloc(&w->al, nv, sizeof *w->rest);
   if (!w->x0 || !w->p0 || !w->grad || !w->vel || !w->rest) {
     work_free(w);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
@@ -221,10 +223,16 @@ static int conjugate(tds_ctx *ctx, tds_surf *s, work *w) {
   tds_mesh *m = &s->m;
   if (s->cg_nv != m->nv || s->cg_topo != m->topo_gen || !s->cg_dir) {
     size_t n = (size_t)(m->nv > 0 ? m->nv : 1);
-    double (*d)[3] = realloc(s->cg_dir, n * sizeof *d);
-    if (d) s->cg_dir = d;
-    double (*p)[3] = d ? realloc(s->cg_prev, n * sizeof *p) : NULL;
-    if (!p) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+    /* New arrays first, so that a failure leaves the history as it was. */
+    double (*d)[3] = tds_calloc(&m->alloc, n, sizeof *d);
+    double (*p)[3] = d ? tds_calloc(&m->alloc, n, sizeof *p) : NULL;
+    if (!p) {
+      tds_free(&m->alloc, d);
+      return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+    }
+    tds_free(&m->alloc, s->cg_dir);
+    tds_free(&m->alloc, s->cg_prev);
+    s->cg_dir = d;
     s->cg_prev = p;
     s->cg_nv = m->nv;
     s->cg_topo = m->topo_gen;

@@ -47,7 +47,7 @@ static double facet_field(const tds_mesh *m, int field, tds_id f) {
   case 3:
     return m->ften[f];
   default:
-    return m->fcolor[f] ? m->fcolor[f] : 15;
+    return m->fcolor[f]; /* 15 (white) unless given */
   }
 }
 
@@ -57,7 +57,7 @@ int tds_live_snap_build(tds_ctx *ctx, tds_surf *s, uint64_t version,
   tds_mesh *m = &s->m;
   if (tds_mesh_adjacency(m) != TDS_OK)
     return tds_seterr(ctx, TDS_ENOMEM, "live view: out of memory");
-  int32_t *vmap = malloc(((size_t)m->nv + 1) * sizeof *vmap);
+  int32_t *vmap = tds_malloc(&ctx->alloc, ((size_t)m->nv + 1) * sizeof *vmap);
   double *vals = NULL;
   unsigned char *b = NULL;
   if (!vmap) goto nomem;
@@ -68,7 +68,7 @@ int tds_live_snap_build(tds_ctx *ctx, tds_surf *s, uint64_t version,
     nf += !(m->fflags[f] & (TDS_DEAD | TDS_NODISPLAY));
   for (tds_id e = 0; e < m->ne; e++) ne += tds_alive(m->eflags, e);
   size_t nval = nv > nf ? nv : nf;
-  vals = malloc((nval + 1) * sizeof *vals);
+  vals = tds_malloc(&ctx->alloc, (nval + 1) * sizeof *vals);
   if (!vals) goto nomem;
 
   /* Header, with a placeholder for the fields' ranges filled below. */
@@ -86,7 +86,7 @@ int tds_live_snap_build(tds_ctx *ctx, tds_surf *s, uint64_t version,
   size_t body = 12 * (size_t)nv + 12 * (size_t)nf + 8 * (size_t)ne +
                 4 * (size_t)nv + 4 * (TDS_LIVE_NFIELDS - 1) * (size_t)nf;
   size_t cap = 4 + sizeof head + body;
-  b = malloc(cap);
+  b = tds_malloc(&ctx->alloc, cap);
   if (!b) goto nomem;
   /* Arrays go after the header, whose length is known only at the end:
   ** write them at the largest possible offset and move them down. */
@@ -132,12 +132,12 @@ int tds_live_snap_build(tds_ctx *ctx, tds_surf *s, uint64_t version,
   memmove(b + 4 + hn, b + 4 + sizeof head, body);
   *buf = b;
   *len = 4 + (size_t)hn + body;
-  free(vmap);
-  free(vals);
+  tds_free(&ctx->alloc, vmap);
+  tds_free(&ctx->alloc, vals);
   return TDS_OK;
 nomem:
-  free(vmap);
-  free(vals);
-  free(b);
+  tds_free(&ctx->alloc, vmap);
+  tds_free(&ctx->alloc, vals);
+  tds_free(&ctx->alloc, b);
   return tds_seterr(ctx, TDS_ENOMEM, "live view: out of memory");
 }

@@ -186,7 +186,8 @@ static int l_setting(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   static const char *const names[] = {"symmetric_content", "scale_limit",
                                       "constraint_tolerance", "gap_constant",
-                                      "iterations", "conj_grad", NULL};
+                                      "iterations", "conj_grad", "view_transforms",
+                                      NULL};
   int which = luaL_checkoption(L, 1, NULL, names);
   tds_surf *s = &st->s;
   int set = !lua_isnone(L, 2);
@@ -213,6 +214,9 @@ static int l_setting(lua_State *L) {
     break;
   case 4:
     lua_pushinteger(L, (lua_Integer)s->iterations);
+    break;
+  case 6: /* read-only: the datafile's count */
+    lua_pushinteger(L, s->view_transforms);
     break;
   default:
     if (set) {

@@ -16,6 +16,7 @@
 **                                and parameters, or nil and the message.
 **                                For tests and diagnostics.
 **   tds.write_text(path, text)   write a file all or nothing (wfile.h)
+**   tds.write_fe(path, hdr, rd)  the element lists as a datafile
 **   tds.load_replace(path)       Evolver's load: path's surface replaces the
 **                                current one (unchanged if path is bad)
 **   tds.read_text()              the loaded datafile's read section (or nil)
@@ -192,6 +193,20 @@ static int l_dump_global(lua_State *L) {
   return n;
 }
 
+/* tds.write_fe(path [, header [, read]]) -> true | nil, msg: the plain
+** element lists (tds_datafile_write_fe), behind write_fe in lua/pg.lua. */
+static int l_write_fe(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  const char *path = luaL_checkstring(L, 1);
+  const char *header = luaL_optstring(L, 2, NULL);
+  const char *read = luaL_optstring(L, 3, NULL);
+  if (!tds_lua_may_write(L, st, path)) return 2;
+  if (tds_datafile_write_fe(&st->ctx, &st->s, path, header, read) != TDS_OK)
+    return tds_lua_nilmsg(L, "%s", st->ctx.errmsg);
+  lua_pushboolean(L, 1);
+  return 1;
+}
+
 /* tds.write_text(path, text) -> true | nil, msg: write a whole file the
 ** way dumps are written (wfile.h: temporary file, fsync, rename; refused
 ** outside the output folder in safe mode). */
@@ -287,6 +302,7 @@ static int l_datafile_info(lua_State *L) {
 void tds_open_datafile(lua_State *L, tds_state *st) {
   static const luaL_Reg fns[] = {{"load_datafile", l_load_datafile},
                                  {"dump", l_dump},
+                                 {"write_fe", l_write_fe},
                                  {"load_chunk", l_load_chunk},
                                  {"datafile_info", l_datafile_info},
                                  {"write_text", l_write_text},

@@ -4,30 +4,30 @@
 ** the user's line). */
 #include <string.h>
 
+#include <stdio.h>
+
+#include "attr.h"
 #include "datafile.h"
+#include "lua_attr.h"
 #include "lua_tds.h"
 #include "topo.h"
 
-/* Keys an entry may carry besides its positional values, each with the
-** type its value must have: b boolean, n number, c a constraint number or
-** a list of them. */
-static const char *const vertex_keys[] = {"fixed=b", "constraint=c", "constraints=c",
-                                          "boundary=n", "bare=b", NULL};
-static const char *const edge_keys[] = {"fixed=b", "no_refine=b", "constraint=c",
-                                        "constraints=c", "boundary=n", "tension=n",
-                                        "density=n", "color=n", "bare=b", NULL};
-static const char *const face_keys[] = {"fixed=b", "no_refine=b", "constraint=c",
-                                        "constraints=c", "tension=n", "density=n",
-                                        "color=n", "nodisplay=b", NULL};
-static const char *const body_keys[] = {"volume=n", "density=n", "volconst=n",
-                                        "pressure=n", NULL};
+/* Keys an entry may carry besides its positional values: the registry's
+** attributes of the kind marked TDS_AT_DECL (attr.h), user attributes
+** included. check_keys checks every key and value before the element
+** exists (and collects the flag bits, which the core's declarations take);
+** apply_keys sets the others through their setters afterwards. */
+static int is_special(const tds_attr *a) {
+  return a->type == TDS_AT_FLAG || a->type == TDS_AT_CONS || a->type == TDS_AT_BDRY;
+}
 
-/* Check the entry's string keys and the types of their values; on an
-** unknown key or a wrong type push nil, message and return 1. */
-static int bad_keys(lua_State *L, int t, const char *what, int id,
-                    const char *const *keys) {
-  static const char *const want[] = {"b", "a boolean (true or false)", "n", "a number",
-                                     "c", "a constraint number or a list of them", NULL};
+/* Walk the entry's string keys; for each, find its attribute and convert
+** (and with `apply`, set on element eid) its value. On a problem push nil
+** and a message and return 0. */
+static int walk_keys(lua_State *L, tds_state *st, int t, int kind, const char *what, int id,
+                     uint32_t *flags, int apply, tds_id eid) {
+  char w[64];
+  snprintf(w, sizeof w, "%s %d", what, id);
   lua_pushnil(L);
   while (lua_next(L, t)) {
     if (lua_type(L, -2) != LUA_TSTRING) {
@@ -35,38 +35,78 @@ static int bad_keys(lua_State *L, int t, const char *what, int id,
       continue;
     }
     const char *k = lua_tostring(L, -2);
-    size_t n = strlen(k);
-    char type = 0;
-    for (int i = 0; keys[i] && !type; i++)
-      if (!strncmp(k, keys[i], n) && keys[i][n] == '=') type = keys[i][n + 1];
-    int vt = lua_type(L, -1);
-    int ok = type == 'b' ? vt == LUA_TBOOLEAN
-             : type == 'n' ? vt == LUA_TNUMBER
-                           : vt == LUA_TNUMBER || vt == LUA_TTABLE;
-    if (!type || !ok) {
-      const char *tn = luaL_typename(L, -1);
-      lua_pop(L, 2);
-      lua_pushnil(L);
-      if (!type) {
-        lua_pushfstring(L, "%s %d: unknown attribute '%s'", what, id, k);
-      } else {
-        const char *w = "";
-        for (int i = 0; want[i]; i += 2)
-          if (want[i][0] == type) w = want[i + 1];
-        lua_pushfstring(L, "%s %d: %s must be %s, not a %s", what, id, k, w, tn);
-      }
-      return 1;
+    tds_attr a;
+    if (!tds_attr_find(&st->s.m, kind, k, &a) || !(a.io & TDS_AT_DECL)) {
+      lua_pushfstring(L, "%s: unknown attribute '%s'", w, k);
+      goto fail;
     }
-    lua_pop(L, 1);
+    int sz = a.size > TDS_MAX_CON ? a.size : TDS_MAX_CON;
+    double *v = lua_newuserdatauv(L, sizeof(double) * (size_t)sz, 0); /* popped below */
+    int n;
+    if (a.type == TDS_AT_FLAG && !lua_isboolean(L, -2)) {
+      lua_pushfstring(L, "%s: %s must be a boolean (true or false), not a %s", w, k,
+                      luaL_typename(L, -2));
+      goto fail;
+    }
+    if (a.type == TDS_AT_BDRY) { /* bdry_field checks it */
+      lua_pop(L, 2);
+      continue;
+    }
+    if (a.type == TDS_AT_CONS) {
+      if (!lua_isnumber(L, -2) && !lua_istable(L, -2)) {
+        lua_pushfstring(L, "%s: %s must be a constraint number or a list of them, not a %s",
+                        w, k, luaL_typename(L, -2));
+        goto fail;
+      }
+      lua_pop(L, 2);
+      continue;
+    }
+    if (!tds_lua_attr_values(L, &a, -2, w, v, &n)) goto fail;
+    for (const char *x = a.excl; !apply && x && *x;) { /* keys that exclude each other */
+      char other[32];
+      size_t len = strcspn(x, " ");
+      snprintf(other, sizeof other, "%.*s", (int)len, x);
+      x += len + (x[len] == ' ');
+      lua_getfield(L, t, other);
+      int given = !lua_isnil(L, -1);
+      lua_pop(L, 1);
+      const char *pair[2] = {a.name, other};
+      if (given && tds_attr_exclusive(&st->ctx, &st->s.m, kind, w, 0, pair, 2) != TDS_OK) {
+        lua_pushstring(L, st->ctx.errmsg);
+        goto fail;
+      }
+    }
+    if (!apply) {
+      if (tds_attr_check(&st->ctx, &a, w, v, n) != TDS_OK) {
+        lua_pushstring(L, st->ctx.errmsg);
+        goto fail;
+      }
+      if (a.type == TDS_AT_FLAG && n && v[0] != 0) *flags |= a.flag;
+    } else if (!is_special(&a) && tds_attr_write(&st->ctx, &st->s, &a, eid, v, n) != TDS_OK) {
+      lua_pushstring(L, st->ctx.errmsg);
+      goto fail;
+    }
+    lua_pop(L, 2);
   }
+  return 1;
+fail: /* the caller returns the top two values: nil, message */
+  lua_pushnil(L);
+  lua_insert(L, -2);
   return 0;
 }
 
-#define fail tds_lua_nilmsg
-
-static int flag(lua_State *L, int t, const char *k) {
-  return tds_lua_field_bool(L, t, k, 0);
+static int check_keys(lua_State *L, tds_state *st, int t, int kind, const char *what, int id,
+                      uint32_t *flags) {
+  *flags = 0;
+  return walk_keys(L, st, t, kind, what, id, flags, 0, TDS_NONE);
 }
+
+static int apply_keys(lua_State *L, tds_state *st, int t, int kind, const char *what, int id,
+                      tds_id eid) {
+  return walk_keys(L, st, t, kind, what, id, NULL, 1, eid);
+}
+
+#define fail tds_lua_nilmsg
 
 /* Constraint list from entry field `constraint` or `constraints`;
 ** returns 0 and pushes nil, msg on error. */
@@ -116,16 +156,6 @@ static int32_t bdry_field(lua_State *L, tds_state *st, int t, const char *what, 
   return -2;
 }
 
-static double num_field(lua_State *L, int t, const char *k, double dflt, int *given) {
-  lua_getfield(L, t, k);
-  int isnum;
-  double v = lua_tonumberx(L, -1, &isnum);
-  if (isnum) tds_lua_checkfinite(L, -1, k); /* NaN and inf never enter the surface */
-  lua_pop(L, 1);
-  if (given) *given = isnum;
-  return isnum ? v : dflt;
-}
-
 /* The largest explicit id a declaration may use: as the .fe reader, ids
 ** are bounded by the size of the input (here 16 per element already
 ** declared of the kind, plus `extra` about to be), so that one huge id
@@ -155,7 +185,8 @@ static int l_decl_vertex(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   int id = check_id(L, st, TDS_VERTEX);
   if (!id) return 2;
-  if (bad_keys(L, 2, "vertex", id, vertex_keys)) return 2;
+  uint32_t flags;
+  if (!check_keys(L, st, 2, TDS_VERTEX, "vertex", id, &flags)) return 2;
   tds_cmask con;
   if (!cmask_field(L, st, 2, &con, "vertex", id)) return 2;
   int32_t bd = bdry_field(L, st, 2, "vertex", id);
@@ -175,9 +206,9 @@ static int l_decl_vertex(lua_State *L) {
     if (bd == TDS_NONE) x[k] = val;
     else p[k] = val;
   }
-  uint32_t flags = (flag(L, 2, "fixed") ? TDS_FIXED : 0) | (flag(L, 2, "bare") ? TDS_BARE : 0);
   int rc = tds_decl_vertex(&st->ctx, &st->s, id - 1, x, bd, p, flags, con);
   if (rc != TDS_OK) return fail(L, "%s", st->ctx.errmsg);
+  if (!apply_keys(L, st, 2, TDS_VERTEX, "vertex", id, id - 1)) return 2;
   tds_push_elem(L, TDS_VERTEX, id - 1);
   return 1;
 }
@@ -186,7 +217,8 @@ static int l_decl_edge(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   int id = check_id(L, st, TDS_EDGE);
   if (!id) return 2;
-  if (bad_keys(L, 2, "edge", id, edge_keys)) return 2;
+  uint32_t flags;
+  if (!check_keys(L, st, 2, TDS_EDGE, "edge", id, &flags)) return 2;
   if (luaL_len(L, 2) != 2) return fail(L, "edge %d needs two vertex ids", id);
   lua_Integer ends[2];
   for (int k = 0; k < 2; k++) {
@@ -201,14 +233,10 @@ static int l_decl_edge(lua_State *L) {
   if (!cmask_field(L, st, 2, &con, "edge", id)) return 2;
   int32_t bd = bdry_field(L, st, 2, "edge", id);
   if (bd == -2) return 2;
-  uint32_t flags = (flag(L, 2, "fixed") ? TDS_FIXED : 0) |
-                   (flag(L, 2, "no_refine") ? TDS_NO_REFINE : 0) |
-                   (flag(L, 2, "bare") ? TDS_BARE : 0);
-  double ten = num_field(L, 2, "tension", num_field(L, 2, "density", 0, NULL), NULL);
-  int16_t color = (int16_t)num_field(L, 2, "color", 0, NULL);
   int rc = tds_decl_edge(&st->ctx, &st->s, id - 1, (tds_id)ends[0] - 1,
-                         (tds_id)ends[1] - 1, flags, con, bd, ten, color);
+                         (tds_id)ends[1] - 1, flags, con, bd, 0, 0);
   if (rc != TDS_OK) return fail(L, "%s", st->ctx.errmsg);
+  if (!apply_keys(L, st, 2, TDS_EDGE, "edge", id, id - 1)) return 2;
   tds_push_elem(L, TDS_EDGE, id - 1);
   return 1;
 }
@@ -217,7 +245,8 @@ static int l_decl_face(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   int id = check_id(L, st, TDS_FACET);
   if (!id) return 2;
-  if (bad_keys(L, 2, "face", id, face_keys)) return 2;
+  tds_face_attr at = {0};
+  if (!check_keys(L, st, 2, TDS_FACET, "face", id, &at.flags)) return 2;
   int n = (int)luaL_len(L, 2);
   if (n < 3) return fail(L, "face %d needs at least 3 edges, got %d", id, n);
   int32_t *oe = lua_newuserdatauv(L, sizeof *oe * (size_t)n, 0);
@@ -233,15 +262,17 @@ static int l_decl_face(lua_State *L) {
       return fail(L, "face %d refers to edge %d, which does not exist", id, eid + 1);
     oe[k] = TDS_OREF(eid, e < 0);
   }
-  tds_face_attr at = {0};
   if (!cmask_field(L, st, 2, &at.con, "face", id)) return 2;
-  at.flags = (flag(L, 2, "fixed") ? TDS_FIXED : 0) |
-             (flag(L, 2, "no_refine") ? TDS_NO_REFINE : 0) |
-             (flag(L, 2, "nodisplay") ? TDS_NODISPLAY : 0);
-  at.tension = num_field(L, 2, "tension", num_field(L, 2, "density", 1, NULL), NULL);
-  at.color = (int16_t)num_field(L, 2, "color", 0, NULL);
+  at.tension = 1;
+  at.color = 15;
+  int32_t nf0 = st->s.m.nf;
   int rc = tds_build_face(&st->ctx, &st->s, id - 1, n, oe, &at);
   if (rc != TDS_OK) return fail(L, "%s", st->ctx.errmsg);
+  /* the other attributes on every facet built from the face */
+  if (!apply_keys(L, st, 2, TDS_FACET, "face", id, id - 1)) return 2;
+  for (tds_id f = nf0 > id ? nf0 : id; f < st->s.m.nf; f++)
+    if (st->s.m.forig[f] == id - 1 && !apply_keys(L, st, 2, TDS_FACET, "face", id, f))
+      return 2;
   tds_push_elem(L, TDS_FACET, id - 1);
   return 1;
 }
@@ -250,7 +281,8 @@ static int l_decl_body(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   int id = check_id(L, st, TDS_BODY);
   if (!id) return 2;
-  if (bad_keys(L, 2, "body", id, body_keys)) return 2;
+  uint32_t flags;
+  if (!check_keys(L, st, 2, TDS_BODY, "body", id, &flags)) return 2;
   int n = (int)luaL_len(L, 2);
   int32_t *faces = lua_newuserdatauv(L, sizeof *faces * (size_t)(n > 0 ? n : 1), 0);
   for (int k = 0; k < n; k++) {
@@ -262,28 +294,10 @@ static int l_decl_body(lua_State *L) {
       return fail(L, "body %d: face %d of the list is not a nonzero integer", id, k + 1);
     faces[k] = (int32_t)f;
   }
-  /* every value is read and checked before the body exists (all or nothing) */
-  int has_vol, has_pr, has_den, has_vc;
-  double vol = num_field(L, 2, "volume", 0, &has_vol);
-  double pr = num_field(L, 2, "pressure", 0, &has_pr);
-  double den = num_field(L, 2, "density", 0, &has_den);
-  double vc = num_field(L, 2, "volconst", 0, &has_vc);
-  if (has_vol && has_pr) return fail(L, "body %d: give either volume or pressure, not both", id);
+  /* every value was checked before the body exists (all or nothing) */
   int rc = tds_decl_body(&st->ctx, &st->s, id - 1, n, faces);
   if (rc != TDS_OK) return fail(L, "%s", st->ctx.errmsg);
-  tds_mesh *m = &st->s.m;
-  if (has_vol) {
-    m->btarget[id - 1] = vol;
-    m->bflags[id - 1] |= TDS_TARGET;
-  }
-  if (has_pr) {
-    m->bpressure[id - 1] = pr;
-    m->bflags[id - 1] |= TDS_PRESSURE;
-  }
-  m->bdensity[id - 1] = den;
-  if (has_den) st->s.gravity_on = 1; /* Evolver: any declared density, even 0 */
-  m->bvolconst[id - 1] = vc;
-  if (has_vc) m->bflags[id - 1] |= TDS_VOLCONST;
+  if (!apply_keys(L, st, 2, TDS_BODY, "body", id, id - 1)) return 2;
   tds_push_elem(L, TDS_BODY, id - 1);
   return 1;
 }

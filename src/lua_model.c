@@ -242,7 +242,7 @@ static int l_quantity(lua_State *L) {
     tds_model_quantity_undo(&st->s, qi, &saved);
     return 2;
   }
-  tds_model_quantity_forget(&saved);
+  tds_model_quantity_forget(&st->s, &saved);
   lua_pushboolean(L, 1);
   return 1;
 }

@@ -125,6 +125,7 @@ int tds_lua_safe(lua_State *L, tds_state *st, const char *outdir);
 ** the reason (the io.open convention). */
 int tds_lua_may_write(lua_State *L, tds_state *st, const char *path);
 void tds_open_out(lua_State *L, tds_state *st);       /* lua_out.c */
+void tds_open_newton(lua_State *L, tds_state *st);    /* lua_newton.c */
 
 /* Push the handle of element (kind, 0-based id) of the surface of the
 ** running binding (its upvalue 1). Handles are interned: while a handle is

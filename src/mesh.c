@@ -1,6 +1,8 @@
 /* mesh.c: element storage, creation, deletion and the edge rings. */
 #include "mesh.h"
 
+#include "attr.h"
+
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
@@ -65,14 +67,20 @@ void tds_mesh_init(tds_mesh *m) {
 }
 
 void tds_mesh_free(tds_mesh *m) {
+  tds_alloc a = m->alloc;
   for (int k = 0; k < TDS_NKINDS; k++)
     for (int c = 0; c < kinds[k].ncols; c++)
-      free(FIELD(m, kinds[k].cols[c].off, void *));
-  free(m->vf_start);
-  free(m->vf);
-  free(m->ve_start);
-  free(m->ve);
+      tds_free(&a, FIELD(m, kinds[k].cols[c].off, void *));
+  for (int k = 0; k < TDS_NKINDS; k++) {
+    for (int c = 0; c < m->nucol[k]; c++) tds_free(&a, m->ucol[k][c].v);
+    tds_free(&a, m->ucol[k]);
+  }
+  tds_free(&a, m->vf_start);
+  tds_free(&a, m->vf);
+  tds_free(&a, m->ve_start);
+  tds_free(&a, m->ve);
   tds_mesh_init(m);
+  m->alloc = a;
 }
 
 int tds_mesh_reserve(tds_mesh *m, int kind, int32_t n) {
@@ -84,11 +92,19 @@ int tds_mesh_reserve(tds_mesh *m, int kind, int32_t n) {
   for (int c = 0; c < kinds[kind].ncols; c++) {
     const column *col = &kinds[kind].cols[c];
     void **p = &FIELD(m, col->off, void *);
-    void *q = realloc(*p, (size_t)n * col->size);
+    void *q = tds_realloc(&m->alloc, *p, (size_t)n * col->size);
     if (!q) return TDS_ENOMEM;
     memset((char *)q + (size_t)*cap * col->size, 0,
            (size_t)(n - *cap) * col->size);
     *p = q;
+  }
+  for (int c = 0; c < m->nucol[kind]; c++) {
+    tds_ucol *u = &m->ucol[kind][c];
+    double *q = tds_realloc(&m->alloc, u->v, (size_t)n * (size_t)u->size * sizeof *q);
+    if (!q) return TDS_ENOMEM;
+    memset(q + (size_t)*cap * (size_t)u->size, 0,
+           (size_t)(n - *cap) * (size_t)u->size * sizeof *q);
+    u->v = q;
   }
   *cap = n;
   return TDS_OK;
@@ -107,6 +123,10 @@ static int room(tds_mesh *m, int kind) {
 }
 
 static void set_defaults(tds_mesh *m, int kind, tds_id i) {
+  for (int c = 0; c < m->nucol[kind]; c++) {
+    tds_ucol *u = &m->ucol[kind][c];
+    memset(u->v + (size_t)i * (size_t)u->size, 0, (size_t)u->size * sizeof *u->v);
+  }
   switch (kind) {
   case TDS_VERTEX:
     memset(m->x[i], 0, sizeof m->x[i]);
@@ -134,7 +154,7 @@ static void set_defaults(tds_mesh *m, int kind, tds_id i) {
     m->fflags[i] = 0;
     m->fcon[i] = 0;
     m->ften[i] = 1;
-    m->fcolor[i] = 0;
+    m->fcolor[i] = 15; /* white, Evolver's default facet colour */
     m->forig[i] = TDS_NONE;
     break;
   case TDS_BODY:
@@ -287,8 +307,36 @@ int32_t tds_mesh_count(const tds_mesh *m, int kind) {
   return c;
 }
 
+void tds_mesh_inherit(tds_mesh *m, int kind, tds_id dst, tds_id src) {
+  for (int c = 0; c < m->nucol[kind]; c++) {
+    tds_ucol *u = &m->ucol[kind][c];
+    memcpy(u->v + (size_t)dst * (size_t)u->size, u->v + (size_t)src * (size_t)u->size,
+           (size_t)u->size * sizeof *u->v);
+  }
+}
+
+/* The user attribute columns of src, empty, in dst (before reserving). */
+static int copy_ucols(tds_mesh *dst, const tds_mesh *src) {
+  for (int k = 0; k < TDS_NKINDS; k++) {
+    if (!src->nucol[k]) continue;
+    dst->ucol[k] = tds_calloc(&dst->alloc, (size_t)src->nucol[k], sizeof *dst->ucol[k]);
+    if (!dst->ucol[k]) return TDS_ENOMEM;
+    for (int c = 0; c < src->nucol[k]; c++) {
+      dst->ucol[k][c] = src->ucol[k][c];
+      dst->ucol[k][c].v = NULL;
+    }
+    dst->nucol[k] = src->nucol[k];
+  }
+  return TDS_OK;
+}
+
 int tds_mesh_copy(tds_mesh *dst, const tds_mesh *src) {
   tds_mesh_init(dst);
+  dst->alloc = src->alloc;
+  if (copy_ucols(dst, src) != TDS_OK) {
+    tds_mesh_free(dst);
+    return TDS_ENOMEM;
+  }
   for (int k = 0; k < TDS_NKINDS; k++) {
     int32_t cap = CFIELD(src, kinds[k].cap_off, int32_t);
     if (tds_mesh_reserve(dst, k, cap) != TDS_OK) {
@@ -301,6 +349,9 @@ int tds_mesh_copy(tds_mesh *dst, const tds_mesh *src) {
         memcpy(FIELD(dst, col->off, void *), CFIELD(src, col->off, void *),
                (size_t)cap * col->size);
     }
+    for (int c = 0; c < src->nucol[k] && cap; c++)
+      memcpy(dst->ucol[k][c].v, src->ucol[k][c].v,
+             (size_t)cap * (size_t)src->ucol[k][c].size * sizeof(double));
     FIELD(dst, kinds[k].n_off, int32_t) = CFIELD(src, kinds[k].n_off, int32_t);
   }
   dst->topo_gen = src->topo_gen + 1;
@@ -315,6 +366,8 @@ size_t tds_mesh_bytes(const tds_mesh *m) {
     int32_t cap = CFIELD(m, kinds[k].cap_off, int32_t);
     for (int c = 0; c < kinds[k].ncols; c++)
       b += (size_t)cap * kinds[k].cols[c].size;
+    for (int c = 0; c < m->nucol[k]; c++)
+      b += (size_t)cap * (size_t)m->ucol[k][c].size * sizeof(double);
   }
   for (int k = 0; k < 4; k++) b += sizeof(int32_t) * (size_t)m->adj_cap[k];
   return b;

@@ -36,6 +36,8 @@ enum { TDS_VERTEX = 0, TDS_EDGE, TDS_FACET, TDS_BODY, TDS_NKINDS };
 
 typedef uint64_t tds_cmask; /* bit c set: on constraint slot c (0..63) */
 
+struct tds_ucol;            /* a user attribute's column (attr.h) */
+
 typedef struct tds_mesh {
   /* vertices */
   int32_t nv, capv;         /* slots used, capacity */
@@ -73,6 +75,11 @@ typedef struct tds_mesh {
   double *bpressure;        /* Lagrange multiplier, or prescribed pressure */
   double *bvol;             /* actual volume, as last computed */
 
+  /* user attributes per kind (attr.h): grown, copied and freed with the
+  ** element columns above */
+  struct tds_ucol *ucol[TDS_NKINDS];
+  int nucol[TDS_NKINDS];
+
   uint64_t topo_gen;        /* bumped by every topology change */
   uint64_t coord_gen;       /* bumped by every coordinate change */
 
@@ -81,13 +88,19 @@ typedef struct tds_mesh {
   int32_t *vf_start, *vf;   /* facets around each vertex, CSR */
   int32_t *ve_start, *ve;   /* oriented edges leaving each vertex, CSR */
   int32_t adj_cap[4];        /* capacities of vf_start, ve_start, vf, ve */
+
+  /* The allocator of every array above (tds.h); zero = the C library.
+  ** Set it right after tds_mesh_init; tds_mesh_free keeps it. */
+  tds_alloc alloc;
 } tds_mesh;
 
 /* Set up an empty mesh. */
 void tds_mesh_init(tds_mesh *m);
-/* Release all storage; the mesh is empty and reusable afterwards. */
+/* Release all storage; the mesh is empty and reusable afterwards (with the
+** same allocator). */
 void tds_mesh_free(tds_mesh *m);
-/* Deep copy of src into an initialised empty dst. TDS_OK or TDS_ENOMEM. */
+/* Deep copy of src into an initialised empty dst, which takes src's
+** allocator. TDS_OK or TDS_ENOMEM. */
 int tds_mesh_copy(tds_mesh *dst, const tds_mesh *src);
 
 /* Make room for at least n slots of `kind` (all columns grow together).
@@ -157,6 +170,10 @@ int tds_mesh_check(tds_ctx *ctx, tds_mesh *m);
 ** WARNING 8745) — and about facets of zero area. Returns how many such
 ** edges and facets there are; changes nothing. */
 int32_t tds_mesh_body_warnings(tds_ctx *ctx, const tds_mesh *m, const char *where);
+
+/* Copy the user attribute values of element src to dst (same kind): an
+** element split from another inherits them, as in Evolver. */
+void tds_mesh_inherit(tds_mesh *m, int kind, tds_id dst, tds_id src);
 
 /* Bytes of storage held by the mesh per live facet (for the benchmark). */
 size_t tds_mesh_bytes(const tds_mesh *m);

@@ -5,9 +5,9 @@
 #include <string.h>
 
 /* Resize a derived int array to exactly n entries. */
-static int resize(int32_t **p, int32_t *cap, int32_t n) {
+static int resize(const tds_alloc *a, int32_t **p, int32_t *cap, int32_t n) {
   if (n <= *cap && n >= *cap / 2) return TDS_OK;
-  int32_t *q = realloc(*p, (size_t)(n > 0 ? n : 1) * sizeof **p);
+  int32_t *q = tds_realloc(a, *p, (size_t)(n > 0 ? n : 1) * sizeof **p);
   if (!q) return TDS_ENOMEM;
   *p = q;
   *cap = n;
@@ -21,9 +21,10 @@ int tds_mesh_adjacency(tds_mesh *m) {
     if (tds_alive(m->fflags, f)) nfs += 3;
   for (tds_id e = 0; e < m->ne; e++)
     if (tds_alive(m->eflags, e)) nes += 2;
-  if (resize(&m->vf_start, &m->adj_cap[0], nv + 1) ||
-      resize(&m->ve_start, &m->adj_cap[1], nv + 1) ||
-      resize(&m->vf, &m->adj_cap[2], nfs) || resize(&m->ve, &m->adj_cap[3], nes))
+  const tds_alloc *a = &m->alloc;
+  if (resize(a, &m->vf_start, &m->adj_cap[0], nv + 1) ||
+      resize(a, &m->ve_start, &m->adj_cap[1], nv + 1) ||
+      resize(a, &m->vf, &m->adj_cap[2], nfs) || resize(a, &m->ve, &m->adj_cap[3], nes))
     return TDS_ENOMEM;
 
   int32_t *fs = m->vf_start, *es = m->ve_start;

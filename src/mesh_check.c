@@ -134,16 +134,16 @@ static int check_adjacency(tds_ctx *ctx, const tds_mesh *m) {
   if (m->adj_gen != m->topo_gen) return TDS_OK;
   /* Mark arrays make the duplicate test linear; without memory it falls
   ** back to scanning each star. */
-  int32_t *fmark = calloc((size_t)m->nf + 1, sizeof *fmark);
-  int32_t *emark = calloc(2 * (size_t)m->ne + 2, sizeof *emark);
+  int32_t *fmark = tds_calloc(&m->alloc, (size_t)m->nf + 1, sizeof *fmark);
+  int32_t *emark = tds_calloc(&m->alloc, 2 * (size_t)m->ne + 2, sizeof *emark);
   if (!fmark || !emark) {
-    free(fmark);
-    free(emark);
+    tds_free(&m->alloc, fmark);
+    tds_free(&m->alloc, emark);
     fmark = emark = NULL;
   }
   int rc = check_stars(ctx, m, fmark, emark);
-  free(fmark);
-  free(emark);
+  tds_free(&m->alloc, fmark);
+  tds_free(&m->alloc, emark);
   return rc;
 }
 

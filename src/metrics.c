@@ -146,11 +146,11 @@ int tds_curvature(tds_ctx *ctx, tds_surf *s, int mode, double value,
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   double *mult = NULL;
   if (mode != TDS_CURV_VALUE && m->nb > 0) {
-    mult = tds_calloc((size_t)m->nb, sizeof *mult);
+    mult = tds_calloc(&ctx->alloc, (size_t)m->nb, sizeof *mult);
     if (!mult) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
     int rc = tds_pg_multipliers(ctx, s, mult);
     if (rc != TDS_OK) {
-      free(mult);
+      tds_free(&ctx->alloc, mult);
       return rc;
     }
   }
@@ -175,7 +175,7 @@ int tds_curvature(tds_ctx *ctx, tds_surf *s, int mode, double value,
     if (h) h[v] = hv;
     if (target) target[v] = tv;
   }
-  free(mult);
+  tds_free(&ctx->alloc, mult);
   out->n = n;
   out->max = n ? mx : (double)NAN;
   out->mean = n ? sum / n : (double)NAN;

@@ -120,7 +120,7 @@ int tds_model_boundary(tds_ctx *ctx, tds_surf *s, int number, int nparams,
   for (int i = 0; i < 3; i++) bad |= !x[i];
   int slot = tds_model_boundary_slot(s, number);
   tds_boundary *nb = NULL;
-  if (!bad && slot < 0) nb = realloc(s->bdry, (size_t)(s->nbdry + 1) * sizeof *nb);
+  if (!bad && slot < 0) nb = tds_realloc(&s->m.alloc, s->bdry, (size_t)(s->nbdry + 1) * sizeof *nb);
   if (bad || (slot < 0 && !nb)) {
     free3(x);
     free3(energy);
@@ -156,19 +156,19 @@ int tds_model_quantity(tds_ctx *ctx, tds_surf *s, const char *name, int kind,
   int i = tds_model_quantity_find(s, name);
   if (saved) memset(saved, 0, sizeof *saved);
   if (i < 0) {
-    tds_quantity *nq = realloc(s->quant, (size_t)(s->nquant + 1) * sizeof *nq);
+    tds_quantity *nq = tds_realloc(&s->m.alloc, s->quant, (size_t)(s->nquant + 1) * sizeof *nq);
     if (!nq) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
     s->quant = nq;
     i = s->nquant;
     memset(&s->quant[i], 0, sizeof s->quant[i]);
-    s->quant[i].name = strdup(name);
+    s->quant[i].name = tds_strdup(&s->m.alloc, name);
     if (!s->quant[i].name) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
     s->nquant++;
   } else {
     tds_quantity *q = &s->quant[i];
     if (saved) { /* the caller keeps the old methods until it commits */
       *saved = *q;
-      saved->name = strdup(q->name);
+      saved->name = tds_strdup(&s->m.alloc, q->name);
       if (!saved->name) {
         memset(saved, 0, sizeof *saved);
         return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
@@ -188,25 +188,25 @@ int tds_model_quantity(tds_ctx *ctx, tds_surf *s, const char *name, int kind,
   return TDS_OK;
 }
 
-void tds_model_quantity_forget(tds_quantity *saved) {
+void tds_model_quantity_forget(tds_surf *s, tds_quantity *saved) {
   for (int j = 0; j < saved->ninst; j++) free3(saved->inst[j].integrand);
-  free(saved->inst);
-  free(saved->name);
+  tds_free(&s->m.alloc, saved->inst);
+  tds_free(&s->m.alloc, saved->name);
   memset(saved, 0, sizeof *saved);
 }
 
 void tds_model_quantity_undo(tds_surf *s, int idx, tds_quantity *saved) {
   tds_quantity *q = &s->quant[idx];
   for (int j = 0; j < q->ninst; j++) free3(q->inst[j].integrand);
-  free(q->inst);
+  tds_free(&s->m.alloc, q->inst);
   q->inst = NULL;
   q->ninst = 0;
   if (saved->name) { /* redeclared: the old definition comes back */
-    free(saved->name);
+    tds_free(&s->m.alloc, saved->name);
     saved->name = q->name;
     *q = *saved;
   } else { /* new: it was appended last */
-    free(q->name);
+    tds_free(&s->m.alloc, q->name);
     s->nquant--;
   }
   memset(saved, 0, sizeof *saved);
@@ -230,7 +230,7 @@ int tds_model_method(tds_ctx *ctx, tds_surf *s, int idx, int method,
   else if (need == 1 && !scalar_given) why = "needs a scalar_integrand, not a vector_integrand";
   else if (need == 3 && !have) why = "needs a vector_integrand";
   else if (need == 0 && have) why = "takes no integrand";
-  tds_method_inst *ni = why ? NULL : realloc(q->inst, (size_t)(q->ninst + 1) * sizeof *ni);
+  tds_method_inst *ni = why ? NULL : tds_realloc(&s->m.alloc, q->inst, (size_t)(q->ninst + 1) * sizeof *ni);
   if (!ni) {
     free3(integrand);
     if (!why) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");

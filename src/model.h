@@ -51,7 +51,7 @@ int tds_model_quantity(tds_ctx *ctx, tds_surf *s, const char *name, int kind,
 ** a redeclared one gets its old definition back. */
 void tds_model_quantity_undo(tds_surf *s, int idx, tds_quantity *saved);
 /* Free what tds_model_quantity saved, once the new declaration stands. */
-void tds_model_quantity_forget(tds_quantity *saved);
+void tds_model_quantity_forget(tds_surf *s, tds_quantity *saved);
 
 /* Add a method instance to quantity idx: method TDS_M_*, integrand
 ** expressions as the method needs (vector: 3, scalar: [0]), modulus. */

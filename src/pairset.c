@@ -21,15 +21,16 @@ static size_t pfind(const tds_pairset *ps, uint64_t k) {
   return i;
 }
 
-int tds_pairset_init(tds_pairset *ps, size_t n) {
+int tds_pairset_init(tds_pairset *ps, const tds_alloc *a, size_t n) {
+  ps->alloc = a ? *a : (tds_alloc){0};
   ps->cap = 16;
   while (ps->cap < 2 * n + 16) ps->cap *= 2;
-  ps->key = calloc(ps->cap, sizeof *ps->key);
+  ps->key = tds_calloc(&ps->alloc, ps->cap, sizeof *ps->key);
   return ps->key ? TDS_OK : TDS_ENOMEM;
 }
 
 void tds_pairset_free(tds_pairset *ps) {
-  free(ps->key);
+  tds_free(&ps->alloc, ps->key);
   ps->key = NULL;
   ps->cap = 0;
 }

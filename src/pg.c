@@ -20,27 +20,27 @@
 #include "vec3.h"
 
 void pg_work_free(pgw *w) {
-  free(w->kind);
-  free(w->bnb);
-  free(w->mov);
-  free(w->acc);
-  free(w->grad);
-  free(w->fcot);
-  free(w->d);
-  free(w->nrm);
-  free(w->model);
-  free(w->vel);
-  free(w->rest);
-  free(w->tan);
-  free(w->P);
-  free(w->Jinv);
-  free(w->xbest);
-  free(w->pbest);
+  tds_free(&w->al, w->kind);
+  tds_free(&w->al, w->bnb);
+  tds_free(&w->al, w->mov);
+  tds_free_aligned(&w->al, w->acc);
+  tds_free(&w->al, w->grad);
+  tds_free(&w->al, w->fcot);
+  tds_free(&w->al, w->d);
+  tds_free(&w->al, w->nrm);
+  tds_free(&w->al, w->model);
+  tds_free(&w->al, w->vel);
+  tds_free(&w->al, w->rest);
+  tds_free(&w->al, w->tan);
+  tds_free(&w->al, w->P);
+  tds_free(&w->al, w->Jinv);
+  tds_free(&w->al, w->xbest);
+  tds_free(&w->al, w->pbest);
   tds_fixq_free(&w->fq);
-  free(w->an);
-  free(w->gram);
-  free(w->rhs);
-  free(w->mult);
+  tds_free(&w->al, w->an);
+  tds_free(&w->al, w->gram);
+  tds_free(&w->al, w->rhs);
+  tds_free(&w->al, w->mult);
   pg_flip_free(w);
   pg_accel_free(&w->aa);
   pg_plan_free(w);
@@ -93,31 +93,31 @@ static void classify(tds_surf *s, pgw *w) {
 int pg_work_init(tds_ctx *ctx, tds_surf *s, pgw *w, int depth) {
   tds_mesh *m = &s->m;
   memset(w, 0, sizeof *w);
+  w->al = ctx->alloc;
   if (tds_mesh_adjacency(m) != TDS_OK) goto nomem;
   size_t nv = (size_t)(m->nv > 0 ? m->nv : 1), nf = (size_t)(m->nf > 0 ? m->nf : 1);
   w->nv = m->nv;
   w->ne = m->ne;
   w->nf = m->nf;
-  w->kind = tds_calloc(nv, 1);
-  w->bnb = tds_calloc(nv, sizeof *w->bnb);
-  w->mov = tds_calloc(nv, sizeof *w->mov);
+  w->kind = tds_calloc(&w->al, nv, 1);
+  w->bnb = tds_calloc(&w->al, nv, sizeof *w->bnb);
+  w->mov = tds_calloc(&w->al, nv, sizeof *w->mov);
   /* one vertex's sums on cache lines of their own: the two halves of
   ** the pass may add into neighbouring slots from two threads */
   size_t accb = (2 * nv * sizeof *w->acc + 63) / 64 * 64;
-  w->acc = aligned_alloc(64, accb);
-  if (w->acc) memset(w->acc, 0, accb);
-  w->grad = tds_calloc(2 * nv, sizeof *w->grad);
-  w->fcot = tds_calloc(3 * nf, sizeof *w->fcot);
-  w->d = tds_calloc(nv, sizeof *w->d);
-  w->nrm = tds_calloc(nv, sizeof *w->nrm);
-  w->model = tds_calloc(nv, sizeof *w->model);
-  w->vel = tds_calloc(nv, sizeof *w->vel);
-  w->rest = tds_calloc(nv, sizeof *w->rest);
-  w->tan = tds_calloc(nv, sizeof *w->tan);
-  w->P = tds_calloc(nv, sizeof *w->P);
-  w->Jinv = tds_calloc(nv, sizeof *w->Jinv);
-  w->xbest = tds_calloc(nv, sizeof *w->xbest);
-  w->pbest = tds_calloc(nv, sizeof *w->pbest);
+  w->acc = tds_calloc_aligned(&w->al, accb);
+  w->grad = tds_calloc(&w->al, 2 * nv, sizeof *w->grad);
+  w->fcot = tds_calloc(&w->al, 3 * nf, sizeof *w->fcot);
+  w->d = tds_calloc(&w->al, nv, sizeof *w->d);
+  w->nrm = tds_calloc(&w->al, nv, sizeof *w->nrm);
+  w->model = tds_calloc(&w->al, nv, sizeof *w->model);
+  w->vel = tds_calloc(&w->al, nv, sizeof *w->vel);
+  w->rest = tds_calloc(&w->al, nv, sizeof *w->rest);
+  w->tan = tds_calloc(&w->al, nv, sizeof *w->tan);
+  w->P = tds_calloc(&w->al, nv, sizeof *w->P);
+  w->Jinv = tds_calloc(&w->al, nv, sizeof *w->Jinv);
+  w->xbest = tds_calloc(&w->al, nv, sizeof *w->xbest);
+  w->pbest = tds_calloc(&w->al, nv, sizeof *w->pbest);
   if (!w->kind || !w->bnb || !w->mov || !w->acc || !w->grad || !w->fcot ||
       !w->d || !w->nrm || !w->model || !w->vel || !w->rest || !w->tan ||
       !w->P || !w->Jinv || !w->xbest || !w->pbest)
@@ -128,10 +128,10 @@ int pg_work_init(tds_ctx *ctx, tds_surf *s, pgw *w, int depth) {
     return rc;
   }
   int32_t nq = w->fq.nq;
-  w->an = tds_calloc((size_t)w->fq.nent + 1, sizeof *w->an);
-  w->gram = tds_calloc((size_t)nq * (size_t)nq + 1, sizeof *w->gram);
-  w->rhs = tds_calloc((size_t)nq + 1, sizeof *w->rhs);
-  w->mult = tds_calloc((size_t)nq + 1, sizeof *w->mult);
+  w->an = tds_calloc(&w->al, (size_t)w->fq.nent + 1, sizeof *w->an);
+  w->gram = tds_calloc(&w->al, (size_t)nq * (size_t)nq + 1, sizeof *w->gram);
+  w->rhs = tds_calloc(&w->al, (size_t)nq + 1, sizeof *w->rhs);
+  w->mult = tds_calloc(&w->al, (size_t)nq + 1, sizeof *w->mult);
   if (!w->an || !w->gram || !w->rhs || !w->mult) goto nomem;
   if (pg_flip_init(s, w) != TDS_OK) goto nomem;
   if (pg_plan_init(s, w) != TDS_OK) goto nomem;
@@ -140,7 +140,7 @@ int pg_work_init(tds_ctx *ctx, tds_surf *s, pgw *w, int depth) {
   w->flip_tol = 1e-12;
   classify(s, w);
   pg_gauge_init(s, w);
-  if (depth > 0 && pg_accel_init(&w->aa, 3 * w->nmov, depth) != TDS_OK) goto nomem;
+  if (depth > 0 && pg_accel_init(&w->aa, &w->al, 3 * w->nmov, depth) != TDS_OK) goto nomem;
   w->aa.isa = w->isa;
   return TDS_OK;
 nomem:

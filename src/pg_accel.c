@@ -143,21 +143,22 @@ static void mix(int isa, double *x, const double *g, const double *cols,
   mix_generic(x, g, cols, stride, gam, h, n);
 }
 
-int pg_accel_init(pg_accel *a, int32_t nstate, int depth) {
+int pg_accel_init(pg_accel *a, const tds_alloc *al, int32_t nstate, int depth) {
   memset(a, 0, sizeof *a);
+  if (al) a->al = *al;
   a->depth = depth;
   a->N = nstate;
   size_t N = (size_t)(nstate > 0 ? nstate : 1), m = (size_t)depth;
-  a->X = tds_calloc(N, sizeof *a->X);
-  a->G = tds_calloc(N, sizeof *a->G);
-  a->Fprev = tds_calloc(N, sizeof *a->Fprev);
-  a->Gprev = tds_calloc(N, sizeof *a->Gprev);
-  a->dF = tds_calloc(N * m, sizeof *a->dF);
-  a->dG = tds_calloc(N * m, sizeof *a->dG);
-  a->M = tds_calloc(m * m, sizeof *a->M);
-  a->Ms = tds_calloc(m * m, sizeof *a->Ms);
-  a->gam = tds_calloc(m, sizeof *a->gam);
-  a->sc = tds_calloc(m, sizeof *a->sc);
+  a->X = tds_calloc(&a->al, N, sizeof *a->X);
+  a->G = tds_calloc(&a->al, N, sizeof *a->G);
+  a->Fprev = tds_calloc(&a->al, N, sizeof *a->Fprev);
+  a->Gprev = tds_calloc(&a->al, N, sizeof *a->Gprev);
+  a->dF = tds_calloc(&a->al, N * m, sizeof *a->dF);
+  a->dG = tds_calloc(&a->al, N * m, sizeof *a->dG);
+  a->M = tds_calloc(&a->al, m * m, sizeof *a->M);
+  a->Ms = tds_calloc(&a->al, m * m, sizeof *a->Ms);
+  a->gam = tds_calloc(&a->al, m, sizeof *a->gam);
+  a->sc = tds_calloc(&a->al, m, sizeof *a->sc);
   if (!a->X || !a->G || !a->Fprev || !a->Gprev || !a->dF || !a->dG || !a->M ||
       !a->Ms || !a->gam || !a->sc) {
     pg_accel_free(a);
@@ -170,16 +171,17 @@ int pg_accel_init(pg_accel *a, int32_t nstate, int depth) {
 }
 
 void pg_accel_free(pg_accel *a) {
-  free(a->X);
-  free(a->G);
-  free(a->Fprev);
-  free(a->Gprev);
-  free(a->dF);
-  free(a->dG);
-  free(a->M);
-  free(a->Ms);
-  free(a->gam);
-  free(a->sc);
+  tds_alloc al = a->al;
+  tds_free(&al, a->X);
+  tds_free(&al, a->G);
+  tds_free(&al, a->Fprev);
+  tds_free(&al, a->Gprev);
+  tds_free(&al, a->dF);
+  tds_free(&al, a->dG);
+  tds_free(&al, a->M);
+  tds_free(&al, a->Ms);
+  tds_free(&al, a->gam);
+  tds_free(&al, a->sc);
   memset(a, 0, sizeof *a);
 }
 

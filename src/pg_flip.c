@@ -17,12 +17,12 @@
 int pg_flip_init(tds_surf *s, pgw *w) {
   tds_mesh *m = &s->m;
   size_t ne = (size_t)(m->ne > 0 ? m->ne : 1);
-  w->stack = tds_calloc(ne, sizeof *w->stack);
-  w->cand = tds_calloc(ne, sizeof *w->cand);
-  w->copp = tds_calloc(ne, sizeof *w->copp);
-  w->queued = tds_calloc(ne, 1);
+  w->stack = tds_calloc(&w->al, ne, sizeof *w->stack);
+  w->cand = tds_calloc(&w->al, ne, sizeof *w->cand);
+  w->copp = tds_calloc(&w->al, ne, sizeof *w->copp);
+  w->queued = tds_calloc(&w->al, ne, 1);
   if (!w->stack || !w->cand || !w->copp || !w->queued ||
-      tds_pairset_init(&w->ps, ne) != TDS_OK)
+      tds_pairset_init(&w->ps, &w->al, ne) != TDS_OK)
     return TDS_ENOMEM;
   for (tds_id e = 0; e < m->ne; e++)
     if (tds_alive(m->eflags, e)) tds_pairset_add(&w->ps, m->ev[e][0], m->ev[e][1]);
@@ -32,10 +32,10 @@ int pg_flip_init(tds_surf *s, pgw *w) {
 
 void pg_flip_free(pgw *w) {
   tds_pairset_free(&w->ps);
-  free(w->stack);
-  free(w->cand);
-  free(w->copp);
-  free(w->queued);
+  tds_free(&w->al, w->stack);
+  tds_free(&w->al, w->cand);
+  tds_free(&w->al, w->copp);
+  tds_free(&w->al, w->queued);
   w->ps.key = NULL;
   w->stack = w->cand = NULL;
   w->copp = NULL;

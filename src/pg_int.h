@@ -73,6 +73,7 @@ typedef struct pg_accel {
   int64_t cooldown;       /* length of the next such plain phase */
   int64_t restarts;       /* resets by safeguards */
   int isa;                /* as pgw.isa: 0 generic code, 1 the widest */
+  tds_alloc al;           /* of the arrays */
 } pg_accel;
 
 /* Work arrays of one run; allocated once (pg.c). */
@@ -135,6 +136,7 @@ typedef struct pgw {
   int64_t threaded;       /* passes run on two threads */
   int isa;                /* vector unit of the pass: 0 generic, 1 AVX2
                              (pg_pass_isa); the same results either way */
+  tds_alloc al;           /* the ctx's allocator, of every array here */
 } pgw;
 
 /* Results of one pg_step. */
@@ -189,7 +191,7 @@ int pg_flip_needed(tds_surf *s, pgw *w);
 int32_t pg_flip_pass(tds_surf *s, pgw *w);
 
 /* pg_accel.c */
-int pg_accel_init(pg_accel *a, int32_t nstate, int depth); /* TDS_OK/ENOMEM */
+int pg_accel_init(pg_accel *a, const tds_alloc *al, int32_t nstate, int depth); /* TDS_OK/ENOMEM */
 void pg_accel_free(pg_accel *a);
 void pg_accel_reset(pg_accel *a);
 /* Given a->X (state before) and a->G (after the plain move), write the

@@ -147,17 +147,17 @@ enum { FM_WORK = 1, FM_BODY = 2, FM_LIVE = 4, FM_BODY1 = 8 };
 enum { FM_SIDE1 = 16 };
 
 void pg_plan_free(pgw *w) {
-  free(w->forder);
-  free(w->fpos);
-  free(w->vent);
-  free(w->fmode);
-  free(w->fslot);
-  free(w->fent);
-  free(w->shared);
-  free(w->sbase);
-  free(w->fgbuf);
-  free(w->side);
-  for (int h = 0; h < 2; h++) free(w->half[h].bvol);
+  tds_free(&w->al, w->forder);
+  tds_free(&w->al, w->fpos);
+  tds_free(&w->al, w->vent);
+  tds_free(&w->al, w->fmode);
+  tds_free(&w->al, w->fslot);
+  tds_free(&w->al, w->fent);
+  tds_free(&w->al, w->shared);
+  tds_free(&w->al, w->sbase);
+  tds_free(&w->al, w->fgbuf);
+  tds_free(&w->al, w->side);
+  for (int h = 0; h < 2; h++) tds_free_aligned(&w->al, w->half[h].bvol);
   w->forder = w->shared = w->sbase = w->fpos = w->vent = NULL;
   w->fmode = w->side = NULL;
   w->fslot = NULL;
@@ -181,27 +181,26 @@ int pg_plan_init(tds_surf *s, pgw *w) {
   tds_mesh *m = &s->m;
   size_t nf = (size_t)(m->nf > 0 ? m->nf : 1), nv = (size_t)(m->nv > 0 ? m->nv : 1);
   size_t nb = (size_t)(m->nb > 0 ? m->nb : 1), nent = (size_t)w->fq.nent + 1;
-  w->forder = tds_calloc(nf, sizeof *w->forder);
-  w->fpos = tds_calloc(nf, sizeof *w->fpos);
-  w->vent = tds_calloc(nv, sizeof *w->vent);
-  w->fmode = tds_calloc(nf, 1);
-  w->fslot = tds_calloc(nf, sizeof *w->fslot);
-  w->fent = tds_calloc(nf, sizeof *w->fent);
-  w->shared = tds_calloc(nv, sizeof *w->shared);
-  w->sbase = tds_calloc(nv, sizeof *w->sbase);
-  w->fgbuf = tds_calloc(nent, sizeof *w->fgbuf);
-  w->side = tds_calloc(nv, 1);
-  fkey *k = tds_calloc(nf, sizeof *k);
+  w->forder = tds_calloc(&w->al, nf, sizeof *w->forder);
+  w->fpos = tds_calloc(&w->al, nf, sizeof *w->fpos);
+  w->vent = tds_calloc(&w->al, nv, sizeof *w->vent);
+  w->fmode = tds_calloc(&w->al, nf, 1);
+  w->fslot = tds_calloc(&w->al, nf, sizeof *w->fslot);
+  w->fent = tds_calloc(&w->al, nf, sizeof *w->fent);
+  w->shared = tds_calloc(&w->al, nv, sizeof *w->shared);
+  w->sbase = tds_calloc(&w->al, nv, sizeof *w->sbase);
+  w->fgbuf = tds_calloc(&w->al, nent, sizeof *w->fgbuf);
+  w->side = tds_calloc(&w->al, nv, 1);
+  fkey *k = tds_calloc(&w->al, nf, sizeof *k);
   /* the halves' volume sums on cache lines of their own */
   size_t nbb = (nb * sizeof(double) + 63) / 64 * 64;
   for (int h = 0; h < 2; h++) {
-    w->half[h].bvol = aligned_alloc(64, nbb);
-    if (w->half[h].bvol) memset(w->half[h].bvol, 0, nbb);
+    w->half[h].bvol = tds_calloc_aligned(&w->al, nbb);
   }
   if (!w->fpos || !w->vent || !w->forder || !w->fmode || !w->fslot || !w->fent || !w->shared ||
       !w->sbase || !w->fgbuf || !w->side || !k || !w->half[0].bvol ||
       !w->half[1].bvol) {
-    free(k);
+    tds_free(&w->al, k);
     return TDS_ENOMEM;
   }
   /* The order: live facets by their centroid's coordinate along the
@@ -233,7 +232,7 @@ int pg_plan_init(tds_surf *s, pgw *w) {
     w->fpos[k[i].f] = i;
   }
   w->norder = n;
-  free(k);
+  tds_free(&w->al, k);
   w->plan_gen = m->topo_gen - 1; /* slots are built at the first pass */
   return TDS_OK;
 }

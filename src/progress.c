@@ -22,12 +22,14 @@ void tds_progress_init(tds_progress *p) {
 }
 
 void tds_progress_free(tds_progress *p) {
-  free(p->iter);
-  free(p->energy);
-  free(p->value);
-  free(p->kinds);
+  tds_alloc al = p->alloc;
+  tds_free(&al, p->iter);
+  tds_free(&al, p->energy);
+  tds_free(&al, p->value);
+  tds_free(&al, p->kinds);
   int tty = p->tty, verbose = p->verbose;
   tds_progress_init(p);
+  p->alloc = al;
   p->tty = tty;
   p->verbose = verbose;
 }
@@ -57,13 +59,13 @@ static void record(tds_progress *p, char kind, double energy, double value) {
       if ((p->count - 1) % p->stride) return;
     } else {
       int32_t nc = p->cap ? 2 * p->cap : 1024;
-      double *a = realloc(p->iter, (size_t)nc * sizeof *a);
+      double *a = tds_realloc(&p->alloc, p->iter, (size_t)nc * sizeof *a);
       if (a) p->iter = a;
-      double *b = a ? realloc(p->energy, (size_t)nc * sizeof *b) : NULL;
+      double *b = a ? tds_realloc(&p->alloc, p->energy, (size_t)nc * sizeof *b) : NULL;
       if (b) p->energy = b;
-      double *c = b ? realloc(p->value, (size_t)nc * sizeof *c) : NULL;
+      double *c = b ? tds_realloc(&p->alloc, p->value, (size_t)nc * sizeof *c) : NULL;
       if (c) p->value = c;
-      char *d = c ? realloc(p->kinds, (size_t)nc) : NULL;
+      char *d = c ? tds_realloc(&p->alloc, p->kinds, (size_t)nc) : NULL;
       if (!d) return;
       p->kinds = d;
       p->cap = nc;

@@ -33,6 +33,7 @@ typedef struct tds_progress {
   int32_t n, cap;
   double *iter, *energy, *value;
   char *kinds;
+  tds_alloc alloc;    /* of the history (zero: C library; free keeps it) */
 } tds_progress;
 
 void tds_progress_init(tds_progress *p);

@@ -9,11 +9,11 @@
 int tds_recalc(tds_ctx *ctx, tds_surf *s) {
   tds_mesh *m = &s->m;
   int32_t nv = m->nv;
-  double (*x0)[3] = malloc((size_t)(nv > 0 ? nv : 1) * sizeof *x0);
-  double (*p0)[2] = malloc((size_t)(nv > 0 ? nv : 1) * sizeof *p0);
+  double (*x0)[3] = tds_malloc(&s->m.alloc, (size_t)(nv > 0 ? nv : 1) * sizeof *x0);
+  double (*p0)[2] = tds_malloc(&s->m.alloc, (size_t)(nv > 0 ? nv : 1) * sizeof *p0);
   if (!x0 || !p0) {
-    free(x0);
-    free(p0);
+    tds_free(&s->m.alloc, x0);
+    tds_free(&s->m.alloc, p0);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   }
   if (nv > 0) {
@@ -27,8 +27,8 @@ int tds_recalc(tds_ctx *ctx, tds_surf *s) {
     memcpy(m->x, x0, (size_t)nv * sizeof *x0);
     memcpy(m->vp, p0, (size_t)nv * sizeof *p0);
   }
-  free(x0);
-  free(p0);
+  tds_free(&s->m.alloc, x0);
+  tds_free(&s->m.alloc, p0);
   if (bad != TDS_NONE)
     return tds_seterr(ctx, TDS_ENUM,
                       "recalc: vertex %d cannot be placed on its %s with the "

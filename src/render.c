@@ -59,14 +59,14 @@ static const double neutral[3] = {0.80, 0.82, 0.88};
 static const double novalue[3] = {0.55, 0.55, 0.55};
 
 /* tds_render_field; with mode MEAN_CURVATURE and hout non-NULL, *hout
-** receives the malloc'd per-vertex values (NaN where not measured). */
+** receives the per-vertex values (from ctx->alloc) (NaN where not measured). */
 static int field_values(tds_ctx *ctx, tds_surf *s, int mode, double *val,
                         double **hout) {
   tds_mesh *m = &s->m;
   if (mode == TDS_RCOL_MEAN_CURVATURE) {
     if (tds_mesh_adjacency(m) != TDS_OK)
       return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
-    double *h = tds_calloc((size_t)(m->nv > 0 ? m->nv : 1), sizeof *h);
+    double *h = tds_calloc(&ctx->alloc, (size_t)(m->nv > 0 ? m->nv : 1), sizeof *h);
     if (!h) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
     for (tds_id v = 0; v < m->nv; v++)
       h[v] = (m->vflags[v] & TDS_DEAD) ? (double)NAN : tds_vertex_mean_curvature(s, v);
@@ -83,7 +83,7 @@ static int field_values(tds_ctx *ctx, tds_surf *s, int mode, double *val,
       val[f] = n ? sum / n : (double)NAN;
     }
     if (hout) *hout = h;
-    else free(h);
+    else tds_free(&ctx->alloc, h);
     return TDS_OK;
   }
   for (tds_id f = 0; f < m->nf; f++) {
@@ -195,8 +195,8 @@ static void facet_color(const tds_mesh *m, tds_id f, int mode, double v,
     break;
   }
   case TDS_RCOL_COLOR:
-    /* tds stores 0 for a facet given no colour: Evolver's default, white. */
-    tds_render_evolver_color(m->fcolor[f] == 0 ? 15 : m->fcolor[f], rgb);
+    /* a facet given no colour has Evolver's default, 15 (white) */
+    tds_render_evolver_color(m->fcolor[f], rgb);
     break;
   case TDS_RCOL_NONE:
     v3_copy(rgb, neutral);
@@ -286,17 +286,17 @@ int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
   int rc = frame(ctx, m, o, plotw, &in);
   if (rc != TDS_OK) return rc;
 
-  double *val = tds_calloc((size_t)(m->nf > 0 ? m->nf : 1), sizeof *val);
-  rfacet *rf = tds_calloc((size_t)(m->nf > 0 ? m->nf : 1), sizeof *rf);
+  double *val = tds_calloc(&ctx->alloc, (size_t)(m->nf > 0 ? m->nf : 1), sizeof *val);
+  rfacet *rf = tds_calloc(&ctx->alloc, (size_t)(m->nf > 0 ? m->nf : 1), sizeof *rf);
   if (!val || !rf) {
-    free(val);
-    free(rf);
+    tds_free(&ctx->alloc, val);
+    tds_free(&ctx->alloc, rf);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   }
   double *h = NULL, (*vn)[3] = NULL; /* smooth: vertex k1+k2 and normals */
   rc = field ? field_values(ctx, s, o->color, val, o->smooth ? &h : NULL) : TDS_OK;
   if (rc == TDS_OK && o->smooth) {
-    vn = tds_calloc((size_t)(m->nv > 0 ? m->nv : 1), sizeof *vn);
+    vn = tds_calloc(&ctx->alloc, (size_t)(m->nv > 0 ? m->nv : 1), sizeof *vn);
     if (!vn) rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory");
     for (tds_id f = 0; vn && f < m->nf; f++) {
       if (m->fflags[f] & (TDS_DEAD | TDS_NODISPLAY)) continue;
@@ -366,11 +366,11 @@ int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
     }
     n++;
   }
-  free(val);
-  free(h);
-  free(vn);
+  tds_free(&ctx->alloc, val);
+  tds_free(&ctx->alloc, h);
+  tds_free(&ctx->alloc, vn);
   if (rc != TDS_OK) {
-    free(rf);
+    tds_free(&ctx->alloc, rf);
     return rc;
   }
   qsort(rf, (size_t)n, sizeof *rf, by_depth);
@@ -381,7 +381,7 @@ int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
   if (cairo_surface_status(big) || cairo_surface_status(img)) {
     cairo_surface_destroy(big);
     cairo_surface_destroy(img);
-    free(rf);
+    tds_free(&ctx->alloc, rf);
     return tds_seterr(ctx, TDS_ENOMEM, "snapshot: out of memory for the image");
   }
   cairo_t *cr = cairo_create(big);
@@ -390,7 +390,7 @@ int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
   cairo_scale(cr, SS, SS);
   paint_facets(cr, rf, n, o->smooth, o->edges);
   cairo_destroy(cr);
-  free(rf);
+  tds_free(&ctx->alloc, rf);
 
   cr = cairo_create(img);
   cairo_set_source_rgb(cr, 1, 1, 1);

@@ -2,27 +2,30 @@
 ** of the check mode (contracts in snap.h). */
 #include "snap.h"
 
+#include "attr.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 void tds_snap_free(tds_snap *sn) {
   if (sn->taken) tds_mesh_free(&sn->m);
-  free(sn->quant);
-  free(sn->cg_dir);
-  free(sn->cg_prev);
+  tds_free(&sn->alloc, sn->quant);
+  tds_free(&sn->alloc, sn->cg_dir);
+  tds_free(&sn->alloc, sn->cg_prev);
   memset(sn, 0, sizeof *sn);
 }
 
-static void *dup_mem(const void *p, size_t n) {
+static void *dup_mem(const tds_alloc *a, const void *p, size_t n) {
   if (!p || !n) return NULL;
-  void *q = malloc(n);
+  void *q = tds_malloc(a, n);
   if (q) memcpy(q, p, n);
   return q;
 }
 
 int tds_snap_take(tds_ctx *ctx, const tds_surf *s, tds_snap *sn) {
   memset(sn, 0, sizeof *sn);
+  sn->alloc = s->m.alloc;
   if (tds_mesh_copy(&sn->m, &s->m) != TDS_OK)
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory (saving the surface)");
   sn->taken = 1;
@@ -37,7 +40,7 @@ int tds_snap_take(tds_ctx *ctx, const tds_surf *s, tds_snap *sn) {
   sn->cg_topo = s->cg_topo;
   int bad = 0;
   if (s->nquant) {
-    sn->quant = malloc((size_t)s->nquant * sizeof *sn->quant);
+    sn->quant = tds_malloc(&s->m.alloc, (size_t)s->nquant * sizeof *sn->quant);
     bad |= !sn->quant;
     for (int i = 0; sn->quant && i < s->nquant; i++) {
       sn->quant[i][0] = s->quant[i].value;
@@ -46,8 +49,8 @@ int tds_snap_take(tds_ctx *ctx, const tds_surf *s, tds_snap *sn) {
   }
   size_t ncg = (size_t)(s->cg_nv > 0 ? s->cg_nv : 0) * sizeof *s->cg_dir;
   if (s->cg_dir && ncg) {
-    sn->cg_dir = dup_mem(s->cg_dir, ncg);
-    sn->cg_prev = dup_mem(s->cg_prev, ncg);
+    sn->cg_dir = dup_mem(&sn->alloc, s->cg_dir, ncg);
+    sn->cg_prev = dup_mem(&sn->alloc, s->cg_prev, ncg);
     bad |= !sn->cg_dir || (s->cg_prev && !sn->cg_prev);
   }
   if (bad) {
@@ -141,6 +144,17 @@ int tds_snap_same(tds_ctx *ctx, const tds_surf *s, const tds_snap *sn) {
   SAME(bdensity, a->nb, "body");
   SAME(bpressure, a->nb, "body");
   SAME(bvolconst, a->nb, "body");
+  const int32_t cnt[TDS_NKINDS] = {a->nv, a->ne, a->nf, a->nb};
+  for (int k = 0; k < TDS_NKINDS; k++) {
+    if (a->nucol[k] != b->nucol[k])
+      return tds_seterr(ctx, TDS_ENUM, "%s attributes were defined", tds_kind_name[k]);
+    for (int c = 0; c < a->nucol[k]; c++) {
+      const tds_ucol *u = &a->ucol[k][c];
+      int32_t i = diff_rows(u->v, b->ucol[k][c].v, cnt[k], sizeof(double) * (size_t)u->size);
+      if (i >= 0)
+        return tds_seterr(ctx, TDS_ENUM, "%s %d changed (%s)", tds_kind_name[k], i + 1, u->name);
+    }
+  }
   if (s->nquant != sn->nquant)
     return tds_seterr(ctx, TDS_ENUM, "number of quantities changed");
   for (int i = 0; i < s->nquant; i++)
@@ -181,6 +195,15 @@ int tds_surf_all_finite(tds_ctx *ctx, const tds_surf *s, int derived) {
       if (!isfinite(val[k]))
         return tds_seterr(ctx, TDS_ENUM, "body %d: %s is %g", b + 1, name[k], val[k]);
   }
+  for (int k = 0; k < TDS_NKINDS; k++)
+    for (int c = 0; c < m->nucol[k]; c++) {
+      const tds_ucol *u = &m->ucol[k][c];
+      int32_t n = k == TDS_VERTEX ? m->nv : k == TDS_EDGE ? m->ne : k == TDS_FACET ? m->nf : m->nb;
+      for (size_t i = 0; i < (size_t)n * (size_t)u->size; i++)
+        if (!isfinite(u->v[i]))
+          return tds_seterr(ctx, TDS_ENUM, "%s %d: %s is %g", tds_kind_name[k],
+                            (int)(i / (size_t)u->size) + 1, u->name, u->v[i]);
+    }
   for (int i = 0; i < s->npar; i++)
     if (!isfinite(s->parval[i]))
       return tds_seterr(ctx, TDS_ENUM, "parameter %s is %g", s->parname[i], s->parval[i]);

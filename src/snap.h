@@ -25,6 +25,7 @@ typedef struct tds_snap {
   int32_t cg_nv;
   uint64_t cg_topo;
   double (*cg_dir)[3], (*cg_prev)[3];
+  tds_alloc alloc;          /* the surface's allocator */
 } tds_snap;
 
 /* Copy the surface's changeable state into sn. TDS_OK or TDS_ENOMEM

@@ -8,13 +8,13 @@
 int tds_sptrip_add(tds_sptrip *t, int32_t i, int32_t j, double v) {
   if (t->n == t->cap) {
     int64_t cap = t->cap ? 2 * t->cap : 1024;
-    int32_t *ni = realloc(t->i, (size_t)cap * sizeof *ni);
+    int32_t *ni = tds_realloc(&t->alloc, t->i, (size_t)cap * sizeof *ni);
     if (!ni) return -1;
     t->i = ni;
-    int32_t *nj = realloc(t->j, (size_t)cap * sizeof *nj);
+    int32_t *nj = tds_realloc(&t->alloc, t->j, (size_t)cap * sizeof *nj);
     if (!nj) return -1;
     t->j = nj;
-    double *nv = realloc(t->v, (size_t)cap * sizeof *nv);
+    double *nv = tds_realloc(&t->alloc, t->v, (size_t)cap * sizeof *nv);
     if (!nv) return -1;
     t->v = nv;
     t->cap = cap;
@@ -27,17 +27,21 @@ int tds_sptrip_add(tds_sptrip *t, int32_t i, int32_t j, double v) {
 }
 
 void tds_sptrip_free(tds_sptrip *t) {
-  free(t->i);
-  free(t->j);
-  free(t->v);
+  tds_alloc a = t->alloc;
+  tds_free(&a, t->i);
+  tds_free(&a, t->j);
+  tds_free(&a, t->v);
   memset(t, 0, sizeof *t);
+  t->alloc = a;
 }
 
 void tds_spmat_free(tds_spmat *a) {
-  free(a->colptr);
-  free(a->rowind);
-  free(a->val);
+  tds_alloc al = a->alloc;
+  tds_free(&al, a->colptr);
+  tds_free(&al, a->rowind);
+  tds_free(&al, a->val);
   memset(a, 0, sizeof *a);
+  a->alloc = al;
 }
 
 typedef struct rv {
@@ -52,13 +56,14 @@ static int by_row(const void *a, const void *b) {
 
 int tds_spmat_from_trip(const tds_sptrip *t, int upper, tds_spmat *out) {
   memset(out, 0, sizeof *out);
+  out->alloc = t->alloc;
   out->nrow = t->nrow;
   out->ncol = t->ncol;
   out->upper = upper;
   int32_t nc = t->ncol;
-  int64_t *cnt = calloc((size_t)nc + 1, sizeof *cnt);
-  rv *e = malloc(((size_t)t->n + 1) * sizeof *e);
-  out->colptr = calloc((size_t)nc + 1, sizeof *out->colptr);
+  int64_t *cnt = tds_calloc(&out->alloc, (size_t)nc + 1, sizeof *cnt);
+  rv *e = tds_malloc(&out->alloc, ((size_t)t->n + 1) * sizeof *e);
+  out->colptr = tds_calloc(&out->alloc, (size_t)nc + 1, sizeof *out->colptr);
   if (!cnt || !e || !out->colptr) goto nomem;
   /* bucket by column (after mapping to the upper half) */
   for (int64_t k = 0; k < t->n; k++) {
@@ -67,7 +72,7 @@ int tds_spmat_from_trip(const tds_sptrip *t, int upper, tds_spmat *out) {
     cnt[j + 1]++;
   }
   for (int32_t j = 0; j < nc; j++) cnt[j + 1] += cnt[j];
-  int64_t *pos = calloc((size_t)nc + 1, sizeof *pos);
+  int64_t *pos = tds_calloc(&out->alloc, (size_t)nc + 1, sizeof *pos);
   if (!pos) goto nomem;
   memcpy(pos, cnt, ((size_t)nc + 1) * sizeof *pos);
   for (int64_t k = 0; k < t->n; k++) {
@@ -79,13 +84,22 @@ int tds_spmat_from_trip(const tds_sptrip *t, int upper, tds_spmat *out) {
     }
     e[pos[j]++] = (rv){i, t->v[k]};
   }
-  free(pos);
+  tds_free(&out->alloc, pos);
   /* sort each column by row and sum repeats, compacting in place */
   int64_t n = 0;
   for (int32_t j = 0; j < nc; j++) {
     rv *c = e + cnt[j];
     int64_t len = cnt[j + 1] - cnt[j];
-    qsort(c, (size_t)len, sizeof *c, by_row);
+    if (len <= 48) { /* short columns (a mesh's): insertion sort */
+      for (int64_t a = 1; a < len; a++) {
+        rv x = c[a];
+        int64_t b = a;
+        for (; b > 0 && c[b - 1].r > x.r; b--) c[b] = c[b - 1];
+        c[b] = x;
+      }
+    } else {
+      qsort(c, (size_t)len, sizeof *c, by_row);
+    }
     int64_t start = n;
     for (int64_t k = 0; k < len; k++) {
       if (n > start && e[n - 1].r == c[k].r) e[n - 1].v += c[k].v;
@@ -94,19 +108,19 @@ int tds_spmat_from_trip(const tds_sptrip *t, int upper, tds_spmat *out) {
     if (n > INT32_MAX) goto nomem;
     out->colptr[j + 1] = (int32_t)n;
   }
-  out->rowind = malloc(((size_t)n + 1) * sizeof *out->rowind);
-  out->val = malloc(((size_t)n + 1) * sizeof *out->val);
+  out->rowind = tds_malloc(&out->alloc, ((size_t)n + 1) * sizeof *out->rowind);
+  out->val = tds_malloc(&out->alloc, ((size_t)n + 1) * sizeof *out->val);
   if (!out->rowind || !out->val) goto nomem;
   for (int64_t k = 0; k < n; k++) {
     out->rowind[k] = e[k].r;
     out->val[k] = e[k].v;
   }
-  free(cnt);
-  free(e);
+  tds_free(&out->alloc, cnt);
+  tds_free(&out->alloc, e);
   return 0;
 nomem:
-  free(cnt);
-  free(e);
+  tds_free(&out->alloc, cnt);
+  tds_free(&out->alloc, e);
   tds_spmat_free(out);
   return -1;
 }

@@ -14,11 +14,16 @@
 
 #include <stdint.h>
 
+#include "tds.h"
+
+/* Both types allocate through `alloc` (zero: the C library): set a
+** triplet list's before its first add; a matrix takes its triplets'. */
 typedef struct tds_sptrip {
   int32_t nrow, ncol;
   int64_t n, cap;
   int32_t *i, *j;
   double *v;
+  tds_alloc alloc;      /* kept by tds_sptrip_free */
 } tds_sptrip;
 
 typedef struct tds_spmat {
@@ -27,6 +32,7 @@ typedef struct tds_spmat {
   int32_t *colptr;      /* ncol + 1 */
   int32_t *rowind;      /* colptr[ncol] */
   double *val;
+  tds_alloc alloc;
 } tds_spmat;
 
 /* Append (i, j, v); 0, or -1 when out of memory (t is unchanged). */

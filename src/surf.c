@@ -23,10 +23,11 @@ static void free_exprs(tds_expr **e, int n) {
 }
 
 void tds_surf_free(tds_surf *s) {
+  tds_alloc a = s->m.alloc;
   tds_mesh_free(&s->m);
-  for (int i = 0; i < s->npar; i++) free(s->parname[i]);
-  free(s->parname);
-  free(s->parval);
+  for (int i = 0; i < s->npar; i++) tds_free(&a, s->parname[i]);
+  tds_free(&a, s->parname);
+  tds_free(&a, s->parval);
   for (int i = 0; i < TDS_MAX_CON; i++) {
     tds_constraint *c = &s->con[i];
     tds_expr_free(c->formula);
@@ -38,20 +39,21 @@ void tds_surf_free(tds_surf *s) {
     free_exprs(s->bdry[i].energy, 3);
     free_exprs(s->bdry[i].content, 3);
   }
-  free(s->bdry);
+  tds_free(&a, s->bdry);
   for (int i = 0; i < s->nquant; i++) {
-    free(s->quant[i].name);
+    tds_free(&a, s->quant[i].name);
     for (int j = 0; j < s->quant[i].ninst; j++)
       free_exprs(s->quant[i].inst[j].integrand, 3);
-    free(s->quant[i].inst);
+    tds_free(&a, s->quant[i].inst);
   }
-  free(s->quant);
-  free(s->read_text);
-  free(s->orig_start);
-  free(s->orig_facets);
-  free(s->cg_dir);
-  free(s->cg_prev);
+  tds_free(&a, s->quant);
+  tds_free(&a, s->read_text);
+  tds_free(&a, s->orig_start);
+  tds_free(&a, s->orig_facets);
+  tds_free(&a, s->cg_dir);
+  tds_free(&a, s->cg_prev);
   tds_surf_init(s);
+  s->m.alloc = a;
 }
 
 int tds_surf_param_find(const tds_surf *s, const char *name, size_t len) {
@@ -70,15 +72,15 @@ int tds_surf_param_set(tds_surf *s, const char *name, double value) {
   }
   if (s->npar == s->cappar) {
     int cap = s->cappar ? 2 * s->cappar : 16;
-    char **n = realloc(s->parname, (size_t)cap * sizeof *n);
+    char **n = tds_reallocarray(&s->m.alloc, s->parname, (size_t)cap, sizeof *n);
     if (!n) return -1;
     s->parname = n;
-    double *v = realloc(s->parval, (size_t)cap * sizeof *v);
+    double *v = tds_reallocarray(&s->m.alloc, s->parval, (size_t)cap, sizeof *v);
     if (!v) return -1;
     s->parval = v;
     s->cappar = cap;
   }
-  char *copy = strdup(name);
+  char *copy = tds_strdup(&s->m.alloc, name);
   if (!copy) return -1;
   for (char *p = copy; *p; p++) *p = (char)tolower((unsigned char)*p);
   s->parname[s->npar] = copy;

@@ -80,6 +80,8 @@ typedef struct tds_surf {
   double gravity;         /* G */
   int gravity_on;         /* gravity energy active */
   int symmetric_content;  /* volume via (x,y,z)/3 . dS */
+  int view_transforms;    /* VIEW_TRANSFORMS count of the datafile (display
+                             only: the matrices are not kept) */
   double gap_constant;    /* spring constant for convex constraints */
   double constraint_tol;  /* level-set projection tolerance */
 
@@ -105,9 +107,12 @@ typedef struct tds_surf {
   double energy, area;
 } tds_surf;
 
-/* Initialise an empty surface with Evolver's defaults. */
+/* Initialise an empty surface with Evolver's defaults. Its allocator is
+** s->m.alloc (zero: the C library); set it before anything is added, to
+** the hook of the contexts the surface will be used with (tds.h). */
 void tds_surf_init(tds_surf *s);
-/* Release everything the surface owns. */
+/* Release everything the surface owns; it is empty afterwards and keeps
+** its allocator. */
 void tds_surf_free(tds_surf *s);
 
 /* Recompute energy, area and body volumes (fills s->energy, s->area,

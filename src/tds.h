@@ -34,6 +34,24 @@ enum {
   TDS_ENUM      /* numerical failure (NaN, singular system) */
 };
 
+/* The allocator hook (like lua_Alloc): one function with realloc's
+** contract. ptr NULL allocates n bytes; n == 0 frees ptr and returns NULL;
+** otherwise ptr is resized to n bytes. On failure it returns NULL and ptr
+** stays valid. ud is the hook's own state. fn NULL means the C library.
+**
+** Every allocation of the core goes through a hook: the one in the ctx
+** (ctx->alloc) for memory a call uses and releases, the one a mesh carries
+** (m->alloc; a surface's is s->m.alloc) for memory the mesh or surface
+** keeps, and the one an object (expression, pair set, sparse matrix, ...)
+** was made with, which it keeps to free itself. A surface must be used
+** with contexts that have the same hook as the surface (both are the C
+** library unless a test installs one; doc/design.md "Memory"). */
+typedef void *(*tds_alloc_fn)(void *ud, void *ptr, size_t n);
+typedef struct tds_alloc {
+  tds_alloc_fn fn;
+  void *ud;
+} tds_alloc;
+
 /* Where progress lines and warnings go; the REPL and tests may capture them. */
 typedef void (*tds_out_fn)(void *ud, const char *text);
 
@@ -53,6 +71,7 @@ typedef struct tds_ctx {
   void (*step)(void *ud, double energy);
   void *step_ud;
   struct tds_progress *progress;     /* live line and history, or NULL */
+  tds_alloc alloc;                   /* allocator hook (zero: C library) */
 } tds_ctx;
 
 /* Initialise a context with default sinks. */
@@ -70,12 +89,27 @@ void tds_printf(tds_ctx *ctx, const char *fmt, ...)
 void tds_warnf(tds_ctx *ctx, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 
-/* Zero-initialised allocation helpers; NULL on failure (n*size checked). */
-void *tds_calloc(size_t n, size_t size);
+/* The allocation helpers; a NULL or zero-initialised `a` is the C library.
+** tds_malloc, tds_calloc (zero-filled; n*size checked) and tds_realloc
+** return NULL on failure (tds_realloc leaves p valid); a zero size
+** allocates one byte, so NULL always means failure. tds_free(a, NULL) is a
+** no-op. tds_strdup copies a string (NULL on failure or if s is NULL). */
+void *tds_malloc(const tds_alloc *a, size_t n);
+void *tds_calloc(const tds_alloc *a, size_t n, size_t size);
+void *tds_realloc(const tds_alloc *a, void *p, size_t n);
+void tds_free(const tds_alloc *a, void *p);
+char *tds_strdup(const tds_alloc *a, const char *s);
+/* tds_realloc of n elements of `size` bytes (n*size checked). */
+void *tds_reallocarray(const tds_alloc *a, void *p, size_t n, size_t size);
+
+/* n zero-filled bytes on a 64-byte boundary (a cache line), NULL on
+** failure; release with tds_free_aligned (NULL is a no-op). */
+void *tds_calloc_aligned(const tds_alloc *a, size_t n);
+void tds_free_aligned(const tds_alloc *a, void *p);
 
 /* Grow *p (element size `size`) from capacity *cap to at least `need`
 ** elements, zero-filling the new part. Returns TDS_OK or TDS_ENOMEM (on
 ** failure *p and *cap are untouched). */
-int tds_grow(void **p, size_t size, int32_t *cap, int32_t need);
+int tds_grow(const tds_alloc *a, void **p, size_t size, int32_t *cap, int32_t need);
 
 #endif

@@ -58,7 +58,7 @@ typedef struct tds_face_attr {
   uint32_t flags;      /* TDS_FIXED, TDS_NO_REFINE, TDS_NODISPLAY, ... */
   tds_cmask con;
   double tension;
-  int16_t color;
+  int16_t color;       /* Evolver colour number; 15 (white) is the default */
 } tds_face_attr;
 
 /* Build face `f` (0-based id) from a loop of n >= 3 oriented edges that

@@ -70,13 +70,13 @@ static int equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
   tds_mesh *m = &s->m;
   int32_t ne = m->ne, flips = 0;
   tds_pairset ps;
-  int prc = tds_pairset_init(&ps, (size_t)ne);
-  tds_id *stack = malloc((size_t)(ne > 0 ? ne : 1) * sizeof *stack);
-  uint8_t *queued = calloc((size_t)(ne > 0 ? ne : 1), 1);
+  int prc = tds_pairset_init(&ps, &s->m.alloc, (size_t)ne);
+  tds_id *stack = tds_malloc(&s->m.alloc, (size_t)(ne > 0 ? ne : 1) * sizeof *stack);
+  uint8_t *queued = tds_calloc(&s->m.alloc, (size_t)(ne > 0 ? ne : 1), 1);
   if (prc != TDS_OK || !stack || !queued) {
     tds_pairset_free(&ps);
-    free(stack);
-    free(queued);
+    tds_free(&s->m.alloc, stack);
+    tds_free(&s->m.alloc, queued);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   }
   int32_t top = 0;
@@ -116,8 +116,8 @@ static int equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
     }
   }
   tds_pairset_free(&ps);
-  free(stack);
-  free(queued);
+  tds_free(&s->m.alloc, stack);
+  tds_free(&s->m.alloc, queued);
   if (nflips) *nflips = flips;
   if (flips) m->coord_gen++;
   return tds_surf_update(ctx, s);

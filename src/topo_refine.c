@@ -25,6 +25,7 @@ static void inherit_facet(tds_mesh *m, tds_id dst, tds_id src) {
   m->fb[dst][0] = m->fb[src][0];
   m->fb[dst][1] = m->fb[src][1];
   m->forig[dst] = m->forig[src] != TDS_NONE ? m->forig[src] : src;
+  tds_mesh_inherit(m, TDS_FACET, dst, src);
 }
 
 /* A new edge inside facet f, from v0 to v1. */
@@ -79,13 +80,17 @@ static void split_facet(tds_mesh *m, tds_id f, const tds_id *midv,
     mm[k] = mid[(k + r) % 3];
   }
   if (nsplit == 3) {
-    tds_id e01 = inner_edge(m, f, mm[0], mm[1]);
-    tds_id e12 = inner_edge(m, f, mm[1], mm[2]);
-    tds_id e20 = inner_edge(m, f, mm[2], mm[0]);
-    new_facet(m, f, half(e2, o[0], 1), half(e2, o[1], 0), TDS_OREF(e01, 1));
-    new_facet(m, f, half(e2, o[1], 1), half(e2, o[2], 0), TDS_OREF(e12, 1));
-    new_facet(m, f, TDS_OREF(e01, 0), TDS_OREF(e12, 0), TDS_OREF(e20, 0));
-    set3(m, f, half(e2, o[0], 0), TDS_OREF(e20, 1), half(e2, o[2], 1));
+    /* Numbered as Evolver numbers them, so element ids after r agree: the
+    ** inner edges cut off the corners a0, a1, a2 in turn, each oriented
+    ** along its corner triangle; the corner triangles are new facets in
+    ** that order, and f becomes the middle one, starting at m1. */
+    tds_id c0 = inner_edge(m, f, mm[0], mm[2]);
+    tds_id c1 = inner_edge(m, f, mm[1], mm[0]);
+    tds_id c2 = inner_edge(m, f, mm[2], mm[1]);
+    new_facet(m, f, half(e2, o[0], 0), TDS_OREF(c0, 0), half(e2, o[2], 1));
+    new_facet(m, f, half(e2, o[0], 1), half(e2, o[1], 0), TDS_OREF(c1, 0));
+    new_facet(m, f, TDS_OREF(c2, 0), half(e2, o[1], 1), half(e2, o[2], 0));
+    set3(m, f, TDS_OREF(c2, 1), TDS_OREF(c0, 1), TDS_OREF(c1, 1));
   } else if (nsplit == 2) {
     /* Edges 0 (a0->a1) and 1 (a1->a2) split: corner at a1, then the quad
     ** a0, m0, m1, a2 cut along its shorter diagonal. */
@@ -131,6 +136,7 @@ static tds_id split_edge(tds_surf *s, tds_id e, int32_t *e2) {
   m->ebdry[n] = m->ebdry[e];
   m->eten[n] = m->eten[e];
   m->ecolor[n] = m->ecolor[e];
+  tds_mesh_inherit(m, TDS_EDGE, n, e);
   e2[e] = n;
   return v;
 }
@@ -138,11 +144,11 @@ static tds_id split_edge(tds_surf *s, tds_id e, int32_t *e2) {
 static int refine(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nsplit) {
   tds_mesh *m = &s->m;
   int32_t ne = m->ne, nf = m->nf, nv0 = m->nv;
-  tds_id *midv = malloc((size_t)(ne > 0 ? ne : 1) * sizeof *midv);
-  int32_t *e2 = malloc((size_t)(ne > 0 ? ne : 1) * sizeof *e2);
+  tds_id *midv = tds_malloc(&s->m.alloc, (size_t)(ne > 0 ? ne : 1) * sizeof *midv);
+  int32_t *e2 = tds_malloc(&s->m.alloc, (size_t)(ne > 0 ? ne : 1) * sizeof *e2);
   if (!midv || !e2) {
-    free(midv);
-    free(e2);
+    tds_free(&s->m.alloc, midv);
+    tds_free(&s->m.alloc, e2);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   }
   int32_t nsp = 0, nnewf = 0, nnewe = 0;
@@ -166,16 +172,16 @@ static int refine(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nsplit
   if (tds_mesh_reserve(m, TDS_VERTEX, nv0 + nsp) ||
       tds_mesh_reserve(m, TDS_EDGE, ne + nsp + nnewe) ||
       tds_mesh_reserve(m, TDS_FACET, nf + nnewf)) {
-    free(midv);
-    free(e2);
+    tds_free(&s->m.alloc, midv);
+    tds_free(&s->m.alloc, e2);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory while refining");
   }
   for (tds_id e = 0; e < ne; e++)
     if (midv[e] != TDS_NONE) midv[e] = split_edge(s, e, e2);
   for (tds_id f = 0; f < nf; f++)
     if (tds_alive(m->fflags, f)) split_facet(m, f, midv, e2);
-  free(midv);
-  free(e2);
+  tds_free(&s->m.alloc, midv);
+  tds_free(&s->m.alloc, e2);
   int bad = 0;
   for (tds_id v = nv0; v < m->nv; v++)
     if (tds_motion_enforce(s, v) != TDS_OK) bad++;

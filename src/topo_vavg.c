@@ -62,11 +62,11 @@ static int vertex_average(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
   tds_mesh *m = &s->m;
   if (tds_mesh_adjacency(m) != TDS_OK)
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
-  double (*nx)[3] = malloc((size_t)(m->nv > 0 ? m->nv : 1) * sizeof *nx);
-  uint8_t *mv = calloc((size_t)(m->nv > 0 ? m->nv : 1), 1);
+  double (*nx)[3] = tds_malloc(&s->m.alloc, (size_t)(m->nv > 0 ? m->nv : 1) * sizeof *nx);
+  uint8_t *mv = tds_calloc(&s->m.alloc, (size_t)(m->nv > 0 ? m->nv : 1), 1);
   if (!nx || !mv) {
-    free(nx);
-    free(mv);
+    tds_free(&s->m.alloc, nx);
+    tds_free(&s->m.alloc, mv);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   }
   for (tds_id v = 0; v < m->nv; v++) {
@@ -92,8 +92,8 @@ static int vertex_average(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
       tds_motion_enforce(s, v);
       moved++;
     }
-  free(nx);
-  free(mv);
+  tds_free(&s->m.alloc, nx);
+  tds_free(&s->m.alloc, mv);
   m->coord_gen++;
   if (nmoved) *nmoved = moved;
   return tds_surf_update(ctx, s);

@@ -19,19 +19,19 @@
 #endif
 
 static void release(tds_wfile *w) {
-  free(w->path);
-  free(w->tmp);
+  tds_free(&w->alloc, w->path);
+  tds_free(&w->alloc, w->tmp);
   w->path = w->tmp = NULL;
   w->f = NULL;
 }
 
-/* The directory part of path ("." if none), malloc'd. */
-static char *dir_of(const char *path) {
+/* The directory part of path ("." if none), from allocator a. */
+static char *dir_of(const tds_alloc *a, const char *path) {
   const char *slash = strrchr(path, '/');
-  if (!slash) return strdup(".");
-  if (slash == path) return strdup("/");
+  if (!slash) return tds_strdup(a, ".");
+  if (slash == path) return tds_strdup(a, "/");
   size_t n = (size_t)(slash - path);
-  char *d = malloc(n + 1);
+  char *d = tds_malloc(a, n + 1);
   if (d) {
     memcpy(d, path, n);
     d[n] = 0;
@@ -49,20 +49,22 @@ static int writable(const char *path, const struct stat *st) {
 
 int tds_wfile_open(tds_ctx *ctx, tds_wfile *w, const char *path) {
   memset(w, 0, sizeof *w);
+  w->alloc = ctx->alloc;
   if (!*path) return tds_seterr(ctx, TDS_EIO, "cannot write '': empty file name");
   struct stat st;
   mode_t mode = 0666; /* the umask applies to a new file */
   int exists = 0;
   if (lstat(path, &st) == 0 && S_ISLNK(st.st_mode)) {
     /* write through the link: the file it names is replaced */
-    char *real = realpath(path, NULL);
-    if (real) {
-      w->path = real;
+    char real[PATH_MAX];
+    if (realpath(path, real)) {
+      w->path = tds_strdup(&w->alloc, real);
+      if (!w->path) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
     } else if (errno != ENOENT) {
       return tds_seterr(ctx, TDS_EIO, "cannot write '%s': %s", path, strerror(errno));
     }
   }
-  if (!w->path) w->path = strdup(path);
+  if (!w->path) w->path = tds_strdup(&w->alloc, path);
   if (!w->path) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   if (stat(w->path, &st) == 0) {
     exists = 1;
@@ -77,13 +79,13 @@ int tds_wfile_open(tds_ctx *ctx, tds_wfile *w, const char *path) {
     }
     mode = st.st_mode & 07777;
   }
-  char *dir = dir_of(w->path);
+  char *dir = dir_of(&w->alloc, w->path);
   const char *base = strrchr(w->path, '/');
   base = base ? base + 1 : w->path;
   size_t n = (dir ? strlen(dir) : 0) + strlen(base) + 64;
-  w->tmp = dir ? malloc(n) : NULL;
+  w->tmp = dir ? tds_malloc(&w->alloc, n) : NULL;
   if (!w->tmp) {
-    free(dir);
+    tds_free(&w->alloc, dir);
     release(w);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   }
@@ -97,7 +99,7 @@ int tds_wfile_open(tds_ctx *ctx, tds_wfile *w, const char *path) {
     err = errno;
     if (fd < 0 && err != EEXIST) break;
   }
-  free(dir);
+  tds_free(&w->alloc, dir);
   if (fd < 0) {
     int rc = tds_seterr(ctx, TDS_EIO, "cannot write '%s': %s", path, strerror(err));
     release(w);
@@ -138,7 +140,7 @@ void tds_wfile_abort(tds_wfile *w) {
 /* The temporary is gone (failed or renamed): forget its name. */
 static void drop_tmp(tds_wfile *w, int remove) {
   if (remove) unlink(w->tmp);
-  free(w->tmp);
+  tds_free(&w->alloc, w->tmp);
   w->tmp = NULL;
 }
 
@@ -164,12 +166,12 @@ int tds_wfile_commit(tds_ctx *ctx, tds_wfile *w) {
     return tds_seterr(ctx, TDS_EIO, "cannot write '%s': %s", w->path, strerror(e));
   }
   drop_tmp(w, 0);
-  char *dir = dir_of(w->path); /* make the rename itself durable */
+  char *dir = dir_of(&w->alloc, w->path); /* make the rename itself durable */
   int dfd = dir ? open(dir, O_RDONLY | O_CLOEXEC) : -1;
   if (dfd >= 0) {
     fsync(dfd);
     close(dfd);
   }
-  free(dir);
+  tds_free(&w->alloc, dir);
   return TDS_OK;
 }

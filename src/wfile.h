@@ -28,6 +28,7 @@ typedef struct tds_wfile {
   FILE *f;        /* write the content here */
   char *path;     /* the target (symlinks resolved) */
   char *tmp;      /* the temporary file */
+  tds_alloc alloc; /* of path and tmp (the ctx's at open) */
 } tds_wfile;
 
 /* Start writing `path`. TDS_OK with w->f open, or TDS_EIO / TDS_ENOMEM

@@ -49,7 +49,11 @@ run cube-counts cube.fe cube_tutorial.cmd '^Vertices:' 0
 run cube-volume cube.fe cube_tutorial.cmd '^  1  ' 1e-6
 run catman-saddle catman.fe catman_saddle.cmd '^after' 1e-3
 run catman-cg catman.fe catman_cg.cmd '^area' 1e-3
-stops cube-gogo cube.fe cube_gogo.cmd hessian
-stops mound mound.fe mound_tutorial.cmd hessian
-stops column column.fe column_tutorial.cmd hessian
+# With Newton steps: after hessian the energies converge faster than the
+# g paths they start from agree (1e-4 and below here), and the step
+# restricted to the normals keeps the tangential positions g left, so
+# these compare to 1e-3 as the g runs do.
+run cube-gogo cube.fe cube_gogo.cmd '^total_area' 1e-3
+run mound mound.fe mound_tutorial.cmd '^G=' 1e-3
+run column column.fe column_tutorial.cmd '^energy' 1e-3
 stops cat cat.fe cat_tutorial.cmd t

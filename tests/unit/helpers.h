@@ -110,7 +110,7 @@ static inline int h_mesh(tds_ctx *ctx, tds_surf *s, int nv, const double (*x)[3]
     int n = 0;
     while (*p && n < 16) oe[n++] = h_oe(*p++);
     p++; /* the 0 */
-    tds_face_attr at = {0, 0, 1.0, 0};
+    tds_face_attr at = {0, 0, 1.0, 15}; /* colour 15: white, the default */
     if ((rc = tds_build_face(ctx, s, f, n, oe, &at))) return rc;
   }
   return TDS_OK;

@@ -158,7 +158,7 @@ static void build_errors(void) {
   tds_surf s;
   h_setup(&ctx, &s);
   REQUIRE_OK(&ctx, h_triangle(&ctx, &s));
-  tds_face_attr at = {0, 0, 1, 0};
+  tds_face_attr at = {0, 0, 1, 15};
   int32_t bad[3] = {h_oe(1), h_oe(3), h_oe(2)}; /* does not chain */
   CHECK(tds_build_face(&ctx, &s, 1, 3, bad, &at) == TDS_ETOPO);
   CHECK(strstr(ctx.errmsg, "face 2") != NULL);
@@ -533,7 +533,7 @@ static void refine_inherits(void) {
   for (tds_id f = 0; f < m->nf; f++) {
     CHECK(m->forig[f] == 0 || m->forig[f] == 1);
     if (m->forig[f] == 0) CHECK(m->ften[f] == 2.5 && m->fcolor[f] == 3);
-    if (m->forig[f] == 1) CHECK(m->ften[f] == 0.5 && m->fcolor[f] == 0);
+    if (m->forig[f] == 1) CHECK(m->ften[f] == 0.5 && m->fcolor[f] == 15);
     if (m->forig[f] == 0 || m->forig[f] == 1) n[m->forig[f]]++;
   }
   CHECK(n[0] == 16 && n[1] == 16);

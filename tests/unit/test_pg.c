@@ -452,7 +452,7 @@ static void test_anderson_linear(void) {
     }
   for (int i = 0; i < N; i++) b[i] = urand(&seed) - 0.5;
   pg_accel a;
-  if (pg_accel_init(&a, N, 20) != TDS_OK) {
+  if (pg_accel_init(&a, NULL, N, 20) != TDS_OK) {
     CHECK(0);
     return;
   }

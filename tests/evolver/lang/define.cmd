@@ -24,3 +24,12 @@ define quantity fixa fixed = 7 method facet_area global
 fixa.target := 6.5
 printf "K8 %.12g %.12g\n", fixa.target, fixa.value
 printf "K9 %d %d %d %d %d\n", valid_constraint(8), valid_constraint(10), valid_boundary(3), valid_boundary(1), valid_constraint(-2)
+// a definition continues on the next line after an operator
+define constraint 11 formula: x +
+   y = 1 // a comment
+printf "K10 %d\n", valid_constraint(11)
+// a ':' at the end of a line or before '}' ends a command (3ds.cmd has one)
+kk := 3:
+setk := { kk := 4: }
+setk
+printf "K11 %d %d\n", kk, transform_count

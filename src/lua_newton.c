@@ -1,0 +1,222 @@
+/* lua_newton.c: Newton steps and eigenvalues (newton.h) for Lua:
+** tds.hessian, tds.hessian_seek, tds.saddle, tds.eigenprobe, tds.ritz,
+** tds.move, tds.eigenvector, tds.hessian_setting. The settings and the
+** last ritz eigenvector live in a userdata in the registry (no globals). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lua_tds.h"
+#include "newton.h"
+
+
+typedef struct nstate {
+  tds_newton_opts o;
+  double (*vec)[3];   /* eigenvector of the last ritz, per vertex slot */
+  int32_t nv;
+  uint64_t topo;      /* topo_gen it belongs to */
+} nstate;
+
+static int ns_gc(lua_State *L) {
+  nstate *ns = lua_touserdata(L, 1);
+  free(ns->vec);
+  ns->vec = NULL;
+  return 0;
+}
+
+/* The surface's own settings and eigenvector (anchored to its state). */
+static nstate *get_ns(lua_State *L) {
+  tds_lua_kept(L, TDS_STATE(L), "newton");
+  nstate *ns = lua_touserdata(L, -1);
+  lua_pop(L, 1);
+  return ns;
+}
+
+static int check_rc(lua_State *L, tds_state *st, int rc) {
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+  return 0;
+}
+
+/* tds.hessian() -> energy */
+static int l_hessian(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  nstate *ns = get_ns(L);
+  int32_t index = 0;
+  check_rc(L, st, tds_newton_step(&st->ctx, &st->s, &ns->o, 0, &index, NULL));
+  lua_pushnumber(L, st->s.energy);
+  lua_pushinteger(L, index);
+  return 2;
+}
+
+/* tds.hessian_seek([maxscale = 1]) -> energy, scale, index */
+static int l_hessian_seek(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  nstate *ns = get_ns(L);
+  double mx = lua_isnoneornil(L, 1) ? 1 : tds_lua_checkfinite(L, 1, "hessian_seek scale");
+  if (!(mx > 0)) return tds_lua_error(L, "hessian_seek: the largest scale must be positive, not %f", mx);
+  int32_t index = 0;
+  double t = 0;
+  check_rc(L, st, tds_newton_step(&st->ctx, &st->s, &ns->o, mx, &index, &t));
+  lua_pushnumber(L, st->s.energy);
+  lua_pushnumber(L, t);
+  lua_pushinteger(L, index);
+  return 3;
+}
+
+/* tds.saddle([maxscale]) -> lowest eigenvalue, moved */
+static int l_saddle(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  nstate *ns = get_ns(L);
+  double mx = lua_isnoneornil(L, 1) ? 0 : tds_lua_checkfinite(L, 1, "saddle scale");
+  if (mx < 0) return tds_lua_error(L, "saddle: the largest scale must not be negative, not %f", mx);
+  double low = 0;
+  int moved = 0;
+  check_rc(L, st, tds_newton_saddle(&st->ctx, &st->s, &ns->o, mx, &low, &moved));
+  lua_pushnumber(L, low);
+  lua_pushboolean(L, moved);
+  return 2;
+}
+
+static void print_counts(tds_state *st, tds_inertia in) {
+  tds_printf(&st->ctx, "Eigencounts:    %d <,  %d ==,  %d > \n", (int)in.neg, (int)in.zero,
+             (int)in.pos);
+}
+
+/* tds.eigenprobe(c) -> below, equal, above (prints Eigencounts) */
+static int l_eigenprobe(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  nstate *ns = get_ns(L);
+  double c = lua_isnoneornil(L, 1) ? 0 : tds_lua_checkfinite(L, 1, "eigenprobe value");
+  tds_inertia in;
+  check_rc(L, st, tds_newton_probe(&st->ctx, &st->s, &ns->o, c, &in));
+  print_counts(st, in);
+  lua_pushinteger(L, in.neg);
+  lua_pushinteger(L, in.zero);
+  lua_pushinteger(L, in.pos);
+  return 3;
+}
+
+/* tds.ritz(shift, n) -> {eigenvalues nearest shift}, below, equal, above */
+static int l_ritz(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  nstate *ns = get_ns(L);
+  double shift = tds_lua_checkfinite(L, 1, "ritz shift");
+  lua_Integer n = luaL_optinteger(L, 2, 5);
+  if (n < 0 || n > 100000) return tds_lua_error(L, "ritz: the count %d is out of range", (int)n);
+  tds_surf *s = &st->s;
+  double *vals = malloc(((size_t)n + 1) * sizeof *vals);
+  double (*vec)[3] = calloc((size_t)s->m.nv + 1, sizeof *vec);
+  if (!vals || !vec) {
+    free(vals);
+    free(vec);
+    return luaL_error(L, "out of memory");
+  }
+  int32_t got = 0;
+  int iters = 0;
+  tds_inertia in = {0};
+  int rc = tds_newton_ritz(&st->ctx, s, &ns->o, shift, (int32_t)n, vals, &got, &in, vec, &iters);
+  if (rc != TDS_OK) {
+    free(vals);
+    free(vec);
+    return tds_lua_fail(L, st, rc);
+  }
+  print_counts(st, in);
+  lua_createtable(L, got, 0);
+  double total = 0;
+  for (int32_t i = 0; i < got; i++) {
+    tds_printf(&st->ctx, "%3d.    %.15g\n", (int)i + 1, vals[i]);
+    lua_pushnumber(L, vals[i]);
+    lua_rawseti(L, -2, i + 1);
+    total += vals[i];
+  }
+  if (got) tds_printf(&st->ctx, "Iterations: %d.\n", iters);
+  free(ns->vec);
+  ns->vec = got ? vec : NULL;
+  ns->nv = got ? s->m.nv : 0;
+  ns->topo = s->m.topo_gen;
+  if (!got) free(vec);
+  free(vals);
+  lua_pushinteger(L, in.neg);
+  lua_pushinteger(L, in.zero);
+  lua_pushinteger(L, in.pos);
+  return 4;
+}
+
+static int have_vec(const nstate *ns, const tds_surf *s) {
+  return ns->vec && ns->nv == s->m.nv && ns->topo == s->m.topo_gen;
+}
+
+/* tds.move(t): move t times along the last ritz eigenvector */
+static int l_move(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  nstate *ns = get_ns(L);
+  double t = tds_lua_checkfinite(L, 1, "move step");
+  if (!have_vec(ns, &st->s))
+    return tds_lua_error(L, "move: there is no eigenvector of this surface "
+                            "(run ritz first; the surface's topology has changed since)");
+  check_rc(L, st, tds_newton_move(&st->ctx, &st->s, &ns->o, (const double(*)[3])ns->vec,
+                                  ns->nv, t));
+  lua_pushnumber(L, st->s.energy);
+  return 1;
+}
+
+/* tds.eigenvector(vertex) -> x, y, z of the last ritz eigenvector there */
+static int l_eigenvector(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  nstate *ns = get_ns(L);
+  tds_id v = tds_check_elem(L, st, 1, TDS_VERTEX, NULL);
+  if (!have_vec(ns, &st->s))
+    return tds_lua_nilmsg(L, "no eigenvector: run ritz first (or the surface changed since)");
+  for (int i = 0; i < 3; i++) lua_pushnumber(L, ns->vec[v][i]);
+  return 3;
+}
+
+/* tds.hessian_setting(name [, value]) -> value */
+static int l_setting(lua_State *L) {
+  static const char *const names[] = {"hessian_normal", "linear_metric", "linear_metric_mix",
+                                      "hessian_diff", NULL};
+  nstate *ns = get_ns(L);
+  int which = luaL_checkoption(L, 1, NULL, names);
+  int set = !lua_isnone(L, 2);
+  switch (which) {
+  case 0:
+    if (set) ns->o.normal = lua_toboolean(L, 2);
+    lua_pushboolean(L, ns->o.normal);
+    break;
+  case 1:
+    if (set) ns->o.linear_metric = lua_toboolean(L, 2);
+    lua_pushboolean(L, ns->o.linear_metric);
+    break;
+  case 3:
+    if (set) ns->o.diff = lua_toboolean(L, 2);
+    lua_pushboolean(L, ns->o.diff);
+    break;
+  default:
+    if (set) {
+      double x = tds_lua_checkfinite(L, 2, "linear_metric_mix");
+      if (x < 0 || x > 1) return tds_lua_error(L, "linear_metric_mix must be in [0, 1], not %f", x);
+      ns->o.metric_mix = x;
+    }
+    lua_pushnumber(L, ns->o.metric_mix);
+  }
+  return 1;
+}
+
+void tds_open_newton(lua_State *L, tds_state *st) {
+  nstate *ns = lua_newuserdatauv(L, sizeof *ns, 0);
+  memset(ns, 0, sizeof *ns);
+  ns->o.normal = 1;       /* Evolver's defaults */
+  ns->o.metric_mix = 0.5;
+  lua_createtable(L, 0, 1);
+  lua_pushcfunction(L, ns_gc);
+  lua_setfield(L, -2, "__gc");
+  lua_setmetatable(L, -2);
+  tds_lua_keep(L, st, "newton");
+  static const luaL_Reg fns[] = {
+      {"hessian", l_hessian},       {"hessian_seek", l_hessian_seek},
+      {"saddle", l_saddle},         {"eigenprobe", l_eigenprobe},
+      {"ritz", l_ritz},             {"move", l_move},
+      {"eigenvector", l_eigenvector}, {"hessian_setting", l_setting},
+      {NULL, NULL}};
+  tds_lua_register(L, st, fns);
+}

@@ -1,0 +1,90 @@
+/*
+** newton.h: Newton steps and Hessian eigenvalues (Evolver's hessian,
+** hessian_seek, saddle, eigenprobe, ritz, move).
+**
+** The system. The Hessian of the Lagrangian (hess.h) restricted to the
+** vertices' motion spaces (tds_hess_reduce) and, with `normal` on
+** (Evolver's hessian_normal, the default), further to each vertex's
+** normal space: a free or constrained vertex moves along its normal, the
+** sum of the area vectors of its facets, projected into its motion
+** space and scaled to unit length in space; a vertex on one triple
+** junction line (edges with three or more facets) moves in the plane
+** perpendicular to the line; a vertex where several such lines meet, or
+** with no facets, keeps its whole motion space. The unknowns w (sys.m of
+** them) are the amounts of these unit motions. Volumes and FIXED
+** quantities are held by a border: K = [H A; A^T 0] with A the
+** quantities' gradients in the same unknowns.
+**
+** The metric M of the eigenvalue problems H w = lambda M w (on A^T w = 0):
+** the identity, or with linear_metric the L2 product of the piecewise
+** linear interpolation of the unit motions over the facets, as Evolver's
+** linear_metric: mix x (consistent mass, area/12 (1 + [i = j]) per facet
+** pair) + (1 - mix) x (lumped, area/3 on the diagonal), mix 0.5 by
+** default.
+**
+** Counts. Eigencounts are the inertia of H - c M on A^T w = 0: the
+** inertia of the bordered K - c [M 0; 0 0] less nq from the negative and
+** from the positive side (nq independent constraint gradients).
+**
+** Every command is all-or-nothing (snap.h): a singular system, a
+** non-finite energy or any failure leaves the surface exactly as before.
+** Core code: no Lua, no globals.
+*/
+#ifndef TDS_NEWTON_H
+#define TDS_NEWTON_H
+
+#include "la.h"
+#include "surf.h"
+
+typedef struct tds_newton_opts {
+  int normal;           /* hessian_normal */
+  int linear_metric;    /* M as above instead of the identity */
+  double metric_mix;    /* linear_metric_mix, 0 .. 1 */
+  int diff;             /* hessian_diff: H by central differences */
+} tds_newton_opts;
+
+/* One Newton step (Evolver's hessian): solve K [w; y] = [-grad; target -
+** value], move every vertex by its w (projecting onto its constraints),
+** bring the quantities back to their targets, print Evolver's line
+** "  1. area: ... energy: ..." and, when H on the constraints is not
+** positive definite, "WARNING: Hessian not positive definite. Index: n".
+** With seek > 0 (hessian_seek), the step is scaled by the t in (0, seek]
+** that minimises the energy along it (the line search of `g`) and the
+** line shows the scale. *index (if not NULL) gets the index, *scale (if
+** not NULL) the step's multiple of the Newton step (1 for hessian). */
+int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double seek,
+                    int32_t *index, double *scale);
+
+/* Inertia of H - c M on the constraints (eigenprobe c), and the number of
+** unknowns. Prints nothing. */
+int tds_newton_probe(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double c,
+                     tds_inertia *in);
+
+/* The n eigenvalues of H w = lambda M w (on A^T w = 0) nearest shift (a
+** NaN shift: the lowest ones, the shift put below them), by
+** subspace iteration with (H - shift M)^-1 (shift-invert) and
+** Rayleigh-Ritz, to 1e-12 relative change; vals sorted by distance from
+** the shift as Evolver lists them. in: the inertia at the shift. With
+** vec (nv slots x 3, zeroed) not NULL, the eigenvector of vals[0] as
+** a displacement per vertex (unit M-norm in the unknowns; 0 for fixed
+** vertices). *got: how many were found (fewer than n when there are
+** fewer unknowns). *iters: iterations done. */
+int tds_newton_ritz(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double shift,
+                    int32_t n, double *vals, int32_t *got, tds_inertia *in, double (*vec)[3],
+                    int *iters);
+
+/* Move every vertex by t times vec (a displacement per vertex slot, as
+** tds_newton_ritz gives), projecting onto its constraints and then the
+** quantities onto their targets (in the unknowns of o: the part of vec
+** in each vertex's normal space). The new energy is in s->energy. */
+int tds_newton_move(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, const double (*vec)[3],
+                    int32_t nv, double t);
+
+/* saddle: if the lowest eigenvalue is negative, move along its
+** eigenvector to the least energy within maxscale (maxscale <= 0: no
+** limit but the search's own); prints what Evolver prints. *lowest gets
+** the lowest eigenvalue; *moved 1 if the surface moved. */
+int tds_newton_saddle(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double maxscale,
+                      double *lowest, int *moved);
+
+#endif

@@ -1,0 +1,95 @@
+#!/bin/sh
+# hessian.sh: Newton steps and Hessian eigenvalues against Evolver from
+# identical states. Evolver evolves each surface, dumps it, then runs
+# `hessian` twice, `eigenprobe 0` and `ritz(0,4)`; tds loads the dump and
+# does the same. Compared: the energy after each Newton step to 1e-10
+# relative (both take the same step from the same positions: the dump's
+# 15 digits are the only difference, and the steps have agreed to 1e-14;
+# the acceptance asks 1e-8), the Eigencounts exactly, and the four
+# eigenvalues nearest 0 to 1e-8 relative (Evolver prints 13-15 digits of
+# converged values). Cases: the cube (a volume), the mound (contact
+# angle, gravity, a level-set constraint), qmound (a fixed quantity),
+# column (parametric boundaries with integrals), catbody (a body closed
+# by a volconst between fixed rings, evolved to a folded, far from
+# equilibrium mesh where the hessian normal must be Evolver's) and two
+# stacked cubes (a double bubble: triple junctions with two-dimensional
+# normal spaces). The cube and the mound also with hessian_normal off
+# (full three-dimensional motion): their Hessians are singular
+# (translations, sliding along the contact plane), both programs step
+# through them, and the energies and counts agree; the eigenvalues near 0
+# are not compared there (exact zeros: Evolver's shift-invert at 0 does
+# not list them, tds does). The double bubble with hessian_normal off is
+# left out: Evolver's second step there doubles the energy.
+. "$(dirname "$0")/lib.sh"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+DATA=$ROOT/tests/evolver/data
+
+# case NAME FILE SETUP [EVOLVER_TOGGLE TDS_TOGGLE]
+case_() {
+  name=$1 fe=$2 setup=$3 evtog=${4:-} tdtog=${5:-}
+  ev=$(evolver_run "$fe" "$setup
+dump \"$tmp/$name.dmp\"
+$evtog
+hessian
+printf \"E1 %.17g\\n\", total_energy
+hessian
+printf \"E2 %.17g\\n\", total_energy
+eigenprobe 0
+ritz(0,4)")
+  e1=$(echo "$ev" | grab E1) e2=$(echo "$ev" | grab E2)
+  counts=$(echo "$ev" | grep '^Eigencounts' | head -n 1 | tr -dc '0-9 ' | tr -s ' ')
+  vals=$(echo "$ev" | grep -E '^ +[0-9]+\. +-?[0-9][0-9.]*(e[-+]?[0-9]+)? *$' | awk '{print $2}' | tr '\n' ' ')
+  if [ ! -f "$tmp/$name.dmp" ]; then
+    echo "FAIL hessian/$name: Evolver made no dump: $(echo "$ev" | grep -i error | head -n 1)"
+    return
+  fi
+  "$TDS" -q "$tmp/$name.dmp" -e "
+dofile('$ROOT/tests/evolver/compare.lua')
+$tdtog
+hessian()
+same('hessian/$name/step1', total_energy, $e1, 1e-10)
+hessian()
+same('hessian/$name/step2', total_energy, $e2, 1e-10)
+local below, equal, above = tds.eigenprobe(0)
+local got = ('%d %d %d'):format(below, equal, above)
+report('hessian/$name/eigenprobe', got == ('$counts'):gsub('^ +', ''):gsub(' +$', ''), got, '$counts')
+local vals = tds.ritz(0, 4)
+local want = { nums('$vals') }
+local ok, worst = #want == 4 and #vals == 4, 0
+for i = 1, #want do
+  local d = math.abs((vals[i] or math.huge) - want[i]) / math.max(1, math.abs(want[i]))
+  worst = math.max(worst, d)
+end
+if '$evtog' ~= '' then return end
+report('hessian/$name/ritz', ok and worst <= 1e-8, table.concat(vals, ' '), '$vals')
+" 2>&1 || echo "FAIL hessian/$name: tds exited with an error"
+}
+
+E=$EXAMPLES
+case_ cube "$E/cube.fe" "g 5; r; g 10"
+case_ mound "$E/mound.fe" "g 5; r; g 10"
+case_ qmound "$E/qmound.fe" "g 5; r; g 10"
+case_ column "$E/column.fe" "g 5; r; g 10"
+case_ catbody "$E/catbody.fe" "u; g 5; r; g 5; set body target 2; g 5; r; set body target 3; g 5"
+case_ twocubes "$DATA/twocubes.fe" "g 5; r; g 10"
+case_ cube-normal-off "$E/cube.fe" "g 5; r; g 10" "hessian_normal off" "tds.hessian_setting('hessian_normal', false)"
+case_ mound-normal-off "$E/mound.fe" "g 5; r; g 10" "hessian_normal off" "tds.hessian_setting('hessian_normal', false)"
+
+# hessian_seek (the tutorial's `g; r; hessian_seek` on the cube): the
+# Newton direction is the same in both programs, the line searches along
+# it differ (Evolver's stops at scale 0.7578, tds's parabola lands nearer
+# the line's minimum), so tds's energy must be at or below Evolver's and
+# within 1e-4 of it, at a scale within 5%.
+ev=$(evolver_run "$EXAMPLES/cube.fe" "g; r
+dump \"$tmp/seek.dmp\"
+hessian_seek
+printf \"HS %.17g %.17g\\n\", total_energy, scale")
+hs=$(echo "$ev" | grep '^ *1\. area:.*scale:' | tail -n 1 | sed 's/.*scale: *//')
+"$TDS" -q "$tmp/seek.dmp" -e "
+dofile('$ROOT/tests/evolver/compare.lua')
+local e, t = tds.hessian_seek()
+local want = nums('$(echo "$ev" | grab HS)')
+report('hessian/seek/energy', e <= want * (1 + 1e-14) and near(e, want, 1e-4), e, want)
+report('hessian/seek/scale', math.abs(t / $hs - 1) < 0.05, t, '$hs')
+" 2>&1 | grep -v '^Gravity' || echo "FAIL hessian/seek: tds exited with an error"
