@@ -153,6 +153,11 @@ static int l_load_chunk(lua_State *L) {
     if (msg && !strstr(msg, path)) lua_pushfstring(L, "%s: %s", path, msg); /* name the file */
     return lua_error(L);
   }
+  /* A surface with a namespace of its own runs the script in it (a safe
+  ** surface's script never sees the host's globals). */
+  tds_lua_kept(L, st, "env");
+  if (lua_istable(L, -1)) lua_setupvalue(L, -2, 1);
+  else lua_pop(L, 1);
   return 1;
 }
 

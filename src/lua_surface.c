@@ -275,6 +275,8 @@ tds_state *tds_lua_surface_new(lua_State *L, int env, int safe, const char *outd
     lua_pop(L, 2);
     return st;
   }
+  lua_pushvalue(L, env); /* chunks the surface loads run in it (tds.load_chunk) */
+  tds_lua_keep(L, st, "env");
   if (!push_base(L, st, env, safe, outdir)) return NULL; /* st lib base */
   lua_pushvalue(L, -1);
   lua_setfield(L, -3, "env_base"); /* names the surface lacks (prelude) */

@@ -55,6 +55,12 @@ assert(s.load(string.dump(function() end)) == nil, "bytecode loaded")
 assert(s.load("return os")() == s.os, "load's default environment is the surface")
 assert(os.execute("true"), "the host's os.execute was changed")
 
+-- The raw primitives cannot load a script into the host's globals either:
+-- tds.load_chunk (the program's loader) runs it in the surface.
+write(dir .. "/evil.lua", 'os.execute("touch ' .. dir .. '/spawned2") escaped = true')
+fails("safe mode: os.execute is not allowed", s.tds.load_chunk(dir .. "/evil.lua"))
+assert(not exists(dir .. "/spawned2") and escaped == nil, "load_chunk escaped the sandbox")
+
 -- Files: inside the folder they are written, outside they are refused.
 fails("safe mode: writing '" .. dir .. "/cube.dmp' is refused", s.dump, dir .. "/cube.dmp")
 fails("safe mode: writing '" .. dir .. "/cube.ply' is refused", s.export, dir .. "/cube.ply")
