@@ -5,12 +5,24 @@
 # Env: EVOLVER (default evolver-nox-d); PAPER_G_ITERS (g; u; V rounds, 1000);
 # PAPER_REPEAT (default 1): run each tds row that many times and show the
 # fastest run (the runs are identical but for their timings).
+# Generated inputs (scripts/paper/generate.lua): an experiment named
+# FAMILY/CASE runs scripts/paper/gen.tds with PAPER_GEN=FAMILY/CASE; by
+# default every case of every family follows the paper's experiments
+# (PAPER_GEN_FAMILIES, PAPER_GEN_CASES choose; PAPER_GEN_CASES=none skips
+# them), without the plain tds row (PAPER_GEN_PLAIN=1 adds it), and a
+# summary per family ends the output with its worst input.
 TDS=${1:-./tds}
 [ $# -gt 0 ] && shift
 case $TDS in /*) ;; *) TDS=$(pwd)/$TDS ;; esac
 EVOLVER=${EVOLVER:-evolver-nox-d}
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
-EXPS=${*:-"hemisphere random_hemisphere catenoid schwarz_p cmc_1 cmc_2 cmc_3 pendant pendant_random sessile"}
+GEN_CASES=${PAPER_GEN_CASES:-"1 2 3 4 5 6 7 8 9 10"}
+[ "$GEN_CASES" = none ] && GEN_CASES=
+GEN=
+for fam in ${PAPER_GEN_FAMILIES:-hemisphere catenoid schwarz_p cmc drop}; do
+  for c in $GEN_CASES; do GEN="$GEN $fam/$c"; done
+done
+EXPS=${*:-"hemisphere random_hemisphere catenoid schwarz_p cmc_1 cmc_2 cmc_3 pendant pendant_random sessile $GEN"}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 have_evolver=1
@@ -26,10 +38,11 @@ row() { # row LABEL RESULT-LINE
   l=$2
   c=$(field cpvi "$l")
   case $c in ""|-) c=- ;; *) c=$(printf %.2e "$c") ;; esac
-  printf '%-16s %6s %6s %6s %9s %9s %9s %9s %7s %8s %9s %10s\n' "$1" \
+  printf '%-16s %6s %6s %6s %9s %9s %9s %9s %9s %7s %8s %9s %10s\n' "$1" \
     "$(printf %.2f "$(field mean "$l")")" "$(printf %.2f "$(field min "$l")")" \
     "$(printf %.1f "$(field above50 "$l")")" \
     "$(printf %.2e "$(field crms "$l")")" "$(printf %.2e "$(field cmax "$l")")" \
+    "$(printf %.2e "$(field nrms "$l")")" \
     "$(printf %.1e "$(field verr "$l")")" "$(printf %.1e "$(field rrel "$l")")" \
     "$(field iters "$l")" "$(printf %.3f "$(field secs "$l")")" \
     "$(printf %.2e "$(field spvi "$l")")" "$c"
@@ -49,18 +62,28 @@ tds_best() { # tds_best OUT ENV...: run tds PAPER_REPEAT times, keep the fastest
   rm -f "$out.try"
 }
 
+summary=$work/summary
+: > "$summary"
 for exp in $EXPS; do
   d=$work/$exp
   mkdir -p "$d"
-  script=$ROOT/scripts/paper/$exp.tds
+  case $exp in
+    */*) script=$ROOT/scripts/paper/gen.tds; PAPER_GEN=$exp; gen=1 ;;
+    *) script=$ROOT/scripts/paper/$exp.tds; PAPER_GEN=; gen=0 ;;
+  esac
+  export PAPER_GEN
   tds_best "$d/tds.out" PAPER_FE=$d/in.fe PAPER_EVOLVER=$d
   tline=$(grep '^RESULT' "$d/tds.out")
-  tds_best "$d/plain.out" PAPER_PLAIN=1
-  pline=$(grep '^RESULT' "$d/plain.out")
+  pline=
+  if [ $gen = 0 ] || [ -n "$PAPER_GEN_PLAIN" ]; then
+    tds_best "$d/plain.out" PAPER_PLAIN=1
+    pline=$(grep '^RESULT' "$d/plain.out")
+  fi
+  [ $gen = 1 ] && [ -n "$tline" ] && echo "$exp tds $tline" >> "$summary"
   echo
   echo "== $exp"
-  printf '%-16s %6s %6s %6s %9s %9s %9s %9s %7s %8s %9s %10s\n' run mean min ">50%" \
-    "curv.rms" "curv.max" "vol.err" "r/edge" iters seconds "s/(v*it)" "cpu/(v*it)"
+  printf '%-16s %6s %6s %6s %9s %9s %9s %9s %9s %7s %8s %9s %10s\n' run mean min ">50%" \
+    "|K|.rms" "|K|.max" "K.n.rms" "vol.err" "r/edge" iters seconds "s/(v*it)" "cpu/(v*it)"
   if [ -z "$tline" ]; then
     echo "tds failed:"; tail -n 5 "$d/tds.out"; continue
   fi
@@ -81,11 +104,16 @@ for exp in $EXPS; do
       if [ -n "$eline" ]; then
         case $mode in gloop) lab="evolver g;u;V" ;; *) lab="evolver hessian" ;; esac
         row "$lab" "$eline"
+        [ $gen = 1 ] && echo "$exp $mode $eline" >> "$summary"
       else
         echo "evolver $mode: no result"; tail -n 3 "$d/$mode.m"
       fi
     done
   fi
   reached=$(field reached "$tline"); preached=$(field reached "$pline")
-  [ -n "$reached" ] && echo "r < 1e-13 x mean edge at iteration: pg $reached, plain $preached"
+  [ -n "$reached" ] && echo "r < 1e-13 x mean edge at iteration: pg $reached, plain ${preached:--}"
+  st=$(field status "$tline")
+  [ -n "$st" ] && [ "$st" != converged ] && echo "tds pg: $st"
 done
+[ -s "$summary" ] && awk -f "$ROOT/bench/paper_summary.awk" "$summary"
+exit 0

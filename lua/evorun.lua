@@ -395,6 +395,7 @@ local INTERNAL = {
   hessian_normal = function() return tds.hessian_setting("hessian_normal") and 1.0 or 0.0 end,
   linear_metric = function() return tds.hessian_setting("linear_metric") and 1.0 or 0.0 end,
   linear_metric_mix = function() return tds.hessian_setting("linear_metric_mix") end,
+  last_eigenvalue = function() return tds.hessian_setting("last_eigenvalue") end,
   total_length = function()
     local s = 0.0
     for _, e in ipairs(E.all("edge")) do s = s + e.length end
@@ -909,13 +910,17 @@ end
 B.hessian = function() need_surface("hessian"); tds.hessian() end
 B.hessian_seek = function(s) need_surface("hessian_seek"); tds.hessian_seek(s ~= nil and num(s, "hessian_seek") or nil) end
 B.saddle = function(s) need_surface("saddle"); tds.saddle(s ~= nil and num(s, "saddle") or nil) end
-B.eigenprobe = function(c) need_surface("eigenprobe"); tds.eigenprobe(c ~= nil and num(c, "eigenprobe") or 0) end
+B.eigenprobe = function(c, iters)
+  if iters ~= nil then fail("eigenprobe(value, iterations): the inverse iteration form is not supported yet (use ritz(value, 1))") end
+  need_surface("eigenprobe")
+  tds.eigenprobe(c ~= nil and num(c, "eigenprobe") or 0)
+end
 B.ritz = function(c, n)
   need_surface("ritz")
   if n ~= nil then n = times(n, "ritz") end
   tds.ritz(c ~= nil and num(c, "ritz") or 0, n or 5)
 end
-B.lanczos = B.ritz
+B.lanczos = function(c, n) return B.ritz(c, n or 15) end
 B.move = function(t)
   if t == nil then fail("move needs a step: move 0.1") end
   tds.move(num(t, "move"))

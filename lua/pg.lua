@@ -68,21 +68,29 @@ function quality(o)
   return q
 end
 
--- curvature{ target = number | "lambda" | "pressure" }: Meyer et al. mean
--- curvature (k1 + k2) at every measured vertex and its error.
+-- curvature{ target = number | "lambda" | "pressure", measure = "meyer" |
+-- "normal" }: Meyer et al. mean curvature (k1 + k2) at every measured
+-- vertex and its error: by default |K| with the sign of K . n (the paper's),
+-- measure = "normal" K . n. Both measures' statistics are in c.meyer and
+-- c.normal, their RMS by valence in c.by_valence.
 -- Default target: "pressure" when there are bodies, else 0.
 function curvature(o)
   o = o or {}
   if type(o) == "number" or type(o) == "string" then o = { target = o } end
-  if type(o) ~= "table" then error("curvature([target | { target =, quiet = }]) expected", 2) end
-  tds.check_options(o, "curvature", { target = "number|string", quiet = "boolean" }, 2)
+  if type(o) ~= "table" then error("curvature([target | { target =, quiet =, measure = }]) expected", 2) end
+  tds.check_options(o, "curvature", { target = "number|string", quiet = "boolean",
+    measure = "string" }, 2)
   local target = o.target
   if target == nil then target = (tds.count(tds.body) > 0) and "pressure" or 0 end
+  local measure = o.measure or "meyer"
+  if measure ~= "meyer" and measure ~= "normal" then
+    error('curvature{ measure = "meyer" | "normal" } expected', 2)
+  end
   local c
   if type(target) == "number" then
-    c = tds.curvature("value", target)
+    c = tds.curvature("value", target, measure)
   elseif target == "lambda" or target == "pressure" then
-    c = tds.curvature(target)
+    c = tds.curvature(target, 0, measure)
   else
     error('curvature{ target = number | "lambda" | "pressure" } expected', 2)
   end
@@ -91,8 +99,20 @@ function curvature(o)
     print(("Mean curvature (Meyer et al., k1+k2) at %d vertices, target %s"):format(
       c.n, tostring(target)))
     if c.n > 0 then
-      print(("  mean k1+k2 %.10g   error max %.3e  mean %.3e  rms %.3e"):format(
-        c.mean_curvature, c.max, c.mean, c.rms))
+      for _, k in ipairs { "meyer", "normal" } do
+        local s = c[k]
+        print(("  %-6s mean k1+k2 %.10g   error max %.3e  mean %.3e  rms %.3e%s"):format(
+          k == "meyer" and "|K|" or "K.n", s.mean_curvature, s.max, s.mean, s.rms,
+          k == measure and "  *" or ""))
+      end
+      local parts = {}
+      for val, g in pairs(c.by_valence) do parts[#parts + 1] = val end
+      table.sort(parts)
+      for i, val in ipairs(parts) do
+        local g = c.by_valence[val]
+        parts[i] = ("%d: %d, %.2e/%.2e"):format(val, g.n, g.rms_meyer, g.rms_normal)
+      end
+      print("  rms |K|/K.n by valence: " .. table.concat(parts, "; "))
       print(("  worst vertex %d: k1+k2 %.10g, target %.10g"):format(
         c.worst, c.worst_value, c.worst_target))
     end
@@ -100,8 +120,10 @@ function curvature(o)
   return c
 end
 
--- Element attributes computed on demand: v.mean_curvature, f.min_angle.
+-- Element attributes computed on demand: v.mean_curvature (K . n),
+-- v.meyer_curvature (signed |K|), f.min_angle.
 tds.props.vertex.mean_curvature = function(h) return tds.vertex_mean_curvature(h) end
+tds.props.vertex.meyer_curvature = function(h) return tds.vertex_meyer_curvature(h) end
 tds.props.facet.min_angle = function(h) return tds.facet_min_angle(h) end
 
 -- trimesh{ vertices = {...}, facets = {...}, bodies = {...} }: declare a

@@ -411,7 +411,7 @@ function hessian_seek(maxscale) return tds.hessian_seek(maxscale) end
 function saddle(maxscale) return tds.saddle(maxscale) end
 function eigenprobe(c) return tds.eigenprobe(c or 0) end
 function ritz(shift, n) return tds.ritz(shift or 0, n or 5) end
-lanczos = ritz
+function lanczos(shift, n) return tds.ritz(shift or 0, n or 15) end
 function move(t) return tds.move(t) end
 local function newton_toggle(name, msg)
   return function(on)

@@ -33,6 +33,22 @@ static int one(double *v, int *n, double x) {
   return TDS_OK;
 }
 
+/* original (every kind): the id in the datafile, 0 for run-time elements */
+static int get_original(GETTER_ARGS) {
+  UNUSED(ctx);
+  return one(v, n, tds_mesh_file_ids(&s->m, a->kind)[id]);
+}
+static int set_original(SETTER_ARGS) {
+  UNUSED(n);
+  if (!(v[0] >= 0 && v[0] <= INT32_MAX))
+    return tds_seterr(ctx, TDS_ERANGE, "%s %d: original must be an element id or 0, not %g",
+                      tds_kind_name[a->kind], id + 1, v[0]);
+  tds_mesh_file_ids(&s->m, a->kind)[id] = (int32_t)v[0];
+  return TDS_OK;
+}
+#define ORIGINAL(k) ROW(.name = "original", .kind = k, .type = TDS_AT_INT, .size = 1, \
+                        .get = get_original, .set = set_original)
+
 /* Rows whose value is one element of a mesh column (a->off: its offset in
 ** tds_mesh) of doubles or of int16_t (colours). */
 static int get_dcol(GETTER_ARGS) {
@@ -193,6 +209,7 @@ static const tds_attr vertex_rows[] = {
     FLAGROW(TDS_VERTEX, "fixed", NULL, NULL, TDS_FIXED, FE_DECL),
     FLAGROW(TDS_VERTEX, "bare", NULL, NULL, TDS_BARE, FE_DECL),
     RO(TDS_VERTEX, "valence", TDS_AT_INT, 1, v_valence),
+    ORIGINAL(TDS_VERTEX),
 };
 
 /* ---- edges ---- */
@@ -236,6 +253,7 @@ static int econ_set(SETTER_ARGS) {
 
 static const tds_attr edge_rows[] = {
     RO(TDS_EDGE, "length", TDS_AT_REAL, 1, e_length),
+    ORIGINAL(TDS_EDGE),
     RO(TDS_EDGE, "tail", TDS_AT_VERTEX, 1, e_end),
     RO(TDS_EDGE, "head", TDS_AT_VERTEX, 1, e_end),
     RO(TDS_EDGE, "valence", TDS_AT_INT, 1, e_valence),
@@ -295,13 +313,6 @@ static int f_body_set(SETTER_ARGS) {
   m->topo_gen++; /* bodies feed derived data */
   return TDS_OK;
 }
-static int f_original(GETTER_ARGS) {
-  UNUSED(ctx);
-  UNUSED(a);
-  *n = 0;
-  if (s->m.forig[id] != TDS_NONE) one(v, n, s->m.forig[id] + 1);
-  return TDS_OK;
-}
 static int f_vertices(GETTER_ARGS) {
   UNUSED(ctx);
   UNUSED(a);
@@ -330,7 +341,7 @@ static int fcon_set(SETTER_ARGS) {
 
 static const tds_attr facet_rows[] = {
     RO(TDS_FACET, "area", TDS_AT_REAL, 1, f_area),
-    RO(TDS_FACET, "original", TDS_AT_INT, 1, f_original),
+    ORIGINAL(TDS_FACET),
     RO(TDS_FACET, "vertices", TDS_AT_VERTEX, 3, f_vertices),
     RO(TDS_FACET, "edges", TDS_AT_INT, 3, f_edges),
     ROW(.name = "frontbody", .kind = TDS_FACET, .type = TDS_AT_BODY, .size = 1,
@@ -431,6 +442,7 @@ static int b_density_dumped(const tds_surf *s, tds_id id) {
 }
 
 static const tds_attr body_rows[] = {
+    ORIGINAL(TDS_BODY),
     ROW(.name = "volume", .excl = "pressure", .kind = TDS_BODY, .type = TDS_AT_REAL, .size = 1,
         .io = TDS_AT_DECL,
         .get = b_volume, .set = b_target_set),

@@ -14,6 +14,7 @@ static void apply_attr(tds_mesh *m, tds_id f, tds_id orig,
   m->ften[f] = at->tension;
   m->fcolor[f] = at->color;
   m->forig[f] = orig;
+  m->ffile[f] = orig + 1;
 }
 
 int tds_build_face(tds_ctx *ctx, tds_surf *s, tds_id f, int n,
@@ -84,6 +85,7 @@ int tds_decl_vertex(tds_ctx *ctx, tds_surf *s, tds_id v, const double x[3],
     return tds_seterr(ctx, rc, "vertex %d is declared twice", v + 1);
   if (rc != TDS_OK) return tds_seterr(ctx, rc, "out of memory");
   v3_copy(m->x[v], x);
+  m->vfile[v] = v + 1;
   m->vflags[v] = flags;
   m->vcon[v] = con | (bdry == TDS_NONE ? tds_surf_global_cons(s) : 0);
   m->vbdry[v] = bdry;
@@ -121,6 +123,7 @@ int tds_decl_edge(tds_ctx *ctx, tds_surf *s, tds_id e, tds_id t, tds_id h,
   if (rc != TDS_OK) return tds_seterr(ctx, rc, "out of memory");
   m->ev[e][0] = t;
   m->ev[e][1] = h;
+  m->efile[e] = e + 1;
   m->eflags[e] = flags;
   m->econ[e] = con;
   m->ebdry[e] = bdry;
@@ -172,6 +175,7 @@ int tds_decl_body(tds_ctx *ctx, tds_surf *s, tds_id b, int n,
     return tds_seterr(ctx, rc, "body %d is declared twice", b + 1);
   if (rc != TDS_OK) return tds_seterr(ctx, rc, "out of memory");
   m->topo_gen = gen; /* a new body slot changes no facet adjacency */
+  m->bfile[b] = b + 1;
   for (int i = 0; i < n; i++) {
     int32_t o = (faces[i] < 0 ? -faces[i] : faces[i]) - 1;
     for (int32_t k = s->orig_start[o]; k < s->orig_start[o + 1]; k++)

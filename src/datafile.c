@@ -216,6 +216,7 @@ int tds_datafile_load_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
   tds_free(&ctx->alloc, d.faces);
   tds_free(&ctx->alloc, d.oe);
   tds_free(&ctx->alloc, d.pv);
+  df_free_ids(&d);
   if (rc != TDS_OK) {
     if (rc < 0) rc = -rc;
     tds_surf_free(s); /* leaves ctx->errmsg alone */

@@ -2,10 +2,11 @@
 ** datafile_elements.c: the lines of the VERTICES, EDGES, FACES and BODIES
 ** sections (contracts in datafile_int.h). Each line is an element id, its
 ** data (coordinates or boundary parameters, vertex ids, signed edge or
-** face ids) and attribute words with their values. Ids of the file are
-** kept (user id = slot + 1). Faces are collected and built when their
-** section ends, after reserving facet slots up to the highest face id, so
-** split-off facets come after every declared id.
+** face ids) and attribute words with their values. Elements are numbered
+** in the order they come, as Evolver does (the file's id is kept as
+** `original`; KEEP_ORIGINALS keeps the ids). Faces are collected and
+** built when their section ends, after reserving facet slots up to the
+** highest face id, so split-off facets come after every declared one.
 */
 #include "datafile_int.h"
 
@@ -37,10 +38,18 @@ static int unknown_attr(df *d, const char *at, const char *w, const char *what) 
   return df_err(d, at, TDS_ESYNTAX, "%s: unknown attribute '%s'", what, w);
 }
 
-/* ORIGINAL n: the id of the element this one came from, ignored. */
-static int skip_original(df *d, const char *what) {
+/* ORIGINAL n: the element's `original` (Evolver writes it into dumps
+** when it differs from the id). */
+static int read_original(df *d, const char *what) {
   int64_t o;
-  return df_read_int(d, 0, what, &o);
+  const char *a = d->p;
+  int rc = df_read_int(d, 1, what, &o);
+  if (rc) return rc;
+  if (o < 0 || o > INT32_MAX)
+    return df_err(d, a, TDS_ERANGE, "%s: ORIGINAL %lld is not an element id or 0", what,
+                  (long long)o);
+  d->orig = o;
+  return TDS_OK;
 }
 
 /* CONSTRAINT(S) c1 c2 ...: *rev set if a number is negative. */
@@ -82,20 +91,59 @@ static int bdry_ref(df *d, const char *what, int32_t *slot) {
   return TDS_OK;
 }
 
-/* The element id at the start of a line (0-based into *id); what =
-** "kind N" for later messages. */
-static int element_id(df *d, const char *kind, tds_id *id, char *what, size_t cap) {
+void df_free_ids(df *d) {
+  for (int k = 0; k < 4; k++) {
+    tds_free(&d->ctx->alloc, d->idmap[k]);
+    d->idmap[k] = NULL;
+    d->capmap[k] = 0;
+  }
+}
+
+/* The slot of the element of `kind` the file calls v, or TDS_NONE if the
+** file has not declared it (the caller checks a kept id is alive). */
+static tds_id slot_of(const df *d, int kind, int64_t v) {
+  if (v < 1 || v > d->maxid) return TDS_NONE;
+  if (d->keep_ids) return (tds_id)(v - 1);
+  return v < d->capmap[kind] ? d->idmap[kind][v] - 1 : TDS_NONE;
+}
+
+/* The element id at the start of a line of `kind` (named `name`): its
+** slot into *id, the next one in order unless ids are kept; what = "name
+** N" with the file's N for later messages. */
+static int element_id(df *d, int kind, const char *name, tds_id *id, char *what,
+                      size_t cap) {
   int64_t v;
   const char *a = d->p;
-  snprintf(what, cap, "%s id", kind);
+  snprintf(what, cap, "%s id", name);
   int rc = df_read_int(d, 0, what, &v);
   if (rc) return rc;
   if (v < 1 || v > d->maxid)
-    return df_err(d, a, TDS_ERANGE, "%s id %lld is out of range (1 to %lld)", kind,
+    return df_err(d, a, TDS_ERANGE, "%s id %lld is out of range (1 to %lld)", name,
                   (long long)v, (long long)d->maxid);
-  *id = (tds_id)(v - 1);
-  snprintf(what, cap, "%s %d", kind, *id + 1);
+  snprintf(what, cap, "%s %lld", name, (long long)v);
+  d->fid = v;
+  d->orig = -1;
+  if (d->keep_ids) {
+    *id = (tds_id)(v - 1);
+    return TDS_OK;
+  }
+  if (slot_of(d, kind, v) != TDS_NONE)
+    return df_err(d, a, TDS_ERANGE, "%s is declared twice", what);
+  if (v >= d->capmap[kind]) {
+    int32_t cap0 = d->capmap[kind];
+    if (tds_grow(&d->ctx->alloc, (void **)&d->idmap[kind], sizeof *d->idmap[kind],
+                 &d->capmap[kind], (int32_t)v + 1))
+      return df_err(d, a, TDS_ENOMEM, "out of memory");
+    memset(d->idmap[kind] + cap0, 0, (size_t)(d->capmap[kind] - cap0) * sizeof *d->idmap[kind]);
+  }
+  *id = d->nread[kind]++;
+  d->idmap[kind][v] = *id + 1;
   return TDS_OK;
+}
+
+/* The `original` of the element on the current line. */
+static int32_t line_file_id(const df *d) {
+  return (int32_t)(d->orig >= 0 ? d->orig : d->fid);
 }
 
 /* The next attribute word of an element line into w (lowercase): 1, or 0
@@ -193,7 +241,7 @@ static int read_attr_value(df *d, int kind, int row, const tds_attr *a, const ch
 /* The attribute words of an element line of `kind`: flags collected into
 ** *flags, constraints into *con (*rev when one is negative), a boundary
 ** into *bd (bdat: where), the others' values onto d->pv for apply_attrs.
-** Words tds reads and ignores: ORIGINAL (any kind), a vertex's COLOR (a
+** ORIGINAL (any kind) goes to d->orig. Words tds reads and ignores: a vertex's COLOR (a
 ** display option), a facet's BACKCOLOR, a body's CENTEROFMASS. */
 static int attr_words(df *d, int kind, const char *what, uint32_t *flags, tds_cmask *con,
                       int *rev, int32_t *bd, const char **bdat) {
@@ -203,7 +251,7 @@ static int attr_words(df *d, int kind, const char *what, uint32_t *flags, tds_cm
   while (next_attr(d, w, sizeof w, &at, what, &rc)) {
     tds_attr a;
     if (!strcmp(w, "original")) {
-      rc = skip_original(d, what);
+      rc = read_original(d, what);
     } else if ((kind == TDS_VERTEX && (!strcmp(w, "color") || !strcmp(w, "colour"))) ||
                (kind == TDS_FACET && !strcmp(w, "backcolor"))) {
       int16_t c; /* vertices have no colour; tds keeps one colour per facet */
@@ -278,7 +326,7 @@ static int push_oe(df *d, const char *at, int32_t v) {
 static int vertex_line(df *d) {
   tds_id id;
   char what[48];
-  int rc = element_id(d, "vertex", &id, what, sizeof what);
+  int rc = element_id(d, TDS_VERTEX, "vertex", &id, what, sizeof what);
   if (rc) return rc;
   double val[3];
   int nval = 0;
@@ -312,19 +360,22 @@ static int vertex_line(df *d) {
   }
   int line = df_line_of(d, NULL);
   rc = tds_decl_vertex(d->ctx, d->s, id, x, bd, p, flags, con);
-  return rc ? df_core(d, line, rc, NULL) : apply_attrs(d, TDS_VERTEX, id, pv0, d->npv, line);
+  if (rc) return df_core(d, line, rc, NULL);
+  d->s->m.vfile[id] = line_file_id(d);
+  return apply_attrs(d, TDS_VERTEX, id, pv0, d->npv, line);
 }
 
 static int edge_line(df *d) {
   tds_id id;
   char what[48];
-  int rc = element_id(d, "edge", &id, what, sizeof what);
+  int rc = element_id(d, TDS_EDGE, "edge", &id, what, sizeof what);
   if (rc) return rc;
   int64_t ends[2];
+  tds_id vs[2];
   for (int k = 0; k < 2; k++) {
     if ((rc = df_read_int(d, 0, what, &ends[k]))) return rc;
-    if (ends[k] < 1 || ends[k] > d->s->m.nv ||
-        !tds_alive(d->s->m.vflags, (tds_id)(ends[k] - 1)))
+    vs[k] = slot_of(d, TDS_VERTEX, ends[k]);
+    if (vs[k] == TDS_NONE || vs[k] >= d->s->m.nv || !tds_alive(d->s->m.vflags, vs[k]))
       return df_err(d, NULL, TDS_ERANGE, "%s refers to vertex %lld, which does not exist",
                     what, (long long)ends[k]);
   }
@@ -343,9 +394,13 @@ static int edge_line(df *d) {
   if ((rc = attr_words(d, TDS_EDGE, what, &flags, &con, &rev, &bd, NULL))) return rc;
   if (rev) flags |= TDS_CONREV;
   int line = df_line_of(d, NULL);
-  rc = tds_decl_edge(d->ctx, d->s, id, (tds_id)ends[0] - 1, (tds_id)ends[1] - 1, flags,
-                     con, bd, 0, 0);
-  return rc ? df_core(d, line, rc, NULL) : apply_attrs(d, TDS_EDGE, id, pv0, d->npv, line);
+  if (vs[0] == vs[1])
+    return df_err(d, NULL, TDS_ETOPO, "%s starts and ends at vertex %lld", what,
+                  (long long)ends[0]);
+  rc = tds_decl_edge(d->ctx, d->s, id, vs[0], vs[1], flags, con, bd, 0, 0);
+  if (rc) return df_core(d, line, rc, NULL);
+  d->s->m.efile[id] = line_file_id(d);
+  return apply_attrs(d, TDS_EDGE, id, pv0, d->npv, line);
 }
 
 /* The signed ids after an element's id (a face's edges, a body's faces),
@@ -360,14 +415,14 @@ static int id_list(df *d, int kind, const char *what, int *n) {
     int rc = df_read_int(d, 1, what, &v);
     if (rc) return rc;
     int64_t av = v < 0 ? -v : v;
-    int ok = v != 0 && (kind == TDS_EDGE
-                 ? av <= m->ne && tds_alive(m->eflags, (tds_id)(av - 1))
-                 : av <= m->nf && tds_alive(m->fflags, (tds_id)(av - 1)) &&
-                       m->forig[av - 1] == (tds_id)(av - 1));
+    tds_id sl = slot_of(d, kind, av);
+    int ok = sl != TDS_NONE && (kind == TDS_EDGE
+                 ? sl < m->ne && tds_alive(m->eflags, sl)
+                 : sl < m->nf && tds_alive(m->fflags, sl) && m->forig[sl] == sl);
     if (!ok)
       return df_err(d, a, TDS_ERANGE, "%s refers to %s %lld, which does not exist", what,
                     kind == TDS_EDGE ? "edge" : "face", (long long)av);
-    rc = push_oe(d, a, kind == TDS_EDGE ? TDS_OREF((tds_id)(av - 1), v < 0) : (int32_t)v);
+    rc = push_oe(d, a, kind == TDS_EDGE ? TDS_OREF(sl, v < 0) : (v < 0 ? -(sl + 1) : sl + 1));
     if (rc) return rc;
     (*n)++;
   }
@@ -377,7 +432,7 @@ static int id_list(df *d, int kind, const char *what, int *n) {
 static int face_line(df *d) {
   tds_id id;
   char what[48];
-  int rc = element_id(d, "face", &id, what, sizeof what);
+  int rc = element_id(d, TDS_FACET, "face", &id, what, sizeof what);
   if (rc) return rc;
   int32_t off = d->noe;
   int n;
@@ -400,6 +455,7 @@ static int face_line(df *d) {
   r->at = fa;
   r->pv0 = pv0;
   r->pv1 = d->npv;
+  r->file = line_file_id(d);
   if (id + 1 > d->maxface) d->maxface = id + 1;
   return TDS_OK;
 }
@@ -429,9 +485,12 @@ int df_build_faces(df *d) {
     if (rc) return df_core(d, r->line, rc, NULL);
     /* the attributes on every facet built from the face */
     if ((rc = apply_attrs(d, TDS_FACET, r->id, r->pv0, r->pv1, r->line))) return rc;
-    for (tds_id f = nf0 > r->id ? nf0 : r->id + 1; f < m->nf; f++)
-      if (m->forig[f] == r->id && (rc = apply_attrs(d, TDS_FACET, f, r->pv0, r->pv1, r->line)))
-        return rc;
+    m->ffile[r->id] = (int32_t)r->file;
+    for (tds_id f = nf0 > r->id ? nf0 : r->id + 1; f < m->nf; f++) {
+      if (m->forig[f] != r->id) continue;
+      m->ffile[f] = (int32_t)r->file;
+      if ((rc = apply_attrs(d, TDS_FACET, f, r->pv0, r->pv1, r->line))) return rc;
+    }
   }
   d->nfaces = 0;
   d->npv = 0;
@@ -441,7 +500,7 @@ int df_build_faces(df *d) {
 static int body_line(df *d) {
   tds_id id;
   char what[48];
-  int rc = element_id(d, "body", &id, what, sizeof what);
+  int rc = element_id(d, TDS_BODY, "body", &id, what, sizeof what);
   if (rc) return rc;
   int32_t off = d->noe;
   int n;
@@ -454,6 +513,7 @@ static int body_line(df *d) {
   rc = tds_decl_body(d->ctx, d->s, id, n, d->oe + off);
   d->noe = off;
   if (rc) return df_core(d, line, rc, NULL);
+  d->s->m.bfile[id] = line_file_id(d);
   return apply_attrs(d, TDS_BODY, id, pv0, d->npv, line);
 }
 

@@ -543,6 +543,13 @@ static int h_version(df *d, const hdr_kw *k) {
   return TDS_OK;
 }
 
+/* KEEP_ORIGINALS: element ids as the file gives them (datafile_int.h). */
+static int h_keep(df *d, const hdr_kw *k) {
+  (void)k;
+  d->keep_ids = 1;
+  return TDS_OK;
+}
+
 static const hdr_kw header_kw[] = {
     {"parameter", h_parameter, 0, 0},
     {"define", h_define, 0, 0},
@@ -564,7 +571,7 @@ static const hdr_kw header_kw[] = {
     {"evolver_version", h_version, 0, 0},
     {"soapfilm", h_nothing, 0, 0},
     {"linear", h_nothing, 0, 0},
-    {"keep_originals", h_nothing, 0, 0},
+    {"keep_originals", h_keep, 0, 0},
     {"keep_macros", h_nothing, 0, 0},
     {"everything_quantities", h_nothing, 0, 0},
     {"merit_factor", h_nothing, 0, 0},

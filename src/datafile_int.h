@@ -101,6 +101,7 @@ typedef struct df_face {
   int32_t off;        /* first oriented edge in df.oe */
   tds_face_attr at;
   int32_t pv0, pv1;   /* its other attributes' values in df.pv */
+  int64_t file;       /* its `original`: the file's id or ORIGINAL's value */
 } df_face;
 
 typedef struct df {
@@ -124,7 +125,19 @@ typedef struct df {
   int has_read;        /* a READ section follows ... */
   size_t read_at;      /* ... from this raw offset */
   int split;           /* several values in a row: element lines, matrices */
+  /* Element ids: as Evolver, elements are numbered 1, 2, ... in the order
+  ** the file gives them (the file's ids become `original`), unless the
+  ** top section says KEEP_ORIGINALS (slot = the file's id - 1). */
+  int keep_ids;
+  int32_t *idmap[4];   /* per kind: file id -> slot + 1 (0: none yet) */
+  int32_t capmap[4];
+  int32_t nread[4];    /* elements of each kind read so far */
+  int64_t fid;         /* the current element line's id in the file */
+  int64_t orig;        /* its ORIGINAL value, or -1 */
 } df;
+
+/* Free the id maps (datafile_elements.c). */
+void df_free_ids(df *d);
 
 /* ---- messages (datafile_read.c) ---- */
 

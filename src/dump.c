@@ -137,6 +137,8 @@ static void attrs(out *o, tds_surf *s, int kind, tds_id id) {
     }
     if (v != one) tds_free(o->alloc, v);
   }
+  int32_t file = tds_mesh_file_ids(&s->m, kind)[id];
+  if (file >= 1 && file != id + 1) fprintf(o->f, " original %d", (int)file);
 }
 
 /* DEFINE lines of the user attributes. */

@@ -2,9 +2,8 @@
 ** bodies{}. Each takes (id, entry) where entry is the user's table, and
 ** returns the new handle, or nil and a message (the prelude raises it at
 ** the user's line). */
-#include <string.h>
-
 #include <stdio.h>
+#include <string.h>
 
 #include "attr.h"
 #include "datafile.h"

@@ -15,6 +15,8 @@ typedef struct nstate {
   double (*vec)[3];   /* eigenvector of the last ritz, per vertex slot */
   int32_t nv;
   uint64_t topo;      /* topo_gen it belongs to */
+  double last;        /* the first eigenvalue of the last ritz (Evolver's
+                         last_eigenvalue), 0 before any */
 } nstate;
 
 static int ns_gc(lua_State *L) {
@@ -114,7 +116,9 @@ static int l_ritz(lua_State *L) {
   int32_t got = 0;
   int iters = 0;
   tds_inertia in = {0};
-  int rc = tds_newton_ritz(&st->ctx, s, &ns->o, shift, (int32_t)n, vals, &got, &in, vec, &iters);
+  double change = 0;
+  int rc = tds_newton_ritz(&st->ctx, s, &ns->o, shift, (int32_t)n, vals, &got, &in, vec, &iters,
+                           &change);
   if (rc != TDS_OK) {
     free(vals);
     free(vec);
@@ -122,14 +126,15 @@ static int l_ritz(lua_State *L) {
   }
   print_counts(st, in);
   lua_createtable(L, got, 0);
-  double total = 0;
   for (int32_t i = 0; i < got; i++) {
     tds_printf(&st->ctx, "%3d.    %.15g\n", (int)i + 1, vals[i]);
     lua_pushnumber(L, vals[i]);
     lua_rawseti(L, -2, i + 1);
-    total += vals[i];
   }
-  if (got) tds_printf(&st->ctx, "Iterations: %d.\n", iters);
+  if (got)
+    tds_printf(&st->ctx, "Iterations: %d. Total eigenvalue changes in last iteration: %.8g\n",
+               iters, change);
+  if (got) ns->last = vals[0];
   free(ns->vec);
   ns->vec = got ? vec : NULL;
   ns->nv = got ? s->m.nv : 0;
@@ -171,10 +176,11 @@ static int l_eigenvector(lua_State *L) {
   return 3;
 }
 
-/* tds.hessian_setting(name [, value]) -> value */
+/* tds.hessian_setting(name [, value]) -> value: hessian_normal,
+** linear_metric, linear_metric_mix, hessian_diff; last_eigenvalue (read) */
 static int l_setting(lua_State *L) {
   static const char *const names[] = {"hessian_normal", "linear_metric", "linear_metric_mix",
-                                      "hessian_diff", NULL};
+                                      "hessian_diff", "last_eigenvalue", NULL};
   nstate *ns = get_ns(L);
   int which = luaL_checkoption(L, 1, NULL, names);
   int set = !lua_isnone(L, 2);
@@ -190,6 +196,10 @@ static int l_setting(lua_State *L) {
   case 3:
     if (set) ns->o.diff = lua_toboolean(L, 2);
     lua_pushboolean(L, ns->o.diff);
+    break;
+  case 4: /* read-only */
+    if (set) return tds_lua_error(L, "last_eigenvalue is read-only");
+    lua_pushnumber(L, ns->last);
     break;
   default:
     if (set) {

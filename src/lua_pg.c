@@ -4,9 +4,10 @@
 **   tds.pg{ iterations=, max=, nmax=, s=, plain=, depth=, flips=, every=,
 **           rtol=, threads= }                        -> result table
 **   tds.quality()                          -> statistics table
-**   tds.curvature(mode [, value])          -> statistics table with
+**   tds.curvature(mode [, value [, measure]]) -> statistics table with
 **                                             per-vertex values
-**   tds.vertex_mean_curvature(v)           -> number or nil
+**   tds.vertex_mean_curvature(v)           -> number or nil (K . n)
+**   tds.vertex_meyer_curvature(v)          -> number or nil (signed |K|)
 **   tds.facet_min_angle(f)                 -> degrees
 **   tds.pg_multipliers()                   -> { [body id] = pressure }
 **   tds.pg_flip_all()                      -> flips
@@ -102,6 +103,16 @@ static int l_pg(lua_State *L) {
              ? r.seconds / ((double)r.iterations * r.nfree) : 0);
   lua_pushboolean(L, r.converged);
   lua_setfield(L, -2, "converged");
+  static const char *const status[] = {"iterations", "converged", "stalled",
+                                       "cycling", "max"};
+  lua_pushstring(L, status[r.status]);
+  lua_setfield(L, -2, "status");
+  setnum(L, "hysteresis", r.hysteresis);
+  if (r.status == TDS_PG_CYCLING) setint(L, "window_flips", r.window_flips);
+  if (r.message[0]) {
+    lua_pushstring(L, r.message);
+    lua_setfield(L, -2, "message");
+  }
   return 1;
 }
 
@@ -128,29 +139,76 @@ static int l_quality(lua_State *L) {
   return 1;
 }
 
+static void push_stats(lua_State *L, const tds_curv_stats *o, int32_t n) {
+  lua_createtable(L, 0, 5);
+  setnum(L, "max", o->max);
+  setnum(L, "mean", o->mean);
+  setnum(L, "rms", o->rms);
+  setnum(L, "mean_curvature", o->hmean);
+  if (n > 0 && o->worst != TDS_NONE) setint(L, "worst", o->worst + 1);
+}
+
+/* tds.curvature(mode, value, measure): measure "meyer" (signed |K|) or
+** "normal" (K . n) picks the per-vertex values and the top-level figures;
+** both measures' statistics are in .meyer and .normal, and the RMS of both
+** by vertex valence in .by_valence[k] = { n, rms, rms_normal }. */
 static int l_curvature(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   static const char *const modes[] = {"value", "lambda", "pressure", NULL};
+  static const char *const measures[] = {"meyer", "normal", NULL};
   int mode = luaL_checkoption(L, 1, "value", modes);
   double value = luaL_optnumber(L, 2, 0);
+  int measure = luaL_checkoption(L, 3, "meyer", measures);
   tds_mesh *m = &st->s.m;
   size_t nv = (size_t)(m->nv > 0 ? m->nv : 1);
-  double *h = lua_newuserdatauv(L, 2 * nv * sizeof *h, 0);
-  double *tg = h + nv;
+  double *hm = lua_newuserdatauv(L, 3 * nv * sizeof *hm, 0);
+  double *hn = hm + nv, *tg = hn + nv;
   tds_curv_out c;
-  int rc = tds_curvature(&st->ctx, &st->s, mode, value, h, tg, &c);
+  int rc = tds_curvature(&st->ctx, &st->s, mode, value, hm, hn, tg, &c);
   if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
-  lua_createtable(L, 0, 10);
+  const double *h = measure ? hn : hm;
+  const tds_curv_stats *o = measure ? &c.normal : &c.meyer;
+  lua_createtable(L, 0, 16);
+  lua_pushstring(L, measures[measure]);
+  lua_setfield(L, -2, "measure");
   setint(L, "n", c.n);
-  setnum(L, "max", c.max);
-  setnum(L, "mean", c.mean);
-  setnum(L, "rms", c.rms);
-  setnum(L, "mean_curvature", c.hmean);
-  if (c.worst != TDS_NONE) {
-    setint(L, "worst", c.worst + 1);
-    setnum(L, "worst_value", h[c.worst]);
-    setnum(L, "worst_target", tg[c.worst]);
+  setnum(L, "max", o->max);
+  setnum(L, "mean", o->mean);
+  setnum(L, "rms", o->rms);
+  setnum(L, "mean_curvature", o->hmean);
+  if (c.n > 0 && o->worst != TDS_NONE) {
+    setint(L, "worst", o->worst + 1);
+    setnum(L, "worst_value", h[o->worst]);
+    setnum(L, "worst_target", tg[o->worst]);
   }
+  push_stats(L, &c.meyer, c.n);
+  lua_setfield(L, -2, "meyer");
+  push_stats(L, &c.normal, c.n);
+  lua_setfield(L, -2, "normal");
+  /* by valence (edges at the vertex): counts and sums of squares */
+  enum { VMAX = 64 };
+  int32_t cnt[VMAX + 1] = {0};
+  double s2[VMAX + 1][2] = {{0}};
+  for (tds_id v = 0; v < m->nv; v++) {
+    if (isnan(hm[v])) continue;
+    int k = (int)(m->ve_start[v + 1] - m->ve_start[v]);
+    if (k > VMAX) k = VMAX;
+    double e0 = hm[v] - tg[v], e1 = hn[v] - tg[v];
+    cnt[k]++;
+    s2[k][0] += e0 * e0;
+    s2[k][1] += e1 * e1;
+  }
+  lua_newtable(L);
+  for (int k = 0; k <= VMAX; k++) {
+    if (!cnt[k]) continue;
+    lua_createtable(L, 0, 3);
+    setint(L, "n", cnt[k]);
+    setnum(L, "rms", sqrt(s2[k][measure] / cnt[k]));
+    setnum(L, "rms_meyer", sqrt(s2[k][0] / cnt[k]));
+    setnum(L, "rms_normal", sqrt(s2[k][1] / cnt[k]));
+    lua_rawseti(L, -2, k);
+  }
+  lua_setfield(L, -2, "by_valence");
   lua_newtable(L);
   lua_newtable(L);
   lua_newtable(L);
@@ -181,6 +239,10 @@ int tds_lua_vertex_measure(lua_State *L, double (*measure)(const tds_surf *, tds
 
 static int l_vertex_mean_curvature(lua_State *L) {
   return tds_lua_vertex_measure(L, tds_vertex_mean_curvature);
+}
+
+static int l_vertex_meyer_curvature(lua_State *L) {
+  return tds_lua_vertex_measure(L, tds_vertex_meyer_curvature);
 }
 
 static int l_facet_min_angle(lua_State *L) {
@@ -220,6 +282,7 @@ void tds_open_pg(lua_State *L, tds_state *st) {
       {"quality", l_quality},
       {"curvature", l_curvature},
       {"vertex_mean_curvature", l_vertex_mean_curvature},
+      {"vertex_meyer_curvature", l_vertex_meyer_curvature},
       {"facet_min_angle", l_facet_min_angle},
       {"pg_multipliers", l_pg_multipliers},
       {"pg_flip_all", l_pg_flip_all},

@@ -17,25 +17,26 @@ typedef struct {
 static const column vcols[] = {
     COL(x, sizeof(double[3])),  COL(vflags, sizeof(uint32_t)),
     COL(vcon, sizeof(tds_cmask)), COL(vbdry, sizeof(int32_t)),
-    COL(vp, sizeof(double[2])),
+    COL(vp, sizeof(double[2])), COL(vfile, sizeof(int32_t)),
 };
 static const column ecols[] = {
     COL(ev, sizeof(tds_id[2])),   COL(eflags, sizeof(uint32_t)),
     COL(econ, sizeof(tds_cmask)), COL(ebdry, sizeof(int32_t)),
     COL(eten, sizeof(double)),    COL(ecolor, sizeof(int16_t)),
-    COL(eside, sizeof(int32_t)),
+    COL(eside, sizeof(int32_t)), COL(efile, sizeof(int32_t)),
 };
 static const column fcols[] = {
     COL(fv, sizeof(tds_id[3])),   COL(fe, sizeof(int32_t[3])),
     COL(fb, sizeof(tds_id[2])),   COL(fflags, sizeof(uint32_t)),
     COL(fcon, sizeof(tds_cmask)), COL(ften, sizeof(double)),
     COL(fcolor, sizeof(int16_t)), COL(forig, sizeof(tds_id)),
-    COL(side_next, sizeof(int32_t[3])),
+    COL(side_next, sizeof(int32_t[3])), COL(ffile, sizeof(int32_t)),
 };
 static const column bcols[] = {
     COL(bflags, sizeof(uint32_t)),  COL(btarget, sizeof(double)),
     COL(bvolconst, sizeof(double)), COL(bdensity, sizeof(double)),
     COL(bpressure, sizeof(double)), COL(bvol, sizeof(double)),
+    COL(bfile, sizeof(int32_t)),
 };
 #undef COL
 
@@ -134,6 +135,7 @@ static void set_defaults(tds_mesh *m, int kind, tds_id i) {
     m->vcon[i] = 0;
     m->vbdry[i] = TDS_NONE;
     m->vp[i][0] = m->vp[i][1] = 0;
+    m->vfile[i] = 0;
     break;
   case TDS_EDGE:
     m->ev[i][0] = m->ev[i][1] = TDS_NONE;
@@ -143,6 +145,7 @@ static void set_defaults(tds_mesh *m, int kind, tds_id i) {
     m->eten[i] = 0;
     m->ecolor[i] = 0;
     m->eside[i] = TDS_NONE;
+    m->efile[i] = 0;
     break;
   case TDS_FACET:
     for (int k = 0; k < 3; k++) {
@@ -156,11 +159,13 @@ static void set_defaults(tds_mesh *m, int kind, tds_id i) {
     m->ften[i] = 1;
     m->fcolor[i] = 15; /* white, Evolver's default facet colour */
     m->forig[i] = TDS_NONE;
+    m->ffile[i] = 0;
     break;
   case TDS_BODY:
     m->bflags[i] = 0;
     m->btarget[i] = m->bvolconst[i] = m->bdensity[i] = 0;
     m->bpressure[i] = m->bvol[i] = 0;
+    m->bfile[i] = 0;
     break;
   }
 }
@@ -308,6 +313,8 @@ int32_t tds_mesh_count(const tds_mesh *m, int kind) {
 }
 
 void tds_mesh_inherit(tds_mesh *m, int kind, tds_id dst, tds_id src) {
+  int32_t *file = tds_mesh_file_ids(m, kind);
+  file[dst] = file[src];
   for (int c = 0; c < m->nucol[kind]; c++) {
     tds_ucol *u = &m->ucol[kind][c];
     memcpy(u->v + (size_t)dst * (size_t)u->size, u->v + (size_t)src * (size_t)u->size,

@@ -46,6 +46,11 @@ typedef struct tds_mesh {
   tds_cmask *vcon;          /* constraints the vertex is on */
   int32_t *vbdry;           /* parametric boundary index or TDS_NONE */
   double (*vp)[2];          /* boundary parameters */
+  int32_t *vfile;           /* Evolver's `original`: the element's id in the
+                               datafile (inherited by the parts of a split
+                               element of the same kind), or 0 for one made
+                               at run time (Evolver 2.70 prints 0; its manual
+                               says -1); likewise efile, ffile, bfile */
   /* edges */
   int32_t ne, cape;
   tds_id (*ev)[2];          /* tail, head */
@@ -55,6 +60,7 @@ typedef struct tds_mesh {
   double *eten;             /* edge tension (default 0 in the soapfilm model) */
   int16_t *ecolor;
   int32_t *eside;           /* one facet side on the edge or TDS_NONE */
+  int32_t *efile;
   /* facets */
   int32_t nf, capf;
   tds_id (*fv)[3];
@@ -65,6 +71,7 @@ typedef struct tds_mesh {
   double *ften;             /* surface tension (default 1) */
   int16_t *fcolor;
   tds_id *forig;            /* facet of the datafile it descends from */
+  int32_t *ffile;
   int32_t *side_next;       /* ring of sides around an edge, 3*capf */
   /* bodies */
   int32_t nb, capb;
@@ -74,6 +81,7 @@ typedef struct tds_mesh {
   double *bdensity;         /* for gravity */
   double *bpressure;        /* Lagrange multiplier, or prescribed pressure */
   double *bvol;             /* actual volume, as last computed */
+  int32_t *bfile;
 
   /* user attributes per kind (attr.h): grown, copied and freed with the
   ** element columns above */
@@ -171,8 +179,15 @@ int tds_mesh_check(tds_ctx *ctx, tds_mesh *m);
 ** edges and facets there are; changes nothing. */
 int32_t tds_mesh_body_warnings(tds_ctx *ctx, const tds_mesh *m, const char *where);
 
-/* Copy the user attribute values of element src to dst (same kind): an
-** element split from another inherits them, as in Evolver. */
+/* The `original` column of a kind (vfile, efile, ffile or bfile). */
+static inline int32_t *tds_mesh_file_ids(const tds_mesh *m, int kind) {
+  return kind == TDS_VERTEX ? m->vfile : kind == TDS_EDGE ? m->efile
+         : kind == TDS_FACET ? m->ffile : m->bfile;
+}
+
+/* Copy the user attribute values and the datafile id (`original`) of
+** element src to dst (same kind): an element split from another inherits
+** them, as in Evolver. */
 void tds_mesh_inherit(tds_mesh *m, int kind, tds_id dst, tds_id src);
 
 /* Bytes of storage held by the mesh per live facet (for the benchmark). */

@@ -115,6 +115,14 @@ double tds_vertex_mean_curvature(const tds_surf *s, tds_id v) {
   return v3_dot(K, S) / (sl * 2 * amix);
 }
 
+double tds_vertex_meyer_curvature(const tds_surf *s, tds_id v) {
+  if (!measured_vertex(s, v)) return NAN;
+  double K[3], S[3], amix, angle;
+  if (!star_sums(s, v, K, S, &amix, &angle)) return NAN;
+  double k = v3_norm(K) / (2 * amix);
+  return v3_dot(K, S) < 0 ? -k : k;
+}
+
 double tds_vertex_gauss_curvature(const tds_surf *s, tds_id v) {
   if (!measured_vertex(s, v)) return NAN;
   double K[3], S[3], amix, angle;
@@ -140,7 +148,7 @@ static double target_at(const tds_surf *s, tds_id v, int mode, const double *mul
 }
 
 int tds_curvature(tds_ctx *ctx, tds_surf *s, int mode, double value,
-                  double *h, double *target, tds_curv_out *out) {
+                  double *h, double *hn, double *target, tds_curv_out *out) {
   tds_mesh *m = &s->m;
   if (tds_mesh_adjacency(m) != TDS_OK)
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
@@ -154,32 +162,50 @@ int tds_curvature(tds_ctx *ctx, tds_surf *s, int mode, double value,
       return rc;
     }
   }
-  double sum = 0, sum2 = 0, mx = -1, hs = 0;
+  /* [0]: Meyer's signed |K|, [1]: K . n */
+  double sum[2] = {0, 0}, sum2[2] = {0, 0}, mx[2] = {-1, -1}, hs[2] = {0, 0};
+  tds_id worst[2] = {TDS_NONE, TDS_NONE};
   int32_t n = 0;
-  out->worst = TDS_NONE;
   for (tds_id v = 0; v < m->nv; v++) {
-    double hv = NAN, tv = NAN;
-    if (!(m->vflags[v] & TDS_DEAD)) hv = tds_vertex_mean_curvature(s, v);
-    if (!isnan(hv)) {
-      tv = mode == TDS_CURV_VALUE ? value : mult ? target_at(s, v, mode, mult) : 0;
-      double e = fabs(hv - tv);
-      n++;
-      sum += e;
-      sum2 += e * e;
-      hs += hv;
-      if (e > mx) {
-        mx = e;
-        out->worst = v;
+    double hv[2] = {NAN, NAN}, tv = NAN;
+    if (!(m->vflags[v] & TDS_DEAD) && measured_vertex(s, v)) {
+      double K[3], S[3], amix, angle;
+      if (star_sums(s, v, K, S, &amix, &angle)) {
+        double sl = v3_norm(S), kn = v3_dot(K, S);
+        if (sl > 0) {
+          double k = v3_norm(K) / (2 * amix);
+          hv[0] = kn < 0 ? -k : k;
+          hv[1] = kn / (sl * 2 * amix);
+        }
       }
     }
-    if (h) h[v] = hv;
+    if (!isnan(hv[0])) {
+      tv = mode == TDS_CURV_VALUE ? value : mult ? target_at(s, v, mode, mult) : 0;
+      n++;
+      for (int j = 0; j < 2; j++) {
+        double e = fabs(hv[j] - tv);
+        sum[j] += e;
+        sum2[j] += e * e;
+        hs[j] += hv[j];
+        if (e > mx[j]) {
+          mx[j] = e;
+          worst[j] = v;
+        }
+      }
+    }
+    if (h) h[v] = hv[0];
+    if (hn) hn[v] = hv[1];
     if (target) target[v] = tv;
   }
   tds_free(&ctx->alloc, mult);
   out->n = n;
-  out->max = n ? mx : (double)NAN;
-  out->mean = n ? sum / n : (double)NAN;
-  out->rms = n ? sqrt(sum2 / n) : (double)NAN;
-  out->hmean = n ? hs / n : (double)NAN;
+  for (int j = 0; j < 2; j++) {
+    tds_curv_stats *o = j ? &out->normal : &out->meyer;
+    o->max = n ? mx[j] : (double)NAN;
+    o->mean = n ? sum[j] / n : (double)NAN;
+    o->rms = n ? sqrt(sum2[j] / n) : (double)NAN;
+    o->hmean = n ? hs[j] / n : (double)NAN;
+    o->worst = worst[j];
+  }
   return TDS_OK;
 }

@@ -7,9 +7,10 @@
 **
 ** Mean curvature: Meyer, Desbrun, Schroeder, Barr (2003): at every measured
 ** vertex (movable, every incident edge between exactly two facets),
-** K = (1 / 2 A_mixed) sum_j (cot a_ij + cot b_ij)(x_i - x_j) and the
-** curvature sum k1 + k2 = K . n_i with n_i the vertex normal of the method
-** (sum of facet area vectors). Its error against a target: a number, the
+** K = (1 / 2 A_mixed) sum_j (cot a_ij + cot b_ij)(x_i - x_j); the curvature
+** sum k1 + k2 is estimated as |K| with the sign of K . n_i (Meyer's, the
+** paper's) or as K . n_i, n_i the vertex normal of the method (sum of facet
+** area vectors). Its error against a target: a number, the
 ** bodies' multipliers ("lambda": -lambda of the paper, the pressure for
 ** unit tension), or the local pressure jump including gravity
 ** ("pressure": p - G rho z per body on each side).
@@ -38,11 +39,16 @@ void tds_quality(const tds_surf *s, tds_quality_out *q);
 
 enum { TDS_CURV_VALUE = 0, TDS_CURV_LAMBDA, TDS_CURV_PRESSURE };
 
+typedef struct tds_curv_stats {
+  double max, mean, rms;     /* of |h - target| */
+  double hmean;              /* mean of h */
+  tds_id worst;              /* vertex of the largest error, or TDS_NONE */
+} tds_curv_stats;
+
 typedef struct tds_curv_out {
   int32_t n;                 /* vertices measured */
-  double max, mean, rms;     /* of |k1 + k2 - target| */
-  double hmean;              /* mean of k1 + k2 */
-  tds_id worst;              /* vertex of the largest error, or TDS_NONE */
+  tds_curv_stats meyer;      /* h = Meyer's |K| with the sign of K . n */
+  tds_curv_stats normal;     /* h = K . n */
 } tds_curv_out;
 
 /* Curvature sum k1 + k2 at vertex v (Meyer et al.), or NAN when v is not
@@ -50,17 +56,24 @@ typedef struct tds_curv_out {
 ** current adjacency. */
 double tds_vertex_mean_curvature(const tds_surf *s, tds_id v);
 
+/* Meyer's full estimate at vertex v: |K| (the length of the mean-curvature
+** normal K = grad A / A_mixed, tangential part included) with the sign of
+** K . n; NAN where tds_vertex_mean_curvature is NAN. Equal to it when K is
+** along the normal. Needs current adjacency. */
+double tds_vertex_meyer_curvature(const tds_surf *s, tds_id v);
+
 /* Gaussian curvature k1 k2 at vertex v: the angle defect 2 pi - (sum of
 ** the facet angles at v) over Meyer's mixed area; NAN where the mean
 ** curvature is NAN. Needs current adjacency. */
 double tds_vertex_gauss_curvature(const tds_surf *s, tds_id v);
 
-/* Curvature and its error at every measured vertex. mode TDS_CURV_*; value
-** is the target for TDS_CURV_VALUE. h and target (m.nv entries each, may
-** be NULL) receive k1 + k2 and the target (NAN where not measured).
+/* Curvature and its error at every measured vertex, by both measures
+** (Meyer's signed |K| and K . n). mode TDS_CURV_*; value is the target for
+** TDS_CURV_VALUE. h, hn and target (m.nv entries each, may be NULL)
+** receive the signed |K|, K . n and the target (NAN where not measured).
 ** Computes the multipliers (tds_pg_multipliers) for the other modes.
 ** TDS_OK, TDS_ENOMEM, TDS_ENUM. */
 int tds_curvature(tds_ctx *ctx, tds_surf *s, int mode, double value,
-                  double *h, double *target, tds_curv_out *out);
+                  double *h, double *hn, double *target, tds_curv_out *out);
 
 #endif

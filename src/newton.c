@@ -139,7 +139,8 @@ static double place(tds_ctx *ctx, tds_surf *s, const start *st, const tds_nsys *
 }
 
 /* Least energy along t in (0, tmax]: the energy at tmax, then halving
-** while that lowers it (or the energy is not below the start), then the
+** (down to 1e-6 tmax, as Evolver) while that lowers it (or the energy is
+** not below the start), then the
 ** parabola through the best sample and its neighbours (t = 0 among them)
 ** when its vertex is inside and lower. Leaves the surface at the t
 ** returned, *E its energy. */
@@ -152,7 +153,7 @@ static double seek(tds_ctx *ctx, tds_surf *s, const start *st, const tds_nsys *n
   double t = tmax, e = place(ctx, s, st, n, w, t);
   ts[k] = t;
   es[k++] = e;
-  while (k < 44 && t > 1e-12 * tmax) {
+  while (k < 44 && t > 1e-6 * tmax) { /* Evolver gives up at 1e-6 of it */
     double t2 = t / 2, e2 = place(ctx, s, st, n, w, t2);
     ts[k] = t2;
     es[k++] = e2;
@@ -302,7 +303,15 @@ int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
   if (rc == TDS_OK) rc = start_take(ctx, s, &st);
   double E = NAN, t = 1;
   if (rc == TDS_OK) {
-    if (seekmax > 0) t = seek(ctx, s, &st, &n, w, n.energy, seekmax, &E);
+    if (seekmax > 0) {
+      t = seek(ctx, s, &st, &n, w, n.energy, seekmax, &E);
+      if (t == 0) { /* no decrease forward: look the other way */
+        for (int32_t j = 0; j < n.m; j++) w[j] = -w[j];
+        t = -seek(ctx, s, &st, &n, w, n.energy, seekmax, &E);
+        for (int32_t j = 0; j < n.m; j++) w[j] = -w[j];
+        if (t == 0) E = place(ctx, s, &st, &n, w, 0);
+      }
+    }
     else E = place(ctx, s, &st, &n, w, 1);
     if (!isfinite(E))
       rc = tds_seterr(ctx, TDS_ENUM, "hessian: the step gives a non-finite energy");
@@ -318,7 +327,7 @@ int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
   s->iterations++;
   if (index) *index = in.neg;
   if (scale) *scale = t;
-  if (in.neg) tds_printf(ctx, "WARNING: Hessian not positive definite. Index: %d \n", (int)in.neg);
+  if (in.neg) tds_printf(ctx, "WARNING 1825: Hessian not positive definite. Index: %d\n", (int)in.neg);
   if (seekmax > 0)
     tds_printf(ctx, "%3d. area: %#17.15g energy: %#17.15g  scale: %g\n", 1, s->area, s->energy, t);
   else
@@ -409,7 +418,7 @@ int tds_newton_saddle(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, doubl
   int iters;
   double (*vec)[3] = tds_calloc(&ctx->alloc, (size_t)s->m.nv + 1, sizeof *vec);
   if (!vec) return tds_snap_end(ctx, s, &sn, tds_seterr(ctx, TDS_ENOMEM, "saddle: out of memory"));
-  rc = tds_newton_ritz(ctx, s, o, NAN, 1, &val, &got, &in, vec, &iters);
+  rc = tds_newton_ritz(ctx, s, o, NAN, 1, &val, &got, &in, vec, &iters, NULL);
   if (rc == TDS_OK && got == 0) rc = tds_seterr(ctx, TDS_ERANGE, "saddle: nothing can move");
   if (rc != TDS_OK) {
     tds_free(&ctx->alloc, vec);

@@ -5,9 +5,11 @@
 ** The system. The Hessian of the Lagrangian (hess.h) restricted to the
 ** vertices' motion spaces (tds_hess_reduce) and, with `normal` on
 ** (Evolver's hessian_normal, the default), further to each vertex's
-** normal space: a free or constrained vertex moves along its normal, the
-** sum of the area vectors of its facets, projected into its motion
-** space and scaled to unit length in space; a vertex on one triple
+** normal space: a free or constrained vertex moves along its normal (the
+** area-weighted sum of its facets' unit normals, each signed to agree
+** with the vertex's dominant normal direction: the volume gradient on a
+** smooth closed sheet), projected into its motion space and scaled to
+** unit length in space; a vertex on one triple
 ** junction line (edges with three or more facets) moves in the plane
 ** perpendicular to the line; a vertex where several such lines meet, or
 ** with no facets, keeps its whole motion space. The unknowns w (sys.m of
@@ -20,11 +22,20 @@
 ** linear interpolation of the unit motions over the facets, as Evolver's
 ** linear_metric: mix x (consistent mass, area/12 (1 + [i = j]) per facet
 ** pair) + (1 - mix) x (lumped, area/3 on the diagonal), mix 0.5 by
-** default.
+** default, each facet's area weighted by its tension (as Evolver does:
+** column.fe's solder, tension 460, shows it).
 **
 ** Counts. Eigencounts are the inertia of H - c M on A^T w = 0: the
 ** inertia of the bordered K - c [M 0; 0 0] less nq from the negative and
 ** from the positive side (nq independent constraint gradients).
+**
+** Multipliers: those stored on the surface (the pressures of the last g
+** or Newton step, as Evolver), computed here only when none ever was; a
+** step stores the new ones from its solution.
+**
+** Singular systems: a step through a consistent singular system (rigid
+** motions with hessian_normal off) leaves the null directions out; an
+** inconsistent one is refused.
 **
 ** Every command is all-or-nothing (snap.h): a singular system, a
 ** non-finite energy or any failure leaves the surface exactly as before.
@@ -47,10 +58,12 @@ typedef struct tds_newton_opts {
 ** value], move every vertex by its w (projecting onto its constraints),
 ** bring the quantities back to their targets, print Evolver's line
 ** "  1. area: ... energy: ..." and, when H on the constraints is not
-** positive definite, "WARNING: Hessian not positive definite. Index: n".
+** positive definite, "WARNING 1825: Hessian not positive definite.
+** Index: n" (Evolver's words and number).
 ** With seek > 0 (hessian_seek), the step is scaled by the t in (0, seek]
-** that minimises the energy along it (the line search of `g`) and the
-** line shows the scale. *index (if not NULL) gets the index, *scale (if
+** that minimises the energy along it, or in [-seek, 0) when no forward
+** t down to 1e-6 seek lowers it (Evolver looks both ways; t = 0, no
+** move, when neither does), and the line shows the scale. *index (if not NULL) gets the index, *scale (if
 ** not NULL) the step's multiple of the Newton step (1 for hessian). */
 int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double seek,
                     int32_t *index, double *scale);
@@ -68,10 +81,11 @@ int tds_newton_probe(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double
 ** vec (nv slots x 3, zeroed) not NULL, the eigenvector of vals[0] as
 ** a displacement per vertex (unit M-norm in the unknowns; 0 for fixed
 ** vertices). *got: how many were found (fewer than n when there are
-** fewer unknowns). *iters: iterations done. */
+** fewer unknowns). *iters: iterations done; *change (if not NULL): the
+** total change of the n values in the last iteration. */
 int tds_newton_ritz(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double shift,
                     int32_t n, double *vals, int32_t *got, tds_inertia *in, double (*vec)[3],
-                    int *iters);
+                    int *iters, double *change);
 
 /* Move every vertex by t times vec (a displacement per vertex slot, as
 ** tds_newton_ritz gives), projecting onto its constraints and then the

@@ -96,7 +96,7 @@ static int factor_at(tds_ctx *ctx, const tds_nsys *n, double *shift, tds_la **f,
 
 int tds_newton_ritz(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double shift,
                     int32_t nwant, double *vals, int32_t *got, tds_inertia *in_out,
-                    double (*vec)[3], int *iters) {
+                    double (*vec)[3], int *iters, double *change_out) {
   *got = 0;
   *iters = 0;
   if (nwant < 0) return tds_seterr(ctx, TDS_ERANGE, "ritz: the count must not be negative");
@@ -207,6 +207,7 @@ int tds_newton_ritz(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
   }
   if (it > 3000) it = 3000;
   *iters = it;
+  if (change_out) *change_out = change;
   for (int c = 0; c < nn; c++) vals[c] = prev[c];
   *got = nn;
   /* the eigenvector of vals[0]: X's first column is the Ritz vector of

@@ -231,6 +231,10 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
   if (rc == TDS_OK) rc = tds_hess_assemble(ctx, s, NULL, &h);
   if (rc == TDS_OK && o->diff) rc = tds_hess_diff(ctx, s, &h);
   if (rc == TDS_OK) rc = tds_hess_reduce(ctx, s, &h, &r);
+  if (rc == TDS_OK) { /* the xyz matrices are not needed any more: less peak memory */
+    tds_spmat_free(&h.H);
+    tds_spmat_free(&h.A);
+  }
   if (rc != TDS_OK) goto fail;
   int32_t nvm = r.nvm;
   vn = tds_malloc(&ctx->alloc, ((size_t)m->nv + 1) * sizeof *vn);
@@ -300,6 +304,7 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
   for (int32_t j = 0; j < mm; j++) /* every diagonal entry exists */
     if (tds_sptrip_add(&t, j, j, 0)) goto nomem;
   if (tds_spmat_from_trip(&t, 1, &out->H)) goto nomem;
+  tds_spmat_free(&r.H);
   tds_sptrip_free(&t);
   t = (tds_sptrip){.nrow = mm, .ncol = h.nq, .alloc = ctx->alloc};
   for (int32_t q = 0; q < h.nq; q++)
@@ -325,7 +330,7 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
       v3_sub(a, m->x[fv[1]], m->x[fv[0]]);
       v3_sub(b, m->x[fv[2]], m->x[fv[0]]);
       v3_cross(c, a, b);
-      double area = 0.5 * v3_norm(c);
+      double area = 0.5 * v3_norm(c) * m->ften[f]; /* weighted as Evolver's */
       for (int x = 0; x < 3; x++)
         for (int y = 0; y < 3; y++) {
           int32_t kx = vk[fv[x]], ky = vk[fv[y]];
@@ -367,8 +372,44 @@ fail:
   return rc;
 }
 
+/* The bordered matrix copied column by column from H (whose diagonal is
+** all stored) and A: no triplets, when the metric is the identity. */
+static int kkt_direct(tds_ctx *ctx, const tds_nsys *n, double c, tds_spmat *K) {
+  int32_t mm = n->m, N = mm + n->nq;
+  int64_t nnz = (int64_t)n->H.colptr[mm] + n->A.colptr[n->nq];
+  memset(K, 0, sizeof *K);
+  K->alloc = ctx->alloc;
+  K->nrow = K->ncol = N;
+  K->upper = 1;
+  K->colptr = tds_malloc(&ctx->alloc, ((size_t)N + 1) * sizeof *K->colptr);
+  K->rowind = tds_malloc(&ctx->alloc, ((size_t)nnz + 1) * sizeof *K->rowind);
+  K->val = tds_malloc(&ctx->alloc, ((size_t)nnz + 1) * sizeof *K->val);
+  if (!K->colptr || !K->rowind || !K->val) {
+    tds_spmat_free(K);
+    return nomem(ctx);
+  }
+  int64_t k = 0;
+  K->colptr[0] = 0;
+  for (int32_t j = 0; j < mm; j++) {
+    for (int32_t e = n->H.colptr[j]; e < n->H.colptr[j + 1]; e++) {
+      K->rowind[k] = n->H.rowind[e];
+      K->val[k++] = n->H.val[e] - (n->H.rowind[e] == j ? c : 0);
+    }
+    K->colptr[j + 1] = (int32_t)k;
+  }
+  for (int32_t q = 0; q < n->nq; q++) {
+    for (int32_t e = n->A.colptr[q]; e < n->A.colptr[q + 1]; e++) {
+      K->rowind[k] = n->A.rowind[e];
+      K->val[k++] = n->A.val[e];
+    }
+    K->colptr[mm + q + 1] = (int32_t)k;
+  }
+  return TDS_OK;
+}
+
 int tds_nsys_kkt(tds_ctx *ctx, const tds_nsys *n, double c, tds_spmat *K) {
   int32_t mm = n->m;
+  if (!n->M.nrow) return kkt_direct(ctx, n, c, K);
   tds_sptrip t = {.nrow = mm + n->nq, .ncol = mm + n->nq, .alloc = ctx->alloc};
   for (int32_t j = 0; j < mm; j++)
     for (int32_t e = n->H.colptr[j]; e < n->H.colptr[j + 1]; e++)

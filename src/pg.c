@@ -299,6 +299,17 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   const int warm = 5; /* plain iterations after a flip before mixing */
   pg_stepinfo si = {0};
   int64_t k;
+  /* Non-convergence watch (TDS_PG_CYCLING): windows of 5 N_max
+  ** iterations; a window is stuck when it flipped edges and its least r
+  ** is not below the least r of every earlier window. Flips restart the
+  ** paper's criterion, so without this a run whose flips never stop
+  ** (a surface with no stable equilibrium near it) ran to the cap. */
+  const int64_t win = 5 * (int64_t)o->nmax;
+  int64_t win_start = 0, win_flips = 0, stuck_flips = 0;
+  double win_min = INFINITY, glob_min = INFINITY;
+  int stuck = 0, resumes = 0;
+  int64_t plain_until = 0; /* > 0: resume the mixing at this iteration */
+  res->hysteresis = w.flip_tol;
   save_best(s, &w);
   tds_printf(ctx, "pg: %d movable vertices, %s%s\n", w.nmov,
              accel ? "accelerated (Anderson)" : "plain",
@@ -353,13 +364,61 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
         tds_printf(ctx, "pg %7lld  acceleration stalled at r %.3e: continuing plainly\n",
                    (long long)k, rbest);
         progress = k;
+        /* Well above the rounding level the mixing usually stalled on a
+        ** saddle of the mesh-quality energy or in a nonlinear stretch:
+        ** the plain steps leave it, and after N_max of them the mixing
+        ** resumes with a fresh history (at most three times). */
+        if (rbest > noise && resumes < 3) plain_until = k + o->nmax;
         if (rbest > noise) rbest = INFINITY;
         idle = 0;
       }
+      if (!accel && plain_until && k >= plain_until) {
+        accel = 1;
+        plain_until = 0;
+        resumes++;
+        progress = k; /* the mixing gets its own N_max */
+        pg_accel_reset(&w.aa);
+        res->restarts++;
+        tds_progress_erase(ctx);
+        tds_printf(ctx, "pg %7lld  resuming acceleration at r %.3e\n", (long long)k, si.r);
+      }
       if (rbest == 0 || (o->rtol > 0 && rbest < o->rtol * hbar) ||
           (idle >= o->nmax && rbest <= noise) || idle >= 5 * (int64_t)o->nmax) {
-        res->converged = 1;
+        res->converged = rbest <= 1e-6 * hbar || (o->rtol > 0 && rbest < o->rtol * hbar);
+        res->status = res->converged ? TDS_PG_CONVERGED : TDS_PG_STALLED;
         break;
+      }
+      if (si.r < win_min) win_min = si.r;
+      win_flips += nf;
+      if (k - win_start >= win) {
+        if (win_flips > 0 && !(win_min < 0.5 * glob_min)) {
+          /* flips cycling: first widen the flip hysteresis tenfold per
+          ** stuck window (1e-3 to 1e-1: a pair of opposite angles may
+          ** then exceed pi by up to 0.1 radian before the edge flips),
+          ** which ends the cycles of most meshes; give up only when the
+          ** widest one does not */
+          if (o->flips && w.flip_tol < 0.099) {
+            w.flip_tol *= 10;
+            res->hysteresis = w.flip_tol;
+            stuck = 0;
+            stuck_flips = 0;
+          } else {
+            stuck++;
+            stuck_flips += win_flips;
+          }
+        } else {
+          stuck = 0;
+          stuck_flips = 0;
+        }
+        if (win_min < glob_min) glob_min = win_min;
+        win_start = k;
+        win_min = INFINITY;
+        win_flips = 0;
+        if (stuck >= 3) {
+          res->status = TDS_PG_CYCLING;
+          res->window_flips = stuck_flips;
+          break;
+        }
       }
     }
     if (accel) pg_get_state(s, &w, w.aa.X);
@@ -387,7 +446,10 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
     }
   }
   tds_progress_end(ctx);
-  if (k > nmaxit) k = nmaxit;
+  if (k > nmaxit) {
+    k = nmaxit;
+    if (until) res->status = TDS_PG_MAX;
+  }
   res->iterations = k;
   if (until && rc == TDS_OK && rbest < (double)INFINITY) load_best(s, &w);
   if (until && rc == TDS_OK) {
@@ -410,7 +472,7 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   tds_snap_end(ctx, s, &sn, rc);
   res->mean_edge = mean_edge(m);
   res->seconds = now() - t0;
-  if (rc == TDS_OK || rc == TDS_EINTR)
+  if (rc == TDS_OK || rc == TDS_EINTR) {
     tds_printf(ctx, "pg: %lld iterations, r %.3e (%.2e x mean edge) at "
                     "iteration %lld, lambda %.15g, energy %.15g, flips %lld, "
                     "clamped %lld, %s\n",
@@ -419,5 +481,40 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
                (long long)res->best_iteration, res->lambda, s->energy,
                (long long)res->flips, (long long)res->clamps,
                res->converged ? "converged" : "not converged");
+    char *msg = res->message;
+    size_t ml = sizeof res->message;
+    if (rc == TDS_OK && res->status == TDS_PG_CYCLING)
+      snprintf(msg, ml, "pg: not converging: %lld edges flipped in the last %lld "
+                      "iterations and r never went below %.3e (%.2e x mean edge), "
+                      "its best before them; stopped early. The triangulation "
+                      "keeps changing: the surface may have no stable "
+                      "equilibrium near this shape (a neck pinching off, a "
+                      "film collapsing), or the mesh is too coarse for it. "
+                      "Try g() to see where the surface goes, r() to refine, "
+                      "or pg{ flips = false }",
+                 (long long)res->window_flips, (long long)(3 * win), glob_min,
+                 res->mean_edge > 0 ? glob_min / res->mean_edge : 0);
+    else if (rc == TDS_OK && res->status == TDS_PG_STALLED)
+    {
+      double rel = res->mean_edge > 0 ? res->r / res->mean_edge : 0;
+      int far = rel > 1e-2; /* still moving by a good part of an edge */
+      snprintf(msg, ml, "pg: not converged: r has not gone below %.3e (%.2e x mean "
+                        "edge) for %lld iterations; stopped. %sTry %s",
+               res->r, rel, (long long)(5 * (int64_t)o->nmax),
+               far ? "The vertices still move by a good part of an edge: the "
+                     "surface may have no stable equilibrium near this shape "
+                     "(a neck pinching off, a film collapsing). " : "",
+               far ? "g() to see where the surface goes, or r() to refine"
+               : o->accel && o->depth > 0
+                   ? "pg{ plain = true } (without acceleration), a few g() "
+                     "first, or a larger nmax"
+                   : "a few g() first, or a larger nmax");
+    }
+    else if (rc == TDS_OK && res->status == TDS_PG_MAX)
+      snprintf(msg, ml, "pg: not converged within max = %lld iterations; pg() "
+                      "again continues, pg{ max = ... } allows more",
+                 (long long)nmaxit);
+    if (msg[0]) tds_warnf(ctx, "%s\n", msg);
+  }
   return rc;
 }

@@ -56,7 +56,25 @@ typedef struct tds_pg_result {
   int64_t threaded;       /* passes run on two threads */
   int32_t nfree;          /* movable vertices */
   int converged;          /* stopped by the termination criterion */
+  int status;             /* how the run ended: TDS_PG_* below */
+  int64_t window_flips;   /* TDS_PG_CYCLING: flips in the last windows */
+  double hysteresis;      /* flip hysteresis at the end: 1e-3, widened
+                             up to 0.1 while flips cycle (doc/method.md) */
+  char message[640];      /* STALLED, CYCLING, MAX: what happened and what
+                             to try (also printed by tds_warnf); else "" */
 } tds_pg_result;
+
+/* How a run ended. CONVERGED: the paper's criterion with r at most 1e-6 x
+** the mean edge. STALLED: the same criterion (no new best r for 5 N_max
+** iterations, no flips) with r above that: not converged. CYCLING: a
+** window of 5 N_max iterations is stuck when it flipped edges and r never
+** went below its best before the window; each stuck window widens the
+** flip hysteresis tenfold up to 0.1, and three stuck windows running at
+** 0.1 stop the run (the triangulation keeps changing without progress;
+** not converged). MAX:
+** the iteration cap. COUNT: a fixed number of iterations was asked. */
+enum { TDS_PG_COUNT = 0, TDS_PG_CONVERGED, TDS_PG_STALLED, TDS_PG_CYCLING,
+       TDS_PG_MAX };
 
 /* Defaults: until converged, N_max 200, s = 2, accelerated (depth 20),
 ** flips on. */

@@ -217,7 +217,8 @@ function C.run(exp)
   local out = {
     ("RESULT %s %s"):format(exp.name, label),
     "mean=" .. fmt(q.mean), "min=" .. fmt(q.min), "above50=" .. fmt(q.above50),
-    "crms=" .. fmt(c.rms), "cmax=" .. fmt(c.max), "verr=" .. fmt(volume_error()),
+    "crms=" .. fmt(c.rms), "cmax=" .. fmt(c.max),
+    "nrms=" .. fmt(c.normal.rms), "nmax=" .. fmt(c.normal.max), "verr=" .. fmt(volume_error()),
     "r=" .. fmt(res.r), "rrel=" .. fmt(h > 0 and res.r / h or 0),
     "iters=" .. fmt(res.iterations), "secs=" .. fmt(res.seconds),
     "spvi=" .. fmt(spvi), "nv=" .. fmt(res.vertices),
@@ -225,6 +226,7 @@ function C.run(exp)
     "energy=" .. fmt(total_energy),
   }
   if res.reached then out[#out + 1] = "reached=" .. fmt(res.reached) end
+  if res.status then out[#out + 1] = "status=" .. res.status end
   print(table.concat(out, " "))
   if env("PAPER_ANALYSE") then C.breakdown(c) end
   return res, q, c

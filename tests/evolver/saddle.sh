@@ -58,6 +58,16 @@ report('saddle/catman/stable', ('%d %d %d'):format(b, z, a) == '$c1' and b == 0,
 " 2>&1 | grep -v '^ *1\. area\|^Eigencounts\|^Lowest\|^stepsize\|^Gravity\|^ *[0-9]*\.   \|^Iterations' \
   || echo "FAIL saddle/catman: tds exited with an error"
 
+# hessian_seek at that saddle, every coordinate free (index 15): a plain
+# Newton step may go uphill there; hessian_seek must not.
+"$TDS" -q "$tmp/catman.dmp" -e "
+dofile('$ROOT/tests/evolver/compare.lua')
+tds.hessian_setting('hessian_normal', false)
+local e0 = total_energy
+local e, t, index = tds.hessian_seek()
+report('saddle/catman/seek-downhill', index > 0 and e <= e0, e, '<= ' .. e0)
+" 2>&1 | grep -v '^Gravity' || echo "FAIL saddle/catman/seek-downhill: tds exited with an error"
+
 ev=$(evolver_run "$EXAMPLES/cat.fe" "r; u; g 20; hessian; hessian; hessian
 dump \"$tmp/cat.dmp\"
 printf \"E0 %.17g\\n\", total_energy
