@@ -20,15 +20,31 @@ local function unwrap(x)
   return x, false
 end
 local function ishandle(v) return type(v) == "userdata" and getmetatable(v) and getmetatable(v).__tds_kind ~= nil end
-local function isel(v) return ishandle(v) or getmetatable(v) == REV end
+-- A facetedge: facet f's k-th side (its k-th edge as the facet traverses
+-- it). Numbered 3 (f - 1) + k: tds's own numbering (Evolver's follows its
+-- internal structures).
+local FE = {}
+local function isfe(v) return getmetatable(v) == FE end
+local function facetedge(f, k) return setmetatable({ f = f, k = k }, FE) end
+local function isel(v) return ishandle(v) or getmetatable(v) == REV or isfe(v) end
 E.isel = isel
 local KINDNAME = { [tds.vertex] = "vertex", [tds.edge] = "edge", [tds.facet] = "facet", [tds.body] = "body" }
-local function kindof(x) return KINDNAME[getmetatable((unwrap(x))).__tds_kind] end
+local function kindof(x)
+  if isfe(x) then return "facetedge" end
+  return KINDNAME[getmetatable((unwrap(x))).__tds_kind]
+end
 E.unwrap = unwrap
 
 function E.getelem(kind, i, soft)
   local id = num(i, kind .. "[]")
   if id % 1 ~= 0 then fail(("%s[%g]: the index must be a whole number"):format(kind, id)) end
+  if kind == "facetedge" then
+    local n = math.floor(math.abs(id))
+    local f = n >= 1 and tds.get(tds.facet, (n - 1) // 3 + 1)
+    if f then return facetedge(f, (n - 1) % 3 + 1) end
+    if not soft then fail(("facetedge[%d] does not exist"):format(math.floor(id))) end
+    return nil
+  end
   local h = tds.get(KINDNUM[kind], math.floor(math.abs(id)))
   if not h and not soft then fail(("%s[%d] does not exist"):format(kind, math.floor(id))) end
   if h and id < 0 and kind == "edge" then return reversed(h) end
@@ -36,6 +52,13 @@ function E.getelem(kind, i, soft)
 end
 
 function E.all(kind)
+  if kind == "facetedge" then
+    local list = {}
+    for _, f in ipairs(E.all("facet")) do
+      for k = 1, 3 do list[#list + 1] = facetedge(f, k) end
+    end
+    return list
+  end
   local list, i, k = {}, 0, KINDNUM[kind]
   while true do
     local id, h = tds.next(k, i)
@@ -76,6 +99,11 @@ function E.touch() adj = nil; USER = nil end
 -- Elements around an element (sub-element generators).
 local function around(x, kind)
   local from = kindof(x)
+  if from == "facetedge" then
+    if kind == "facet" then return { x.f } end
+    if kind == "edge" then return { around(x.f, "edge")[x.k] } end
+    if kind == "vertex" then return around(around(x.f, "edge")[x.k], "vertex") end
+  end
   local h, rev = unwrap(x)
   if from == "facet" and kind == "edge" then
     local out = {}
@@ -258,9 +286,33 @@ for i, c in ipairs { "x", "y", "z" } do
   end
 end
 
+-- A facetedge's attributes: id, oid, the next and previous sides of its
+-- facet, and the next and previous facets around its edge (in the edge's
+-- ring of facets, tds's order).
+local function feattr(o, name)
+  local id = 3 * (o.f.id - 1) + o.k
+  if name == "id" or name == "oid" then return id + 0.0 end
+  if name == "nextedge" then return facetedge(o.f, o.k % 3 + 1) end
+  if name == "prevedge" then return facetedge(o.f, (o.k + 1) % 3 + 1) end
+  if name == "nextfacet" or name == "prevfacet" then
+    local e = unwrap(around(o.f, "edge")[o.k])
+    local ring = adjacency().efacets[e.id] or {}
+    for i, fs in ipairs(ring) do
+      if fs[1] == o.f then
+        local nb = ring[(i + (name == "nextfacet" and 0 or #ring - 2)) % #ring + 1][1]
+        for k, id2 in ipairs(nb.edges) do
+          if math.abs(id2) == e.id then return facetedge(nb, k) end
+        end
+      end
+    end
+  end
+  fail(("facetedge %d has no attribute '%s'"):format(id, name))
+end
+
 function E.attr(o, name)
   if type(o) == "table" and o.__quantity then return E.qattr(o, name) end
   if not isel(o) then fail(("'.%s' needs an element, got %s"):format(name, type(o))) end
+  if isfe(o) then return feattr(o, name) end
   if name == "x" or name == "y" or name == "z" then return ATTR[name](o) end
   local h, rev = unwrap(o)
   local u = userattr(kindof(h), name)

@@ -475,7 +475,6 @@ function P:generator()
   local base, arr, kind
   if t.t == "name" and KINDS[t.s] then
     kind = KINDS[t.s]
-    if kind == "facetedge" then self:err("facetedge: not supported yet", t) end
     if self:isop("[") then
       self:next()
       local i = asnum(self:expr())

@@ -42,8 +42,8 @@ done
 # stopping with a message that names its file and line:
 #   adjointc (set vertex __x to an array), cut
 #   ('eee ecutmark' attribute without '.'), detorus_capper and
-#   dirichlet_to_disk (define constraint at run time), reorder and strips
-#   (facetedge generators). cmccousin, unshear and cube_views print their
+#   dirichlet_to_disk (named constraints), reorder and strips
+#   (facetedge attributes). cmccousin, unshear and cube_views print their
 #   own message (4-D space, torus, include file) and abort, which is not
 #   an error.
 cp "$EXAMPLES/cube.fe" "$tmp/cube.fe"
