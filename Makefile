@@ -100,11 +100,25 @@ $(BUILD)/lua_surface.o: $(BUILD)/prelude.inc
 $(BUILD)/prelude.inc: $(LUA_SRC) scripts/embed.sh | $(BUILD)
 	sh scripts/embed.sh $(LUA_SRC) > $@
 
-$(BUILD)/test_%: tests/unit/test_%.c tests/unit/*.h $(LIBTDS) | deps
-	$(CC) $(CFLAGS_ALL) -fopenmp -Isrc -Itests/unit -o $@ $< $(LIBTDS) $(CAIRO_LIBS) $(LA_LIBS) -lm
+# The unit tests link the core built again with its contract checks
+# (TDS_CHECKS: TDS_REQUIRE and TDS_ASSERT, tds.h); the program does not.
+CHK_OBJ := $(CORE_SRC:src/%.c=$(BUILD)/chk/%.o)
+LIBTDS_CHK := $(BUILD)/chk/libtds.a
+$(LIBTDS_CHK): $(CHK_OBJ)
+	rm -f $@
+	ar rcs $@ $^
+$(BUILD)/chk/%.o: src/%.c | deps $(BUILD)/chk
+	$(CC) $(CFLAGS_ALL) -DTDS_CHECKS $(if $(filter $(OMP_SRC),$<),-fopenmp) \
+	  $(if $(filter src/render%,$<),$(CAIRO_CFLAGS)) -MMD -MP -Isrc -I$(BUILD) -c -o $@ $<
+-include $(CHK_OBJ:.o=.d)
+
+$(BUILD)/test_%: tests/unit/test_%.c tests/unit/*.h $(LIBTDS_CHK) | deps
+	$(CC) $(CFLAGS_ALL) -DTDS_CHECKS -fopenmp -Isrc -Itests/unit -o $@ $< $(LIBTDS_CHK) $(CAIRO_LIBS) $(LA_LIBS) -lm
 
 $(BUILD):
 	mkdir -p $(BUILD)
+$(BUILD)/chk:
+	mkdir -p $@
 
 # The picture tests' PNG reader (tests/pictures/).
 $(BUILD)/png2ppm: tests/pictures/png2ppm.c | deps $(BUILD)
@@ -120,17 +134,18 @@ test: $(TDS_BIN) unit web $(TDS_SO) | deps-test
 plan: $(TDS_BIN) unit web $(TDS_SO) | deps-test
 	@PLAN_WRITE=1 sh tests/run.sh $(abspath $(TDS_BIN)) $(abspath $(BUILD))
 
-# The whole suite under AddressSanitizer and UndefinedBehaviorSanitizer.
+# The whole suite under AddressSanitizer and UndefinedBehaviorSanitizer,
+# with the contract checks (TDS_CHECKS) in the program too.
 test-asan:
 	LSAN_OPTIONS=suppressions=$(abspath tests/lsan.supp) $(MAKE) BUILD=build-asan TDS_BIN=build-asan/tds OPT=-O1 \
-	  SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" test
+	  SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined -DTDS_CHECKS" test
 
 # libFuzzer harnesses (tests/fuzz/, doc/reliability.md "Fuzzing"), built
 # with clang, ASan and UBSan into build-fuzz/. fuzz-smoke runs each one for
 # FUZZ_TIME seconds on its corpus (CI).
 FUZZ_BUILD ?= build-fuzz
 FUZZ_TIME ?= 60
-FUZZ_SAN = -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+FUZZ_SAN = -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -DTDS_CHECKS
 # Smaller macro-expansion limits, so an input that expands to the full
 # 64 MiB does not take a minute under the sanitizers (doc/reliability.md).
 FUZZ_LIMITS = -DTDS_DF_MAXTOTAL='(4u<<20)' -DTDS_DF_MAXLINE='(1u<<20)'

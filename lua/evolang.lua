@@ -121,7 +121,7 @@ local AGG = { max = true, min = true, sum = true, avg = true, count = true }
 local STMT = {}
 for w in ([[if while do for foreach return break continue abort local procedure
   function define print printf binary_printf errprintf eprint list set unset fix unfix refine
-  equiangulate vertex_average delete dissolve pop edgeswap read exec]]):gmatch("%S+") do
+  equiangulate vertex_average delete dissolve pop edgeswap t1_edgeswap read exec]]):gmatch("%S+") do
   STMT[w] = true
 end
 
@@ -1163,7 +1163,8 @@ local function oncollection(name)
       acc, genloop(g, acc .. "[#" .. acc .. " + 1] = " .. g.var), q(name), q(g.kind), acc)
   end
 end
-for _, w in ipairs { "refine", "equiangulate", "vertex_average", "delete", "dissolve", "pop", "edgeswap" } do
+for _, w in ipairs { "refine", "equiangulate", "vertex_average", "delete", "dissolve", "pop", "edgeswap",
+                     "t1_edgeswap" } do
   P["s_" .. w] = oncollection(w)
 end
 

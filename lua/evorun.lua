@@ -434,6 +434,7 @@ function E.getv(name, cur)
   if v == nil and low ~= name then v = _G[low] end
   if v == nil and cur and E.has_extra(cur, low) then return E.attr(cur, low) end
   if v == nil and tds.quantity_info(low) ~= nil then return { __quantity = low } end
+  if v == nil then v = tds.constraint_named(low) end -- a named constraint is its number
   if v == nil then fail(("undefined variable '%s'"):format(name)) end
   if type(v) == "function" then fail(("'%s' is a command, not a value"):format(name)) end
   if type(v) == "boolean" then return v and 1.0 or 0.0 end
@@ -670,6 +671,7 @@ local TOGGLE_MSG = {
   conj_grad = "Conjugate gradient now %s. (was %s)",
   quiet = "Quiet %s. (was %s)",
   gravity = "Gravity %s. (was %s)",
+  check_increase = "Increase check %s. (was %s)",
   little_endian = "little_endian %s. (was %s)",
   big_endian = "big_endian %s. (was %s)",
   hessian_normal = "hessian_normal %s. (was %s)",
@@ -685,6 +687,7 @@ local function toggle_get(name)
   if name == "conj_grad" then return tds.setting("conj_grad") end
   if name == "quiet" then return tds.quiet() end
   if name == "gravity" then local _, on = tds.gravity(); return on end
+  if name == "check_increase" then return tds.setting("check_increase") end
   if name == "little_endian" then return endian == "<" end
   if name == "big_endian" then return endian == ">" end
   if name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff" then
@@ -695,6 +698,7 @@ local function toggle_set(name, on)
   if name == "conj_grad" then tds.setting("conj_grad", on)
   elseif name == "quiet" then tds.quiet(on)
   elseif name == "gravity" then local g = tds.gravity(); tds.gravity(g, on)
+  elseif name == "check_increase" then tds.setting("check_increase", on)
   elseif name == "little_endian" then endian = on and "<" or ">"
   elseif name == "big_endian" then endian = on and ">" or "<"
   elseif name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff" then
@@ -797,6 +801,7 @@ B.r = function(n) for _ = 1, times(n, "r") do flush(); tds.refine(nil) end end
 B.refine = B.r
 B.u = function(n) for _ = 1, times(n, "u") do flush(); tds.equiangulate(nil) end end
 B.equiangulate = B.u
+B.j = function(t) flush(); tds.jiggle(t ~= nil and num(t, "j") or nil) end
 B.V = function(n) for _ = 1, times(n, "V") do flush(); tds.vertex_average(nil) end end
 B.vertex_average = B.V
 B.v = function()
@@ -928,7 +933,7 @@ end
 
 -- Evolver commands tds does not have: named in the error.
 local UNSUPPORTED = {}
-for w in ([[t o O w l K n j J e A a b f k M p Q W y Z z s P D F H h X
+for w in ([[t o O w l K n J e A a b f k M p Q W y Z z s P D F H h X
   hessian_menu lagrange edgeweed areaweed edge_divide
   notch dirichlet dirichlet_seek sobolev sobolev_seek delete dissolve pop pop_edge_to_tri
   pop_tri_to_edge pop_quad_to_quad t1_edgeswap edgeswap raw_vertex_average
@@ -939,7 +944,7 @@ for w in ([[t o O w l K n j J e A a b f k M p Q W y Z z s P D F H h X
   reset_counts metis kmetis body_metis ometis
   exprint show show_expr showq show_trans close_show transforms transform_expr
   display_text delete_text postscript binary_off_file off_file geomview
-  jiggle homothety autopop autochop ribiere check_increase
+  jiggle homothety autopop autochop ribiere
   quietgo quietload verbose approximate_curvature runge_kutta
   post_project volgrads_every area_normalization effective_area normal_motion
   ysmp bunch_kaufman sparse_constraints augmented_hessian
@@ -1054,6 +1059,9 @@ function E.oncollection(name, kind, list)
   elseif name == "vertex_average" then
     if kind ~= "vertex" then fail("vertex_average needs vertices") end
     tds.vertex_average(list)
+  elseif name == "t1_edgeswap" then -- the string model (doc/string.md)
+    if kind ~= "edge" then fail("t1_edgeswap needs edges") end
+    tds.string_t1(list)
   else
     fail(name .. ": not supported yet")
   end

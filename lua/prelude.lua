@@ -235,11 +235,45 @@ iterate, go = g, g
 function r(set) tds.refine(set) end
 refine = r
 
-function u(set) tds.equiangulate(set) end
+-- u(set, opts) / u(opts): opts is a table of named options (it has a
+-- string key and no [1], unlike a list of handles).
+local function set_and_options(a, b, what, known)
+  if b == nil and type(a) == "table" and getmetatable(a) == nil and a[1] == nil
+      and next(a) ~= nil then
+    a, b = nil, a
+  end
+  b = b or {}
+  if type(b) ~= "table" then error(what .. ": options must be a table", 3) end
+  check_options(b, what, known, 3)
+  return a, b
+end
+
+-- u() is Evolver's one pass; u{delaunay = true} flips until no edge is
+-- left that fails the Delaunay test.
+function u(set, opts)
+  set, opts = set_and_options(set, opts, "u", { delaunay = "boolean" })
+  tds.equiangulate(set, opts.delaunay)
+end
 equiangulate = u
 
 function V(set) tds.vertex_average(set) end
+-- facet_crosscut(f, tail, head): split a string-model cell (doc/string.md)
+function facet_crosscut(f, t, h) return tds.facet_crosscut(f, t, h) end
 vertex_average = V
+
+-- j(temperature [, set]): Evolver's jiggle (jiggle.h); seeded by
+-- tds.setting("random_seed"), so a script repeats exactly.
+function j(temperature, set) tds.jiggle(temperature, set) end
+jiggle = j
+
+-- check_increase(on): with it on, a g step that would raise the energy is
+-- taken back and g stops (Evolver's toggle). No argument toggles.
+function check_increase(on)
+  local was = tds.setting("check_increase")
+  if on == nil then on = not was end
+  tds.setting("check_increase", on and true or false)
+  print(("Increase check %s. (was %s)"):format(on and "ON" or "OFF", was and "on" or "off"))
+end
 
 -- recalc(): after assigning parameters, put boundary vertices where their
 -- parameters say and constrained vertices back on their constraints (g, r

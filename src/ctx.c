@@ -6,6 +6,16 @@
 #include <stdlib.h>
 #include <string.h>
 
+int tds_contract_err(tds_ctx *ctx, const char *file, int line, const char *cond) {
+  return tds_seterr(ctx, TDS_EBUG, "%s:%d: broken contract: %s", file, line, cond);
+}
+
+void tds_contract_abort(const char *file, int line, const char *cond) {
+  fprintf(stderr, "%s:%d: broken contract: %s\n", file, line, cond);
+  fflush(stderr);
+  abort();
+}
+
 void tds_ctx_init(tds_ctx *ctx) {
   memset(ctx, 0, sizeof *ctx);
 }
@@ -54,9 +64,15 @@ static void *sys_alloc(void *ud, void *ptr, size_t n) {
   return realloc(ptr, n);
 }
 
-static void *call(const tds_alloc *a, void *p, size_t n) {
-  if (a && a->fn) return a->fn(a->ud, p, n);
-  return sys_alloc(NULL, p, n);
+/* Always inlined and never a tail call, so that the hook's caller is the
+** public helper and the helper's caller the allocation site (the
+** out-of-memory test tells sites apart by these return addresses). */
+static inline __attribute__((always_inline)) void *call(const tds_alloc *a, void *p,
+                                                        size_t n) {
+  if (!a || !a->fn) return sys_alloc(NULL, p, n);
+  void *q = a->fn(a->ud, p, n);
+  __asm__ volatile("" ::: "memory"); /* keeps this frame on the stack */
+  return q;
 }
 
 void *tds_malloc(const tds_alloc *a, size_t n) {

@@ -15,6 +15,7 @@
 
 #include "model.h"
 #include "motion.h"
+#include "string_model.h"
 
 static const char *const section_name[] = {"top", "VERTICES", "EDGES", "FACES",
                                            "BODIES"};
@@ -48,7 +49,18 @@ static int begin_section(df *d, int sec, const char *at) {
   int rc = end_section(d);
   if (rc) return rc;
   d->section = sec;
-  if (sec == S_VERTICES) d->seen_vertices = 1;
+  if (sec == S_VERTICES) {
+    d->seen_vertices = 1;
+    /* the model, now that the top section has said which */
+    if (d->string_model) {
+      rc = tds_strings_enable(d->ctx, d->s, d->space_dim ? d->space_dim : 3);
+      if (rc) return df_core(d, df_line_of(d, at), rc, NULL);
+      if ((rc = df_string_model(d))) return rc;
+    } else if (d->space_dim == 2) {
+      return df_err(d, at, TDS_ESYNTAX,
+                    "SPACE_DIMENSION 2 is supported only in the string model (STRING)");
+    }
+  }
   if (!df_at_eol(d)) {
     char b[64];
     return df_err(d, d->p, TDS_ESYNTAX, "unexpected %s after %s",
@@ -156,6 +168,10 @@ static int finish(df *d) {
                   d->name, v + 1);
     }
   /* gravity_on: set by the body density setter (attr_rows.c) */
+  if (s->str) {
+    int rc = df_string_finish(d);
+    if (rc) return rc;
+  }
   if (tds_mesh_check(d->ctx, m) != TDS_OK) {
     char msg[sizeof d->ctx->errmsg];
     memcpy(msg, d->ctx->errmsg, sizeof msg);
@@ -193,6 +209,8 @@ static int surface_empty(const tds_surf *s) {
 
 int tds_datafile_load_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
                              const char *text, size_t len) {
+  TDS_REQUIRE(ctx, s && (text || !len));
+  TDS_REQUIRE(ctx, tds_alloc_same(&ctx->alloc, &s->m.alloc));
   if (!name) name = "(datafile)";
   if (!surface_empty(s))
     return tds_seterr(ctx, TDS_ERANGE,
@@ -225,6 +243,7 @@ int tds_datafile_load_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
 }
 
 int tds_datafile_load(tds_ctx *ctx, tds_surf *s, const char *path) {
+  TDS_REQUIRE(ctx, s && path);
   FILE *f = fopen(path, "rb");
   if (!f) return tds_seterr(ctx, TDS_EIO, "cannot open '%s': %s", path, strerror(errno));
   size_t cap = 1 << 16, n = 0;

@@ -9,6 +9,7 @@
 ** highest face id, so split-off facets come after every declared one.
 */
 #include "datafile_int.h"
+#include "string_model.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -53,9 +54,29 @@ static int read_original(df *d, const char *what) {
 }
 
 /* CONSTRAINT(S) c1 c2 ...: *rev set if a number is negative. */
+/* The slot of the named constraint at the cursor (optionally after '-'),
+** or -1 (nothing consumed). */
+static int named_con(df *d, int *neg) {
+  df_ws(d);
+  const char *p = d->p + (*d->p == '-');
+  size_t n = df_word_len(p);
+  int slot = n ? tds_surf_con_named(d->s, p, n) : -1;
+  if (slot >= 0) {
+    *neg = *d->p == '-';
+    d->p = p + n;
+  }
+  return slot;
+}
+
 static int con_list(df *d, const char *what, tds_cmask *mask, int *rev) {
-  int n = 0;
-  while (df_looks_int(d)) {
+  int n = 0, neg, named;
+  while ((named = named_con(d, &neg)) >= 0 || df_looks_int(d)) {
+    if (named >= 0) {
+      if (neg && rev) *rev = 1;
+      *mask |= (tds_cmask)1 << named;
+      n++;
+      continue;
+    }
     int64_t c;
     const char *a = d->p;
     int rc = df_read_int(d, 1, what, &c);
@@ -330,10 +351,12 @@ static int vertex_line(df *d) {
   if (rc) return rc;
   double val[3];
   int nval = 0;
+  int maxc = d->s->str ? d->s->str->space_dim : 3;
+  val[2] = 0; /* z of a vertex in 2-D space */
   while (df_looks_value(d)) {
-    if (nval == 3)
-      return df_err(d, d->p, TDS_ESYNTAX, "%s: more than 3 coordinates "
-                    "(SPACE_DIMENSION is not supported yet)", what);
+    if (nval == maxc)
+      return df_err(d, d->p, TDS_ESYNTAX, "%s: more than %d coordinates%s", what, maxc,
+                    maxc == 3 ? " (SPACE_DIMENSION > 3 is not supported yet)" : "");
     if ((rc = df_read_value(d, &val[nval], what))) return rc;
     nval++;
   }
@@ -354,8 +377,8 @@ static int vertex_line(df *d) {
                     what, d->s->bdry[bd].number, np, np > 1 ? "s" : "", nval);
     for (int k = 0; k < np; k++) p[k] = val[k];
   } else {
-    if (nval != 3)
-      return df_err(d, NULL, TDS_ESYNTAX, "%s needs 3 coordinates, got %d", what, nval);
+    if (nval != maxc)
+      return df_err(d, NULL, TDS_ESYNTAX, "%s needs %d coordinates, got %d", what, maxc, nval);
     for (int k = 0; k < 3; k++) x[k] = val[k];
   }
   int line = df_line_of(d, NULL);
@@ -397,7 +420,8 @@ static int edge_line(df *d) {
   if (vs[0] == vs[1])
     return df_err(d, NULL, TDS_ETOPO, "%s starts and ends at vertex %lld", what,
                   (long long)ends[0]);
-  rc = tds_decl_edge(d->ctx, d->s, id, vs[0], vs[1], flags, con, bd, 0, 0);
+  rc = tds_decl_edge(d->ctx, d->s, id, vs[0], vs[1], flags, con, bd,
+                     d->s->str ? 1 : 0, 0); /* strings carry tension by default */
   if (rc) return df_core(d, line, rc, NULL);
   d->s->m.efile[id] = line_file_id(d);
   return apply_attrs(d, TDS_EDGE, id, pv0, d->npv, line);
@@ -416,8 +440,10 @@ static int id_list(df *d, int kind, const char *what, int *n) {
     if (rc) return rc;
     int64_t av = v < 0 ? -v : v;
     tds_id sl = slot_of(d, kind, av);
+    const tds_strings *st = d->s->str;
     int ok = sl != TDS_NONE && (kind == TDS_EDGE
                  ? sl < m->ne && tds_alive(m->eflags, sl)
+                 : st ? sl < st->nf && !(st->flags[sl] & TDS_DEAD)
                  : sl < m->nf && tds_alive(m->fflags, sl) && m->forig[sl] == sl);
     if (!ok)
       return df_err(d, a, TDS_ERANGE, "%s refers to %s %lld, which does not exist", what,
@@ -442,7 +468,7 @@ static int face_line(df *d) {
   fa.color = 15;
   int32_t pv0 = d->npv; /* faces keep their values until df_build_faces */
   if ((rc = attr_words(d, TDS_FACET, what, &fa.flags, &fa.con, NULL, NULL, NULL))) return rc;
-  if (n < 3)
+  if (n < 3 && !(d->s->str && n >= 1))
     return df_err(d, NULL, TDS_ETOPO, "%s has %d edge%s; at least 3 are needed", what, n,
                   n == 1 ? "" : "s");
   if (tds_grow(&d->ctx->alloc, (void **)&d->faces, sizeof *d->faces, &d->capfaces, d->nfaces + 1))
@@ -462,6 +488,7 @@ static int face_line(df *d) {
 
 int df_build_faces(df *d) {
   if (d->nfaces == 0) return TDS_OK;
+  if (d->s->str) return df_string_faces(d);
   tds_mesh *m = &d->s->m;
   /* Reserve for the split-off elements at once (tds_build_face reserves
   ** exactly what each face needs, which is quadratic over many faces). */
@@ -510,9 +537,15 @@ static int body_line(df *d) {
   if ((rc = attr_words(d, TDS_BODY, what, &flags, NULL, NULL, NULL, NULL))) return rc;
   if ((rc = exclusive(d, TDS_BODY, what, pv0))) return rc;
   int line = df_line_of(d, NULL);
-  rc = tds_decl_body(d->ctx, d->s, id, n, d->oe + off);
-  d->noe = off;
-  if (rc) return df_core(d, line, rc, NULL);
+  if (d->s->str) {
+    rc = df_string_body(d, id, n, d->oe + off);
+    d->noe = off;
+    if (rc) return rc;
+  } else {
+    rc = tds_decl_body(d->ctx, d->s, id, n, d->oe + off);
+    d->noe = off;
+    if (rc) return df_core(d, line, rc, NULL);
+  }
   d->s->m.bfile[id] = line_file_id(d);
   return apply_attrs(d, TDS_BODY, id, pv0, d->npv, line);
 }

@@ -20,7 +20,7 @@
 /* Evolver keywords whose features the core does not have yet. */
 static const char *const unsupported[] = {
     "torus", "torus_filled", "periods", "display_periods", "display_origin",
-    "string", "quadratic", "lagrange", "lagrange_order", "simplex_representation",
+    "quadratic", "lagrange", "lagrange_order", "simplex_representation",
     "symmetry_group", "metric", "conformal_metric", "klein_metric",
     "method_instance", "optimizing_parameter", "optimising_parameter", "wulff",
     "phasefile", "diffusion", "pressure", "squared_curvature",
@@ -168,12 +168,29 @@ static int decl_number(df *d, const char *kw, int (*slot_of)(const tds_surf *, i
 
 static int h_constraint(df *d, const hdr_kw *k) {
   int64_t n;
-  char what[64], w[64];
-  int rc = decl_number(d, k->name, tds_surf_con_slot, &n, what, sizeof what);
+  char what[64], w[64], name[32] = "";
+  int have, rc = df_more(d, &have);
   if (rc) return rc;
+  size_t nl = have ? df_word_len(d->p) : 0;
+  if (nl) { /* a named constraint: the smallest free number */
+    const char *a = d->p;
+    if (nl >= sizeof name)
+      return df_err(d, a, TDS_ESYNTAX, "CONSTRAINT: name longer than %d characters",
+                    (int)sizeof name - 1);
+    if (df_expr_word(a, nl))
+      return df_err(d, a, TDS_ESYNTAX, "CONSTRAINT: '%.*s' is a function or constant name",
+                    (int)nl, a);
+    for (size_t i = 0; i < nl; i++) name[i] = (char)(a[i] >= 'A' && a[i] <= 'Z' ? a[i] + 32 : a[i]);
+    d->p += nl;
+    snprintf(what, sizeof what, "constraint %s", name);
+    if (tds_surf_con_named(d->s, name, nl) >= 0)
+      return df_err(d, a, TDS_ESYNTAX, "%s is declared twice", what);
+    n = tds_surf_con_free_number(d->s);
+  } else if ((rc = decl_number(d, k->name, tds_surf_con_slot, &n, what, sizeof what))) {
+    return rc;
+  }
   int flags = 0;
   for (;;) {
-    int have;
     if ((rc = df_more(d, &have))) return rc;
     if (!have)
       return df_err(d, NULL, TDS_ESYNTAX, "%s: expected FORMULA, found end of file", what);
@@ -210,7 +227,9 @@ static int h_constraint(df *d, const hdr_kw *k) {
   }
   int line = df_line_of(d, NULL);
   rc = tds_model_constraint(d->ctx, d->s, (int)n, flags, f, en, ct);
-  return rc ? df_core(d, line, rc, NULL) : TDS_OK;
+  if (rc) return df_core(d, line, rc, NULL);
+  memcpy(d->s->con[tds_surf_con_slot(d->s, (int)n)].name, name, sizeof name);
+  return TDS_OK;
 }
 
 static int h_boundary(df *d, const hdr_kw *k) {
@@ -220,7 +239,7 @@ static int h_boundary(df *d, const hdr_kw *k) {
   if (rc) return rc;
   int have;
   if ((rc = df_more(d, &have))) return rc;
-  if (!have || !df_accept(d, "parameters")) {
+  if (!have || (!df_accept(d, "parameters") && !df_accept(d, "parameter"))) {
     char b[64];
     return df_err(d, d->p, TDS_ESYNTAX, "%s: expected PARAMETERS, found %s", what,
                   df_describe(d->p, b, sizeof b));
@@ -445,16 +464,26 @@ static int h_symmetric(df *d, const hdr_kw *k) {
   return TDS_OK;
 }
 
-/* SPACE_DIMENSION 3, SURFACE_DIMENSION 2: anything else is refused. */
+/* SPACE_DIMENSION 2 or 3; SURFACE_DIMENSION 1 (the string model, as
+** STRING) or 2: anything else is refused. The string model is set up when
+** the VERTICES section starts (the keywords may come in any order). */
 static int h_dimension(df *d, const hdr_kw *k) {
   int64_t n;
   char u[64];
   df_upper(k->name, u, sizeof u);
   int rc = df_header_int(d, 0, u, &n);
   if (rc) return rc;
-  int want = k->name[1] == 'p' ? 3 : 2;
-  if (n != want)
+  int space = k->name[1] == 'p';
+  if (space ? n != 2 && n != 3 : n != 1 && n != 2)
     return df_err(d, NULL, TDS_ESYNTAX, "%s %lld is not supported yet", u, (long long)n);
+  if (space) d->space_dim = (int)n;
+  else d->string_model = n == 1;
+  return TDS_OK;
+}
+
+static int h_string(df *d, const hdr_kw *k) {
+  (void)k;
+  d->string_model = 1;
   return TDS_OK;
 }
 
@@ -560,6 +589,7 @@ static const hdr_kw header_kw[] = {
     {"spring_constant", h_value, AT(gap_constant), ANY},
     {"gap_constant", h_value, AT(gap_constant), ANY},
     {"symmetric_content", h_symmetric, 0, 0},
+    {"string", h_string, 0, 0},
     {"constraint_tolerance", h_value, AT(constraint_tol), POSITIVE},
     {"space_dimension", h_dimension, 0, 0},
     {"surface_dimension", h_dimension, 0, 0},

@@ -125,6 +125,8 @@ typedef struct df {
   int has_read;        /* a READ section follows ... */
   size_t read_at;      /* ... from this raw offset */
   int split;           /* several values in a row: element lines, matrices */
+  int space_dim;       /* SPACE_DIMENSION given (0: not given) */
+  int string_model;    /* STRING or SURFACE_DIMENSION 1 given */
   /* Element ids: as Evolver, elements are numbered 1, 2, ... in the order
   ** the file gives them (the file's ids become `original`), unless the
   ** top section says KEEP_ORIGINALS (slot = the file's id - 1). */
@@ -138,6 +140,19 @@ typedef struct df {
 
 /* Free the id maps (datafile_elements.c). */
 void df_free_ids(df *d);
+
+/* ---- the string model (datafile_string.c) ---- */
+
+/* Build the faces of the FACES section as string-model cells (in id
+** order). */
+int df_string_faces(df *d);
+/* Give body id the cells faces[0..n) (signed 1-based ids). */
+int df_string_body(df *d, tds_id id, int n, const int32_t *faces);
+/* When the elements start: refuse what the string model does not have yet
+** (messages at the current line). */
+int df_string_model(df *d);
+/* At the end: check the cells. */
+int df_string_finish(df *d);
 
 /* ---- messages (datafile_read.c) ---- */
 

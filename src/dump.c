@@ -19,6 +19,7 @@
 #include "attr.h"
 #include "datafile.h"
 #include "model.h"
+#include "string_model.h"
 #include "wfile.h"
 
 typedef struct out {
@@ -68,10 +69,12 @@ static void text(out *o, const tds_expr *e) {
   }
 }
 
-static void components(out *o, const char *title, char letter, tds_expr *const e[3]) {
+/* ncomp: 3, or 1 for the string model's scalar content */
+static void components(out *o, const char *title, char letter, tds_expr *const e[3],
+                       int ncomp) {
   if (!e[0] && !e[1] && !e[2]) return;
   fprintf(o->f, "%s\n", title);
-  for (int k = 0; k < 3; k++) {
+  for (int k = 0; k < ncomp; k++) {
     fprintf(o->f, "%c%d: ", letter, k + 1);
     text(o, e[k]);
     fputc('\n', o->f);
@@ -82,7 +85,10 @@ static void cons(out *o, const tds_surf *s, tds_cmask mask, int rev) {
   if (!mask) return;
   fputs(" constraints", o->f);
   for (int c = 0; c < TDS_MAX_CON; c++)
-    if (mask & ((tds_cmask)1 << c)) fprintf(o->f, " %s%d", rev ? "-" : "", s->con[c].number);
+    if (mask & ((tds_cmask)1 << c)) {
+      if (s->con[c].name[0]) fprintf(o->f, " %s%s", rev ? "-" : "", s->con[c].name);
+      else fprintf(o->f, " %s%d", rev ? "-" : "", s->con[c].number);
+    }
 }
 
 /* Nested braces of user array values v (dims dim[d..ndim)), from *k. */
@@ -177,6 +183,8 @@ static void header(out *o, const tds_surf *s) {
     num(o, s->parval[i], "parameter", i + 1);
     fputc('\n', f);
   }
+  if (s->str)
+    fprintf(f, "STRING\nSPACE_DIMENSION %d\n\n", s->str->space_dim);
   if (s->npar) fputc('\n', f);
   defines(o, s);
   gravity(o, s);
@@ -213,15 +221,19 @@ static void header(out *o, const tds_surf *s) {
     if (best < 0) break;
     const tds_constraint *c = &s->con[best];
     last = c->number;
-    fprintf(f, "CONSTRAINT %d%s%s%s%s\nFORMULA: ", c->number,
+    /* a named one is written by name, in its number's place: reading it
+    ** back gives it the same number (the smallest free one) */
+    if (c->name[0]) fprintf(f, "CONSTRAINT %s", c->name);
+    else fprintf(f, "CONSTRAINT %d", c->number);
+    fprintf(f, "%s%s%s%s\nFORMULA: ",
             (c->flags & TDS_CON_GLOBAL) ? " GLOBAL" : "",
             (c->flags & TDS_CON_CONVEX) ? " CONVEX" : "",
             (c->flags & TDS_CON_NONNEG) ? " NONNEGATIVE" : "",
             (c->flags & TDS_CON_NONPOS) ? " NONPOSITIVE" : "");
     text(o, c->formula);
     fputc('\n', f);
-    components(o, "ENERGY", 'E', c->energy);
-    components(o, "CONTENT", 'C', c->content);
+    components(o, "ENERGY", 'E', c->energy, s->str ? 1 : 3);
+    components(o, "CONTENT", 'C', c->content, s->str ? 1 : 3);
     fputc('\n', f);
   }
   for (int i = 0; i < s->nbdry; i++) {
@@ -234,8 +246,8 @@ static void header(out *o, const tds_surf *s) {
       text(o, b->x[k]);
       fputc('\n', f);
     }
-    components(o, "ENERGY", 'E', b->energy);
-    components(o, "CONTENT", 'C', b->content);
+    components(o, "ENERGY", 'E', b->energy, s->str ? 1 : 3);
+    components(o, "CONTENT", 'C', b->content, s->str ? 1 : 3);
     fputc('\n', f);
   }
   for (int i = 0; i < s->nquant; i++) {
@@ -284,6 +296,45 @@ static void header(out *o, const tds_surf *s) {
   }
 }
 
+/* The string model's cells as faces: their edge lists. */
+static void string_faces(out *o, const tds_surf *s) {
+  const tds_strings *st = s->str;
+  for (tds_id t = 0; t < st->nf; t++) {
+    if (st->flags[t] & TDS_DEAD) continue;
+    fprintf(o->f, "%d", t + 1);
+    int col = 0;
+    for (int32_t i = st->start[t]; i < st->start[t + 1]; i++) {
+      if (++col == 20) {
+        fputs(" \\\n ", o->f);
+        col = 0;
+      }
+      fprintf(o->f, " %s%d", TDS_OREV(st->oe[i]) ? "-" : "", TDS_OID(st->oe[i]) + 1);
+    }
+    if (st->flags[t] & TDS_FIXED) fputs(" fixed", o->f);
+    if (st->flags[t] & TDS_NODISPLAY) fputs(" nodisplay", o->f);
+    if (st->flags[t] & TDS_NONCONTENT) fputs(" noncontent", o->f);
+    if (st->color[t]) fprintf(o->f, " color %d", st->color[t]);
+    fputc('\n', o->f);
+  }
+}
+
+/* The cells of body b (string model), signed. */
+static void string_body(out *o, const tds_surf *s, tds_id b) {
+  const tds_strings *st = s->str;
+  int col = 0;
+  for (tds_id t = 0; t < st->nf; t++) {
+    if (st->flags[t] & TDS_DEAD) continue;
+    for (int j = 0; j < 2; j++)
+      if (st->fb[t][j] == b) {
+        if (col++ == 16) {
+          fputs(" \\\n ", o->f);
+          col = 0;
+        }
+        fprintf(o->f, " %s%d", j ? "-" : "", t + 1);
+      }
+  }
+}
+
 static void elements(out *o, tds_surf *s) {
   FILE *f = o->f;
   const tds_mesh *m = &s->m;
@@ -295,7 +346,8 @@ static void elements(out *o, tds_surf *s) {
     if (bd != TDS_NONE && bd >= 0 && bd < s->nbdry) {
       for (int k = 0; k < s->bdry[bd].nparams; k++) num(o, m->vp[v][k], "vertex", v + 1);
     } else {
-      for (int k = 0; k < 3; k++) num(o, m->x[v][k], "vertex", v + 1);
+      int dim = s->str ? s->str->space_dim : 3;
+      for (int k = 0; k < dim; k++) num(o, m->x[v][k], "vertex", v + 1);
     }
     attrs(o, s, TDS_VERTEX, v);
     fputc('\n', f);
@@ -318,6 +370,7 @@ static void elements(out *o, tds_surf *s) {
     attrs(o, s, TDS_FACET, t);
     fputc('\n', f);
   }
+  if (s->str) string_faces(o, s);
   int any = 0;
   for (tds_id b = 0; b < m->nb; b++) any |= tds_alive(m->bflags, b);
   if (!any) return;
@@ -326,6 +379,7 @@ static void elements(out *o, tds_surf *s) {
     if (!tds_alive(m->bflags, b)) continue;
     fprintf(f, "%d", b + 1);
     int col = 0;
+    if (s->str) string_body(o, s, b);
     for (tds_id t = 0; t < m->nf; t++) {
       if (!tds_alive(m->fflags, t)) continue;
       for (int j = 0; j < 2; j++)
@@ -361,7 +415,7 @@ static int write(tds_ctx *ctx, tds_surf *s, const char *path, int model, const c
     fprintf(o.f, "// %s: Surface Evolver datafile written by tds %s\n", path, TDS_VERSION);
     fprintf(o.f, "// vertices %d, edges %d, facets %d, bodies %d",
             tds_mesh_count(m, TDS_VERTEX), tds_mesh_count(m, TDS_EDGE),
-            tds_mesh_count(m, TDS_FACET), tds_mesh_count(m, TDS_BODY));
+            tds_surf_count(s, TDS_FACET), tds_mesh_count(m, TDS_BODY));
     if (isfinite(energy)) fprintf(o.f, "; total energy %.17g", energy);
     fputs("\n\n", o.f);
     header(&o, s);

@@ -28,6 +28,7 @@
 
 #include "gather.h"
 #include "method.h"
+#include "string_model.h"
 #include "vec3.h"
 
 /* Where a weighted value goes: body b (its volume and, if constrained,
@@ -360,12 +361,83 @@ static int integrand_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int slo
   return rc;
 }
 
+/* ---- the string model (string_model.h) ---- */
+
+/* Edge e's body weights from the cells' loops, times w; with `pressure`
+** also the energy -p A of bodies with a prescribed pressure. */
+static int str_bodies(const tds_surf *s, tds_id e, double w, int pressure, sink *o) {
+  const tds_strings *st = s->str;
+  const tds_mesh *m = &s->m;
+  int n = 0;
+  double pw = 0;
+  for (int32_t k = st->eb_start[e]; k < st->eb_start[e + 1]; k++) {
+    if (n == MAX_SINKS - 1) return -1;
+    tds_id b = st->eb_body[k];
+    o[n++] = (sink){b, w * st->eb_w[k]};
+    if (pressure && (m->bflags[b] & TDS_PRESSURE)) pw -= w * st->eb_w[k] * m->bpressure[b];
+  }
+  if (pw != 0) o[n++] = (sink){TDS_NONE, pw};
+  return n;
+}
+
+static int s_str_area(const tds_surf *s, const term *t, tds_id e, sink *o) {
+  (void)t;
+  return str_bodies(s, e, 1, 1, o);
+}
+
+/* G density int int y dA per body, from the same weights. */
+static int s_str_gravity(const tds_surf *s, const term *t, tds_id e, sink *o) {
+  const tds_strings *st = s->str;
+  (void)t;
+  double w = 0;
+  for (int32_t k = st->eb_start[e]; k < st->eb_start[e + 1]; k++)
+    w += st->eb_w[k] * s->m.bdensity[st->eb_body[k]];
+  o[0] = (sink){TDS_NONE, s->gravity * w};
+  return w != 0;
+}
+
+/* Constraint content at the ends of the cells' edges: + at an edge's head
+** on the constraint, - at its tail (so the ends of a loop that stops on a
+** constraint remain, Evolver's string-model content). */
+static int on_vcon(const tds_surf *s, const term *t, tds_id v) {
+  return (s->m.vcon[v] & ((tds_cmask)1 << t->slot)) != 0;
+}
+static int s_str_head(const tds_surf *s, const term *t, tds_id e, sink *o) {
+  if (!on_vcon(s, t, s->m.ev[e][1])) return 0;
+  return str_bodies(s, e, 1, 0, o);
+}
+static int s_str_tail(const tds_surf *s, const term *t, tds_id e, sink *o) {
+  if (!on_vcon(s, t, s->m.ev[e][0])) return 0;
+  return str_bodies(s, e, -1, 0, o);
+}
+
+/* Body areas, pressures, gravity and constraint contents of the string
+** model. */
+static int string_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
+  int rc = tds_strings_index(ctx, s);
+  if (rc != TDS_OK || s->m.nb == 0) return rc;
+  rc = energy_term(ctx, s, out, make(s, TDS_M_EDGE_AREA, s_str_area, NULL, 0));
+  if (rc == TDS_OK && s->gravity_on && s->gravity != 0)
+    rc = energy_term(ctx, s, out, make(s, TDS_M_STRING_GRAVITY, s_str_gravity, NULL, 0));
+  for (int c = 0; c < TDS_MAX_CON && rc == TDS_OK; c++) {
+    const tds_constraint *con = &s->con[c];
+    if (!con->number || !con->content[0]) continue;
+    term th = make(s, TDS_M_VERTEX_HEAD, s_str_head, con->content, 0);
+    term tt = make(s, TDS_M_VERTEX_TAIL, s_str_tail, con->content, 0);
+    th.slot = tt.slot = c;
+    rc = energy_term(ctx, s, out, th);
+    if (rc == TDS_OK) rc = energy_term(ctx, s, out, tt);
+  }
+  return rc;
+}
+
 /* Edge tension, constraint and boundary integrals, gap energy. */
 static int edge_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
   int rc = TDS_OK;
   int anyten = 0;
   for (tds_id e = 0; e < s->m.ne && !anyten; e++) anyten = s->m.eten[e] != 0;
   if (anyten) rc = energy_term(ctx, s, out, make(s, TDS_M_EDGE_LENGTH, s_edge_tension, NULL, 0));
+  if (s->str) return rc == TDS_OK ? string_terms(ctx, s, out) : rc;
   for (int c = 0; c < TDS_MAX_CON && rc == TDS_OK; c++) {
     const tds_constraint *con = &s->con[c];
     if (!con->number) continue;

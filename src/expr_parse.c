@@ -805,6 +805,7 @@ int tds_expr_parse(tds_ctx *ctx, const char *text, size_t *consumed,
                    const tds_expr_env *env, tds_expr **out) {
   parser p;
   opnd o;
+  TDS_ASSERT(out != NULL);
   memset(&p, 0, sizeof p);
   *out = NULL;
   p.ctx = ctx;

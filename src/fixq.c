@@ -1,6 +1,8 @@
 /* fixq.c: Lagrange-multiplier constraints (body volumes, fixed quantities). */
 #include "fixq.h"
 
+#include "string_model.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -74,8 +76,11 @@ int tds_fixq_build(tds_ctx *ctx, tds_surf *s, tds_fixq *fq) {
   /* Entries per vertex: its bodies with targets plus every global quantity.
   ** Upper bound 2 per star facet + nglobal; compacted below. */
   int64_t bound = 0;
+  tds_id vb[64]; /* string model: the bodies of a vertex's cells */
+  if (s->str && tds_strings_index(ctx, s) != TDS_OK) goto nomem;
   for (tds_id v = 0; v < m->nv; v++)
-    bound += 2 * (int64_t)(m->vf_start[v + 1] - m->vf_start[v]) + nglobal;
+    bound += (s->str ? (tds_alive(m->vflags, v) ? tds_strings_vertex_bodies(s, v, vb, 64) : 0)
+                     : 2 * (int64_t)(m->vf_start[v + 1] - m->vf_start[v])) + nglobal;
   if (bound > INT32_MAX) goto nomem;
   fq->eq = tds_calloc(&fq->alloc, (size_t)bound, sizeof *fq->eq);
   if (!fq->eq) goto nomem;
@@ -83,6 +88,10 @@ int tds_fixq_build(tds_ctx *ctx, tds_surf *s, tds_fixq *fq) {
   for (tds_id v = 0; v < m->nv; v++) {
     fq->start[v] = n;
     if (!tds_alive(m->vflags, v)) continue;
+    int nvb = s->str ? tds_strings_vertex_bodies(s, v, vb, 64) : 0;
+    for (int k = 0; k < nvb; k++)
+      if (fq->bq[vb[k]] >= 0 && !has_q(fq, fq->start[v], n, fq->bq[vb[k]]))
+        fq->eq[n++] = fq->bq[vb[k]];
     for (int32_t i = m->vf_start[v]; i < m->vf_start[v + 1]; i++)
       for (int j = 0; j < 2; j++) {
         tds_id b = m->fb[m->vf[i]][j];
@@ -169,6 +178,7 @@ int tds_fixq_multipliers(tds_ctx *ctx, tds_fixq *fq, double (*gradE)[3]) {
 }
 
 int tds_fixq_restore(tds_ctx *ctx, tds_fixq *fq, int32_t nv, double (*dx)[3]) {
+  TDS_REQUIRE(ctx, dx && nv >= fq->nv);
   memset(dx, 0, (size_t)nv * sizeof *dx);
   if (fq->nq == 0) return TDS_OK;
   double *mu = fq->mult;

@@ -42,6 +42,7 @@ void tds_fixq_clear(tds_fixq *fq);
 ** pattern, which holds by construction). Inline: the assembly calls it
 ** for every corner of every facet of a constrained body. */
 static inline void tds_fixq_add(tds_fixq *fq, tds_id v, int32_t q, const double gv[3]) {
+  TDS_ASSERT(v >= 0 && v < fq->nv && q >= 0 && q < fq->nq);
   for (int32_t i = fq->start[v]; i < fq->start[v + 1]; i++)
     if (fq->eq[i] == q) {
       fq->g[i][0] += gv[0];
@@ -49,10 +50,11 @@ static inline void tds_fixq_add(tds_fixq *fq, tds_id v, int32_t q, const double 
       fq->g[i][2] += gv[2];
       return;
     }
+  TDS_ASSERT(!"the pattern holds (v, q)");
 }
 
-/* Restoring motion dx = sum_q mu_q g_q with G mu = target - value (dx is
-** overwritten for every vertex). TDS_OK or TDS_ENUM. */
+/* Restoring motion dx = sum_q mu_q g_q with G mu = target - value (dx, of
+** nv >= fq->nv rows, is overwritten). TDS_OK or TDS_ENUM. */
 int tds_fixq_restore(tds_ctx *ctx, tds_fixq *fq, int32_t nv, double (*dx)[3]);
 
 /* Multipliers of the gradient of energy: lambda = G^-1 <g, grad E>, so that

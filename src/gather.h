@@ -45,6 +45,7 @@ typedef struct tds_corners {
 /* Corners of facet f in its orientation: x[k] is vertex fv[f][k]. */
 static inline __attribute__((always_inline)) void
 tds_gather_facet(const tds_mesh *m, tds_id f, tds_corners *c) {
+  TDS_ASSERT(f >= 0 && f < m->nf);
   const tds_id *fv = m->fv[f];
   c->x[0] = m->x[fv[0]];
   c->x[1] = m->x[fv[1]];
@@ -54,6 +55,7 @@ tds_gather_facet(const tds_mesh *m, tds_id f, tds_corners *c) {
 /* Tail and head of oriented edge oe: x[0] tail, x[1] head. */
 static inline __attribute__((always_inline)) void
 tds_gather_edge(const tds_mesh *m, int32_t oe, tds_corners *c) {
+  TDS_ASSERT(oe >= 0 && TDS_OID(oe) < m->ne);
   const tds_id *ev = m->ev[TDS_OID(oe)];
   int r = TDS_OREV(oe);
   c->x[0] = m->x[ev[r]];

@@ -44,6 +44,7 @@ int tds_hess_assemble(tds_ctx *ctx, tds_surf *s, const tds_hess_opts *opts,
                       tds_hess *out) {
   static const tds_hess_opts lagr = {1, -1, 0};
   if (!opts) opts = &lagr;
+  TDS_REQUIRE(ctx, s && out);
   tds_mesh *m = &s->m;
   memset(out, 0, sizeof *out);
   out->alloc = ctx->alloc;
@@ -116,6 +117,7 @@ fail:
 }
 
 int tds_hess_kkt(tds_ctx *ctx, const tds_hess *h, tds_spmat *K) {
+  TDS_REQUIRE(ctx, h && K && h->n % 3 == 0);
   int32_t n = h->n;
   tds_sptrip t = {.nrow = n + h->nq, .ncol = n + h->nq, .alloc = ctx->alloc};
   for (int32_t j = 0; j < n; j++)

@@ -99,6 +99,7 @@ static int vertex_space(const tds_surf *s, tds_id v, const double f[3], double B
 }
 
 int tds_hess_reduce(tds_ctx *ctx, const tds_surf *s, const tds_hess *h, tds_hess_red *out) {
+  TDS_REQUIRE(ctx, s && h && out && h->n % 3 == 0);
   memset(out, 0, sizeof *out);
   out->alloc = ctx->alloc;
   int32_t nvm = h->n / 3;

@@ -5,7 +5,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "string_model.h"
 #include "iterate.h"
+#include "jiggle.h"
 #include "lua_tds.h"
 #include "recalc.h"
 #include "topo.h"
@@ -17,7 +19,7 @@ static int check_rc(lua_State *L, tds_state *st, int rc) {
 
 static void print_counts(tds_state *st) {
   const tds_mesh *m = &st->s.m;
-  int32_t nf = tds_mesh_count(m, TDS_FACET);
+  int32_t nf = tds_surf_count(&st->s, TDS_FACET);
   tds_printf(&st->ctx, "Vertices: %d  Edges: %d  Facets: %d  Bodies: %d  Facetedges: %d\n",
              tds_mesh_count(m, TDS_VERTEX), tds_mesh_count(m, TDS_EDGE), nf,
              tds_mesh_count(m, TDS_BODY), 3 * nf);
@@ -57,10 +59,12 @@ static int l_refine(lua_State *L) {
   return 1;
 }
 
-/* tds.equiangulate([edges]) -> flips */
+/* tds.equiangulate([edges [, repeat]]) -> flips: one pass as Evolver, or
+** with repeat until no edge fails the test. */
 static int l_equiangulate(lua_State *L) {
   tds_state *st = TDS_STATE(L);
-  int32_t n = run_on_set(L, st, TDS_EDGE, tds_equiangulate);
+  int rep = lua_toboolean(L, 2);
+  int32_t n = run_on_set(L, st, TDS_EDGE, rep ? tds_equiangulate : tds_equiangulate_once);
   tds_printf(&st->ctx, "Edges switched in equiangulation: %d\n", n);
   return 1;
 }
@@ -70,6 +74,20 @@ static int l_vertex_average(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   run_on_set(L, st, TDS_VERTEX, tds_vertex_average);
   tds_printf(&st->ctx, "Vertex averaging done.\n");
+  return 1;
+}
+
+/* tds.jiggle([temperature [, vertices]]) -> vertices moved (jiggle.h);
+** the temperature defaults to Evolver's jiggle_temperature, 0.05. */
+static int l_jiggle(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  double t = luaL_optnumber(L, 1, 0.05);
+  uint8_t *sel = tds_lua_selection(L, st, 2, TDS_VERTEX);
+  int32_t n = 0;
+  int rc = tds_jiggle(&st->ctx, &st->s, t, sel, &n);
+  free(sel);
+  check_rc(L, st, rc);
+  lua_pushinteger(L, n);
   return 1;
 }
 
@@ -141,6 +159,7 @@ static int l_check(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   if (tds_mesh_adjacency(&st->s.m) != TDS_OK) return luaL_error(L, "out of memory");
   check_rc(L, st, tds_mesh_check(&st->ctx, &st->s.m));
+  if (st->s.str) check_rc(L, st, tds_strings_check(&st->ctx, &st->s)); /* cells */
   lua_pushboolean(L, 1);
   lua_pushinteger(L, tds_mesh_body_warnings(&st->ctx, &st->s.m, ""));
   return 2;
@@ -187,7 +206,8 @@ static int l_setting(lua_State *L) {
   static const char *const names[] = {"symmetric_content", "scale_limit",
                                       "constraint_tolerance", "gap_constant",
                                       "iterations", "conj_grad", "view_transforms",
-                                      NULL};
+                                      "check_increase", "random_seed",
+                                      "evolver_line_search", NULL};
   int which = luaL_checkoption(L, 1, NULL, names);
   tds_surf *s = &st->s;
   int set = !lua_isnone(L, 2);
@@ -218,6 +238,18 @@ static int l_setting(lua_State *L) {
   case 6: /* read-only: the datafile's count */
     lua_pushinteger(L, s->view_transforms);
     break;
+  case 7:
+    if (set) s->check_increase = lua_toboolean(L, 2);
+    lua_pushboolean(L, s->check_increase);
+    break;
+  case 9:
+    if (set) s->evolver_ls = lua_toboolean(L, 2);
+    lua_pushboolean(L, s->evolver_ls);
+    break;
+  case 8: /* the jiggle's generator state (jiggle.h) */
+    if (set) s->rng = (uint64_t)luaL_checkinteger(L, 2);
+    lua_pushinteger(L, (lua_Integer)s->rng);
+    break;
   default:
     if (set) {
       s->conj_grad = lua_toboolean(L, 2);
@@ -246,6 +278,7 @@ void tds_open_cmd(lua_State *L, tds_state *st) {
   static const luaL_Reg fns[] = {
       {"iterate", l_iterate},   {"refine", l_refine},
       {"equiangulate", l_equiangulate}, {"vertex_average", l_vertex_average},
+      {"jiggle", l_jiggle},
       {"totals", l_totals},     {"pressures", l_pressures},
       {"scale", l_scale},       {"optimize", l_optimize},
       {"gravity", l_gravity},   {"check", l_check},

@@ -29,6 +29,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "string_model.h"
 #include "datafile.h"
 #include "lua_tds.h"
 #include "wfile.h"
@@ -265,7 +266,7 @@ static int l_datafile_info(lua_State *L) {
   lua_setfield(L, -2, "vertices");
   lua_pushinteger(L, tds_mesh_count(&s->m, TDS_EDGE));
   lua_setfield(L, -2, "edges");
-  lua_pushinteger(L, tds_mesh_count(&s->m, TDS_FACET));
+  lua_pushinteger(L, tds_surf_count(s, TDS_FACET));
   lua_setfield(L, -2, "facets");
   lua_pushinteger(L, tds_mesh_count(&s->m, TDS_BODY));
   lua_setfield(L, -2, "bodies");

@@ -7,6 +7,7 @@
 
 #include "lua_attr.h"
 #include "lua_tds.h"
+#include "string_model.h"
 
 /* A handle: one element of one surface. Its user value 1 is the state's
 ** userdata, so a handle keeps its surface alive. */
@@ -21,26 +22,29 @@ static const char *const kind_name[TDS_NKINDS] = {"vertex", "edge", "facet",
 static const char *const meta_name[TDS_NKINDS] = {"tds.vertex", "tds.edge",
                                                   "tds.facet", "tds.body"};
 
-static int32_t nslots(const tds_mesh *m, int kind) {
+/* Facets are the string model's cells when it is on (string_model.h). */
+static int32_t nslots(const tds_surf *s, int kind) {
+  const tds_mesh *m = &s->m;
   switch (kind) {
   case TDS_VERTEX: return m->nv;
   case TDS_EDGE: return m->ne;
-  case TDS_FACET: return m->nf;
+  case TDS_FACET: return s->str ? s->str->nf : m->nf;
   default: return m->nb;
   }
 }
 
-static const uint32_t *flags_of(const tds_mesh *m, int kind) {
+static const uint32_t *flags_of(const tds_surf *s, int kind) {
+  const tds_mesh *m = &s->m;
   switch (kind) {
   case TDS_VERTEX: return m->vflags;
   case TDS_EDGE: return m->eflags;
-  case TDS_FACET: return m->fflags;
+  case TDS_FACET: return s->str ? s->str->flags : m->fflags;
   default: return m->bflags;
   }
 }
 
-static int alive(const tds_mesh *m, int kind, tds_id id) {
-  return id >= 0 && id < nslots(m, kind) && tds_alive(flags_of(m, kind), id);
+static int alive(const tds_surf *s, int kind, tds_id id) {
+  return id >= 0 && id < nslots(s, kind) && tds_alive(flags_of(s, kind), id);
 }
 
 /* The interned handle of (kind, id) from the state userdata's cache, or a
@@ -88,7 +92,7 @@ tds_id tds_check_elem(lua_State *L, tds_state *st, int i, int kind, int *kindp) 
   }
   if (h->st != st)
     tds_lua_error(L, "%s %d belongs to another surface", kind_name[h->kind], (int)h->id + 1);
-  if (!alive(&st->s.m, h->kind, h->id))
+  if (!alive(&st->s, h->kind, h->id))
     luaL_error(L, "%s %d no longer exists", kind_name[h->kind], h->id + 1);
   if (kindp) *kindp = h->kind;
   return h->id;
@@ -122,6 +126,73 @@ static int on_boundary(lua_State *L) {
   return 1;
 }
 
+/* The string model (string_model.h): a facet is a cell, with its area
+** (and the constraint content at open ends), flags, colour, bodies and
+** edge list; an edge's valence counts the cells using it. */
+static int push_body(lua_State *L, tds_id b) {
+  if (b == TDS_NONE) lua_pushnil(L);
+  else tds_push_elem(L, TDS_BODY, b);
+  return 1;
+}
+
+static int cell_get(lua_State *L, tds_state *st, tds_id f, const char *k) {
+  const tds_surf *s = &st->s;
+  const tds_strings *c = s->str;
+  if (!strcmp(k, "area")) lua_pushnumber(L, tds_strings_area(s, f));
+  else if (!strcmp(k, "fixed")) lua_pushboolean(L, c->flags[f] & TDS_FIXED);
+  else if (!strcmp(k, "nodisplay")) lua_pushboolean(L, c->flags[f] & TDS_NODISPLAY);
+  else if (!strcmp(k, "color")) lua_pushinteger(L, c->color[f]);
+  else if (!strcmp(k, "frontbody")) return push_body(L, c->fb[f][0]);
+  else if (!strcmp(k, "backbody")) return push_body(L, c->fb[f][1]);
+  else if (!strcmp(k, "edges") || !strcmp(k, "vertices")) {
+    int32_t a = c->start[f], n = c->start[f + 1] - a;
+    lua_createtable(L, n + 1, 0);
+    for (int32_t i = 0; i < n; i++) {
+      int32_t r = c->oe[a + i];
+      if (k[0] == 'v') tds_push_elem(L, TDS_VERTEX, tds_oe_tail(&s->m, r));
+      else lua_pushinteger(L, (TDS_OID(r) + 1) * (TDS_OREV(r) ? -1 : 1));
+      lua_rawseti(L, -2, i + 1);
+    }
+    /* an open list ends at one more vertex (Evolver lists it too) */
+    if (k[0] == 'v' && n > 0 && tds_oe_head(&s->m, c->oe[a + n - 1]) != tds_oe_tail(&s->m, c->oe[a])) {
+      tds_push_elem(L, TDS_VERTEX, tds_oe_head(&s->m, c->oe[a + n - 1]));
+      lua_rawseti(L, -2, n + 1);
+    }
+  } else return 0;
+  return 1;
+}
+
+static tds_id opt_body(lua_State *L, tds_state *st, int i) {
+  if (lua_isnoneornil(L, i) || (lua_isinteger(L, i) && lua_tointeger(L, i) == 0))
+    return TDS_NONE;
+  if (lua_isinteger(L, i)) {
+    lua_Integer b = lua_tointeger(L, i);
+    if (!alive(&st->s, TDS_BODY, (tds_id)b - 1)) luaL_error(L, "body %d does not exist", (int)b);
+    return (tds_id)b - 1;
+  }
+  return tds_check_elem(L, st, i, TDS_BODY, NULL);
+}
+
+static int cell_set(lua_State *L, tds_state *st, tds_id f, const char *k) {
+  tds_strings *c = st->s.str;
+  uint32_t bit = !strcmp(k, "fixed") ? TDS_FIXED : !strcmp(k, "nodisplay") ? TDS_NODISPLAY : 0;
+  if (bit) {
+    if (lua_toboolean(L, 3)) c->flags[f] |= bit;
+    else c->flags[f] &= ~bit;
+  } else if (!strcmp(k, "color")) c->color[f] = (int16_t)luaL_checkinteger(L, 3);
+  else if (!strcmp(k, "frontbody")) c->fb[f][0] = opt_body(L, st, 3);
+  else if (!strcmp(k, "backbody")) c->fb[f][1] = opt_body(L, st, 3);
+  else return 0;
+  c->gen++; /* the bodies' edge weights follow */
+  return 1;
+}
+
+static int string_valence(const tds_surf *s, tds_id e) {
+  int n = 0;
+  for (int32_t i = 0; i < s->str->noe; i++) n += TDS_OID(s->str->oe[i]) == e;
+  return n;
+}
+
 /* __index: id, the registry's attributes (attr.h), then computed attributes (functions
 ** in the metatable's `props` table, called with the handle: tds.props.<kind>),
 ** then methods (tds.methods.<kind>: C methods and Lua extensions). */
@@ -132,6 +203,14 @@ static int elem_index(lua_State *L) {
   const char *k = luaL_checkstring(L, 2);
   if (!strcmp(k, "id")) {
     lua_pushinteger(L, id + 1);
+    return 1;
+  }
+  if (st->s.str && kind == TDS_FACET) {
+    if (cell_get(L, st, id, k)) return 1;
+    return tds_lua_error(L, "facet %d has no attribute '%s' in the string model", (int)id + 1, k);
+  }
+  if (st->s.str && kind == TDS_EDGE && !strcmp(k, "valence")) {
+    lua_pushinteger(L, string_valence(&st->s, id));
     return 1;
   }
   tds_attr a;
@@ -158,6 +237,11 @@ static int elem_newindex(lua_State *L) {
   int kind;
   tds_id id = tds_check_elem(L, st, 1, -1, &kind);
   const char *k = luaL_checkstring(L, 2);
+  if (st->s.str && kind == TDS_FACET) {
+    if (!cell_set(L, st, id, k))
+      return tds_lua_error(L, "facet attribute '%s' cannot be set in the string model", k);
+    return 0;
+  }
   tds_attr a;
   if (!tds_attr_find(&st->s.m, kind, k, &a))
     return tds_lua_error(L, "%s %d has no attribute '%s'", kind_name[kind], (int)id + 1, k);
@@ -183,9 +267,8 @@ static int l_next(lua_State *L) {
   int kind = (int)luaL_checkinteger(L, 1);
   luaL_argcheck(L, kind >= 0 && kind < TDS_NKINDS, 1, "bad element kind");
   lua_Integer i = luaL_checkinteger(L, 2);
-  const tds_mesh *m = &st->s.m;
-  int32_t n = nslots(m, kind);
-  const uint32_t *fl = flags_of(m, kind);
+  int32_t n = nslots(&st->s, kind);
+  const uint32_t *fl = flags_of(&st->s, kind);
   for (tds_id j = (tds_id)(i < 0 ? 0 : i); j < n; j++)
     if (!(fl[j] & TDS_DEAD)) {
       lua_pushinteger(L, j + 1);
@@ -201,7 +284,7 @@ static int l_get(lua_State *L) {
   int kind = (int)luaL_checkinteger(L, 1);
   luaL_argcheck(L, kind >= 0 && kind < TDS_NKINDS, 1, "bad element kind");
   lua_Integer id = luaL_checkinteger(L, 2);
-  if (id < 1 || id > INT32_MAX || !alive(&st->s.m, kind, (tds_id)id - 1))
+  if (id < 1 || id > INT32_MAX || !alive(&st->s, kind, (tds_id)id - 1))
     return 0;
   tds_push_elem(L, kind, (tds_id)id - 1);
   return 1;
@@ -211,13 +294,13 @@ static int l_count(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   int kind = (int)luaL_checkinteger(L, 1);
   luaL_argcheck(L, kind >= 0 && kind < TDS_NKINDS, 1, "bad element kind");
-  lua_pushinteger(L, tds_mesh_count(&st->s.m, kind));
+  lua_pushinteger(L, tds_surf_count(&st->s, kind));
   return 1;
 }
 
 uint8_t *tds_lua_selection(lua_State *L, tds_state *st, int arg, int kind) {
   if (lua_isnoneornil(L, arg)) return NULL;
-  int32_t n = nslots(&st->s.m, kind);
+  int32_t n = nslots(&st->s, kind);
   /* A full userdata owns the buffer so a raised error cannot leak it. */
   uint8_t *sel = lua_newuserdatauv(L, (size_t)(n > 0 ? n : 1), 0);
   memset(sel, 0, (size_t)(n > 0 ? n : 1));

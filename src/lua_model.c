@@ -265,6 +265,17 @@ static int l_quantity_info(lua_State *L) {
   return 6;
 }
 
+/* tds.constraint_named(name) -> the number of a named constraint, or nil */
+static int l_constraint_named(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  size_t n;
+  const char *name = luaL_checklstring(L, 1, &n);
+  int slot = tds_surf_con_named(&st->s, name, n);
+  if (slot < 0) return 0;
+  lua_pushinteger(L, st->s.con[slot].number);
+  return 1;
+}
+
 /* tds.declared("constraint"|"boundary", n) -> whether number n is declared */
 static int l_declared(lua_State *L) {
   tds_state *st = TDS_STATE(L);
@@ -311,6 +322,7 @@ void tds_open_model(lua_State *L, tds_state *st) {
                                  {"quantity_info", l_quantity_info},
                                  {"quantity_set", l_quantity_set},
                                  {"declared", l_declared},
+                                 {"constraint_named", l_constraint_named},
                                  {NULL, NULL}};
   tds_lua_register(L, st, fns);
 }

@@ -85,6 +85,7 @@ void tds_mesh_free(tds_mesh *m) {
 }
 
 int tds_mesh_reserve(tds_mesh *m, int kind, int32_t n) {
+  TDS_ASSERT(kind >= 0 && kind < TDS_NKINDS);
   int32_t *cap = &FIELD(m, kinds[kind].cap_off, int32_t);
   if (n <= *cap) return TDS_OK;
   if (n > INT32_MAX / 8) return TDS_ENOMEM;
@@ -180,6 +181,7 @@ static tds_id append(tds_mesh *m, int kind) {
 }
 
 int tds_mesh_extend_dead(tds_mesh *m, int kind, int32_t n) {
+  TDS_ASSERT(kind >= 0 && kind < TDS_NKINDS);
   int32_t *cnt = &FIELD(m, kinds[kind].n_off, int32_t);
   if (n <= *cnt) return TDS_OK;
   if (tds_mesh_room(m, kind, n) != TDS_OK) return TDS_ENOMEM;
@@ -202,6 +204,8 @@ tds_id tds_mesh_add_vertex(tds_mesh *m, const double x[3]) {
 }
 
 tds_id tds_mesh_add_edge(tds_mesh *m, tds_id v0, tds_id v1) {
+  TDS_ASSERT(v0 >= 0 && v0 < m->nv && tds_alive(m->vflags, v0));
+  TDS_ASSERT(v1 >= 0 && v1 < m->nv && tds_alive(m->vflags, v1));
   tds_id e = append(m, TDS_EDGE);
   if (e != TDS_NONE) {
     m->ev[e][0] = v0;
@@ -213,6 +217,7 @@ tds_id tds_mesh_add_edge(tds_mesh *m, tds_id v0, tds_id v1) {
 tds_id tds_mesh_add_body(tds_mesh *m) { return append(m, TDS_BODY); }
 
 int tds_mesh_claim(tds_mesh *m, int kind, tds_id id) {
+  TDS_ASSERT(kind >= 0 && kind < TDS_NKINDS);
   if (id < 0 || id >= INT32_MAX / 8) return TDS_ERANGE;
   if (tds_mesh_extend_dead(m, kind, id + 1) != TDS_OK) return TDS_ENOMEM;
   uint32_t *fl = FIELD(m, flag_off[kind], uint32_t *);
@@ -269,18 +274,23 @@ static void facet_fill(tds_mesh *m, tds_id f, const int32_t oe[3]) {
 }
 
 tds_id tds_mesh_add_facet(tds_mesh *m, const int32_t oe[3]) {
+  TDS_ASSERT(tds_mesh_edges_chain(m, oe));
   tds_id f = append(m, TDS_FACET);
   if (f != TDS_NONE) facet_fill(m, f, oe);
   return f;
 }
 
 void tds_mesh_set_facet(tds_mesh *m, tds_id f, const int32_t oe[3]) {
+  TDS_ASSERT(f >= 0 && f < m->nf && tds_alive(m->fflags, f));
+  TDS_ASSERT(tds_mesh_edges_chain(m, oe));
   for (int k = 0; k < 3; k++) ring_unlink(m, 3 * f + k);
   facet_fill(m, f, oe);
   m->topo_gen++;
 }
 
 void tds_mesh_kill(tds_mesh *m, int kind, tds_id id) {
+  TDS_ASSERT(kind >= 0 && kind < TDS_NKINDS);
+  TDS_ASSERT(id >= 0 && id < CFIELD(m, kinds[kind].n_off, int32_t));
   switch (kind) {
   case TDS_VERTEX: m->vflags[id] |= TDS_DEAD; break;
   case TDS_EDGE: m->eflags[id] |= TDS_DEAD; break;
@@ -294,6 +304,7 @@ void tds_mesh_kill(tds_mesh *m, int kind, tds_id id) {
 }
 
 int tds_edge_valence(const tds_mesh *m, tds_id e) {
+  TDS_ASSERT(e >= 0 && e < m->ne);
   int32_t h = m->eside[e];
   if (h == TDS_NONE) return 0;
   int n = 0;

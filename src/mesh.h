@@ -111,6 +111,10 @@ void tds_mesh_free(tds_mesh *m);
 ** allocator. TDS_OK or TDS_ENOMEM. */
 int tds_mesh_copy(tds_mesh *dst, const tds_mesh *src);
 
+/* Contracts of the functions below (checked by TDS_ASSERT in checked
+** builds, tds.h): kind is TDS_VERTEX..TDS_BODY; ids are in the slot range
+** of their kind; elements referred to are alive. */
+
 /* Make room for at least n slots of `kind` (all columns grow together).
 ** TDS_OK or TDS_ENOMEM; on failure nothing observable changes. */
 int tds_mesh_reserve(tds_mesh *m, int kind, int32_t n);
@@ -147,9 +151,11 @@ void tds_mesh_kill(tds_mesh *m, int kind, tds_id id);
 
 /* Tail and head vertex of an oriented edge reference. */
 static inline tds_id tds_oe_tail(const tds_mesh *m, int32_t oe) {
+  TDS_ASSERT(oe >= 0 && TDS_OID(oe) < m->ne);
   return m->ev[TDS_OID(oe)][TDS_OREV(oe)];
 }
 static inline tds_id tds_oe_head(const tds_mesh *m, int32_t oe) {
+  TDS_ASSERT(oe >= 0 && TDS_OID(oe) < m->ne);
   return m->ev[TDS_OID(oe)][!TDS_OREV(oe)];
 }
 /* Nonzero when the three oriented edges exist and chain head to tail. */

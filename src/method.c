@@ -156,6 +156,10 @@ const tds_method tds_methods[TDS_M_NROWS] = {
     [TDS_M_FACET_VOLUME_SYM] = {"facet_volume_symmetric", TDS_EL_FACET, 0, tds_mk_volume_sym},
     [TDS_M_EDGE_GAP] = {"edge_gap", TDS_EL_EDGE, TDS_MF_FORMULA | TDS_MF_HESS_FD,
                         tds_mk_edge_gap},
+    [TDS_M_EDGE_AREA] = {"edge_area", TDS_EL_EDGE, 0, tds_mk_edge_area},
+    [TDS_M_STRING_GRAVITY] = {"string_gravity", TDS_EL_EDGE, 0, tds_mk_string_gravity},
+    [TDS_M_VERTEX_HEAD] = {"vertex_scalar_head", TDS_EL_EDGE, TDS_MF_SCALAR, tds_mk_vertex_head},
+    [TDS_M_VERTEX_TAIL] = {"vertex_scalar_tail", TDS_EL_EDGE, TDS_MF_SCALAR, tds_mk_vertex_tail},
 };
 
 int tds_method_by_name(const char *name) {

@@ -47,6 +47,10 @@ enum {
   TDS_M_FACET_VOLUME = TDS_M_COUNT, /* body content int z dx dy */
   TDS_M_FACET_VOLUME_SYM,           /* symmetric content (x,y,z)/3 . dS */
   TDS_M_EDGE_GAP,                   /* gap energy on a convex constraint */
+  TDS_M_EDGE_AREA,                  /* string model: -int y dx (body area) */
+  TDS_M_STRING_GRAVITY,             /* string model: -int y^2/2 dx */
+  TDS_M_VERTEX_HEAD,                /* string model: scalar ig[0] at the head */
+  TDS_M_VERTEX_TAIL,                /* ... and at the tail */
   TDS_M_NROWS
 };
 
@@ -88,6 +92,11 @@ double tds_mk_facet_sint(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_edge_vint(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_edge_sint(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_edge_gap(const tds_mlocal *L, double g[3][3], double h[9][9]);
+/* String-model rows (method_string.c). */
+double tds_mk_edge_area(const tds_mlocal *L, double g[3][3], double h[9][9]);
+double tds_mk_string_gravity(const tds_mlocal *L, double g[3][3], double h[9][9]);
+double tds_mk_vertex_head(const tds_mlocal *L, double g[3][3], double h[9][9]);
+double tds_mk_vertex_tail(const tds_mlocal *L, double g[3][3], double h[9][9]);
 
 /* Derivatives of a facet's normal N = (x1-x0) x (x2-x0):
 ** u[c][i] = dN/dx[c][i] = E_i x (x[c+1] - x[c+2]) (indices mod 3). */

@@ -85,6 +85,9 @@ static void set_mult(tds_surf *s, int32_t q, double v) {
 typedef struct start {
   tds_alloc alloc;
   double (*x0)[3], (*p0)[2];
+  int nomem;  /* a placement ran out of memory: the command fails with
+                 TDS_ENOMEM (a line search on NaN samples would give
+                 another result than with memory) */
 } start;
 
 static int start_take(tds_ctx *ctx, const tds_surf *s, start *st) {
@@ -92,9 +95,11 @@ static int start_take(tds_ctx *ctx, const tds_surf *s, start *st) {
   size_t nv = (size_t)s->m.nv + 1;
   st->x0 = tds_malloc(&ctx->alloc, nv * sizeof *st->x0);
   st->p0 = tds_malloc(&ctx->alloc, nv * sizeof *st->p0);
-  if (!st->x0 || !st->p0) {
+  if (!st->x0 || !st->p0) { /* st holds nothing (start_free may follow) */
     tds_free(&ctx->alloc, st->x0);
     tds_free(&ctx->alloc, st->p0);
+    st->x0 = NULL;
+    st->p0 = NULL;
     return tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory");
   }
   if (s->m.nv) {
@@ -115,7 +120,7 @@ static void start_free(start *st) {
 ** constraint leaves a second-order error, which one more Newton step
 ** takes to fourth order); 10 bring them to target. The energy (NAN if
 ** it failed) is returned. */
-static double place_p(tds_ctx *ctx, tds_surf *s, const start *st, const tds_nsys *n,
+static double place_p(tds_ctx *ctx, tds_surf *s, start *st, const tds_nsys *n,
                       const double *w, double t, int proj) {
   tds_mesh *m = &s->m;
   int bad = 0;
@@ -128,12 +133,14 @@ static double place_p(tds_ctx *ctx, tds_surf *s, const start *st, const tds_nsys
   }
   m->coord_gen++;
   if (bad) return NAN;
-  if (proj ? project_quantities(ctx, s, proj) : tds_surf_update(ctx, s)) return NAN;
+  int rc = proj ? project_quantities(ctx, s, proj) : tds_surf_update(ctx, s);
+  if (rc == TDS_ENOMEM) st->nomem = 1;
+  if (rc != TDS_OK) return NAN;
   return isfinite(s->energy) ? s->energy : (double)NAN;
 }
 
 /* The Newton step's placement: one restoring step. */
-static double place(tds_ctx *ctx, tds_surf *s, const start *st, const tds_nsys *n,
+static double place(tds_ctx *ctx, tds_surf *s, start *st, const tds_nsys *n,
                     const double *w, double t) {
   return place_p(ctx, s, st, n, w, t, 1);
 }
@@ -144,7 +151,7 @@ static double place(tds_ctx *ctx, tds_surf *s, const start *st, const tds_nsys *
 ** parabola through the best sample and its neighbours (t = 0 among them)
 ** when its vertex is inside and lower. Leaves the surface at the t
 ** returned, *E its energy. */
-static double seek(tds_ctx *ctx, tds_surf *s, const start *st, const tds_nsys *n,
+static double seek(tds_ctx *ctx, tds_surf *s, start *st, const tds_nsys *n,
                    const double *w, double E0, double tmax, double *E) {
   double ts[48], es[48];
   int k = 0;
@@ -313,7 +320,9 @@ int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
       }
     }
     else E = place(ctx, s, &st, &n, w, 1);
-    if (!isfinite(E))
+    if (st.nomem)
+      rc = tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory");
+    else if (!isfinite(E))
       rc = tds_seterr(ctx, TDS_ENUM, "hessian: the step gives a non-finite energy");
   }
   if (rc == TDS_OK) /* the new multipliers: H w + A y = -(grad E - A mult) */
@@ -346,7 +355,7 @@ static void amounts(const tds_nsys *n, const double (*vec)[3], double *w) {
 ** energy falls (up to tmax), then a parabola through the last three.
 ** Leaves the surface at the best t found (0: where it started) and
 ** returns that t. */
-static double expand(tds_ctx *ctx, tds_surf *s, const start *st, const tds_nsys *n,
+static double expand(tds_ctx *ctx, tds_surf *s, start *st, const tds_nsys *n,
                      const double *w, double E0, double t0, double tmax, double *E) {
   double bt = 0, bE = E0;
   for (int sign = -1; sign <= 1; sign += 2) {
@@ -393,7 +402,10 @@ int tds_newton_move(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, const d
     rc = tds_seterr(ctx, TDS_ENOMEM, "move: out of memory");
   if (rc == TDS_OK) {
     amounts(&n, vec, w);
-    if (!isfinite(place(ctx, s, &st, &n, w, t)))
+    double E = place(ctx, s, &st, &n, w, t);
+    if (st.nomem)
+      rc = tds_seterr(ctx, TDS_ENOMEM, "move: out of memory");
+    else if (!isfinite(E))
       rc = tds_seterr(ctx, TDS_ENUM, "move: the energy is not finite after the move");
   }
   tds_free(&ctx->alloc, w);
@@ -447,7 +459,10 @@ int tds_newton_saddle(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, doubl
       for (int32_t j = 0; j < n.m; j++) big = fmax(big, fabs(w[j]));
       double t0 = big > 0 ? 1e-4 / big : 1e-4, tmax = maxscale > 0 ? maxscale : 1e3 * t0;
       t = expand(ctx, s, &st, &n, w, n.energy, fmin(t0, tmax), tmax, &E);
-      if (!isfinite(E)) rc = tds_seterr(ctx, TDS_ENUM, "saddle: the energy is not finite");
+      if (st.nomem)
+        rc = tds_seterr(ctx, TDS_ENOMEM, "saddle: out of memory");
+      else if (!isfinite(E))
+        rc = tds_seterr(ctx, TDS_ENUM, "saddle: the energy is not finite");
     }
     tds_nsys_free(&n);
   }

@@ -50,7 +50,9 @@ static void facet_vec(const tds_mesh *m, tds_id f, double c[3]) {
   v3_scale(c, 0.5);
 }
 
-static void vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
+/* TDS_OK or TDS_ENOMEM (then vn is incomplete: an answer that depends on
+** memory would make a command's result depend on it). */
+static int vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
   memset(vn, 0, (size_t)m->nv * sizeof *vn);
   for (tds_id f = 0; f < m->nf; f++) {
     if (m->fflags[f] & TDS_DEAD) continue;
@@ -68,7 +70,7 @@ static void vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
   }
   /* the dominant direction: power iteration from the plain sum */
   double (*ref)[3] = tds_malloc(al, ((size_t)m->nv + 1) * sizeof *ref);
-  if (!ref) return; /* the plain sums stay: still a usable normal */
+  if (!ref) return TDS_ENOMEM;
   for (tds_id v = 0; v < m->nv; v++) {
     vnorm *w = &vn[v];
     double r[3];
@@ -123,6 +125,7 @@ static void vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
       w->nt++;
     }
   }
+  return TDS_OK;
 }
 
 /* Columns W (d x c) of the unknowns of a vertex with motion basis B
@@ -200,10 +203,12 @@ static int normal_columns(const vnorm *vn, const double B[3][3], int d, int full
 ** stored on the surface, as in Evolver (those of the last `g` or Newton
 ** step: a Newton iteration then converges to what Evolver's does); when
 ** none was ever computed (all zero with constraints present), they are
-** computed at these positions. */
-static int need_pressures(tds_ctx *ctx, tds_surf *s) {
+** computed at these positions. TDS_OK with *need set, or the status of
+** a failure (out of memory: not a reason to recompute them). */
+static int need_pressures(tds_ctx *ctx, tds_surf *s, int *needp) {
   tds_fixq fq = {0};
-  if (tds_fixq_build(ctx, s, &fq) != TDS_OK) return 1;
+  int rc = tds_fixq_build(ctx, s, &fq);
+  if (rc != TDS_OK) return rc;
   int need = 0;
   for (int32_t q = 0; q < fq.nq; q++) {
     double mult = fq.qbody[q] != TDS_NONE ? s->m.bpressure[fq.qbody[q]]
@@ -212,7 +217,8 @@ static int need_pressures(tds_ctx *ctx, tds_surf *s) {
     else if (!need) need = 1;
   }
   tds_fixq_free(&fq);
-  return need == 1;
+  *needp = need == 1;
+  return TDS_OK;
 }
 
 static int nomem(tds_ctx *ctx) { return tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory"); }
@@ -227,7 +233,8 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
   vnorm *vn = NULL;
   int32_t *rk = NULL, *ustart = NULL;
   double (*W)[3][3] = NULL;
-  int rc = need_pressures(ctx, s) ? tds_pressures(ctx, s) : TDS_OK;
+  int need = 0, rc = need_pressures(ctx, s, &need);
+  if (rc == TDS_OK && need) rc = tds_pressures(ctx, s);
   if (rc == TDS_OK) rc = tds_hess_assemble(ctx, s, NULL, &h);
   if (rc == TDS_OK && o->diff) rc = tds_hess_diff(ctx, s, &h);
   if (rc == TDS_OK) rc = tds_hess_reduce(ctx, s, &h, &r);
@@ -242,7 +249,7 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
   ustart = tds_malloc(&ctx->alloc, ((size_t)nvm + 1) * sizeof *ustart);
   rk = tds_malloc(&ctx->alloc, ((size_t)r.m + 1) * sizeof *rk);
   if (!vn || !W || !ustart || !rk) goto nomem;
-  vertex_normals(&ctx->alloc, m, vn);
+  if (vertex_normals(&ctx->alloc, m, vn) != TDS_OK) goto nomem;
   ustart[0] = 0;
   for (int32_t k = 0; k < nvm; k++) {
     int d = r.start[k + 1] - r.start[k];

@@ -40,6 +40,7 @@ int tds_pairset_has(const tds_pairset *ps, tds_id a, tds_id b) {
 }
 
 void tds_pairset_add(tds_pairset *ps, tds_id a, tds_id b) {
+  TDS_ASSERT(a >= 0 && b >= 0 && ps->key);
   uint64_t k = pkey(a, b);
   ps->key[pfind(ps, k)] = k;
 }

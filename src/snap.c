@@ -8,11 +8,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "string_model.h"
+
 void tds_snap_free(tds_snap *sn) {
   if (sn->taken) tds_mesh_free(&sn->m);
   tds_free(&sn->alloc, sn->quant);
   tds_free(&sn->alloc, sn->cg_dir);
   tds_free(&sn->alloc, sn->cg_prev);
+  if (sn->str) {
+    tds_surf tmp = {.str = sn->str};
+    tds_strings_free(&tmp);
+  }
   memset(sn, 0, sizeof *sn);
 }
 
@@ -25,6 +31,7 @@ static void *dup_mem(const tds_alloc *a, const void *p, size_t n) {
 
 int tds_snap_take(tds_ctx *ctx, const tds_surf *s, tds_snap *sn) {
   memset(sn, 0, sizeof *sn);
+  TDS_REQUIRE(ctx, tds_alloc_same(&ctx->alloc, &s->m.alloc));
   sn->alloc = s->m.alloc;
   if (tds_mesh_copy(&sn->m, &s->m) != TDS_OK)
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory (saving the surface)");
@@ -53,6 +60,7 @@ int tds_snap_take(tds_ctx *ctx, const tds_surf *s, tds_snap *sn) {
     sn->cg_prev = dup_mem(&sn->alloc, s->cg_prev, ncg);
     bad |= !sn->cg_dir || (s->cg_prev && !sn->cg_prev);
   }
+  bad |= tds_strings_copy(&sn->alloc, s->str, &sn->str) != TDS_OK;
   if (bad) {
     tds_snap_free(sn);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory (saving the surface)");
@@ -76,6 +84,12 @@ void tds_snap_restore(tds_surf *s, tds_snap *sn) {
   for (int i = 0; sn->quant && i < sn->nquant && i < s->nquant; i++) {
     s->quant[i].value = sn->quant[i][0];
     s->quant[i].pressure = sn->quant[i][1];
+  }
+  if (sn->str) { /* the cells as they were (the string model) */
+    tds_strings_free(s);
+    s->str = sn->str;
+    s->str->gen += 2;
+    sn->str = NULL;
   }
   /* The history is valid only for the topology it was built on. */
   if (sn->cg_dir && s->cg_dir && s->cg_nv == sn->cg_nv) {

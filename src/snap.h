@@ -25,6 +25,7 @@ typedef struct tds_snap {
   int32_t cg_nv;
   uint64_t cg_topo;
   double (*cg_dir)[3], (*cg_prev)[3];
+  struct tds_strings *str;  /* the string model's cells, or NULL */
   tds_alloc alloc;          /* the surface's allocator */
 } tds_snap;
 

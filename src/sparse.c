@@ -6,6 +6,7 @@
 
 
 int tds_sptrip_add(tds_sptrip *t, int32_t i, int32_t j, double v) {
+  TDS_ASSERT(i >= 0 && i < t->nrow && j >= 0 && j < t->ncol);
   if (t->n == t->cap) {
     int64_t cap = t->cap ? 2 * t->cap : 1024;
     int32_t *ni = tds_realloc(&t->alloc, t->i, (size_t)cap * sizeof *ni);
@@ -126,6 +127,7 @@ nomem:
 }
 
 double tds_spmat_get(const tds_spmat *a, int32_t i, int32_t j) {
+  TDS_ASSERT(i >= 0 && i < a->nrow && j >= 0 && j < a->ncol);
   if (a->upper && i > j) {
     int32_t s = i;
     i = j;

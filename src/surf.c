@@ -7,6 +7,7 @@
 #include <strings.h>
 
 #include "expr.h"
+#include "string_model.h"
 
 void tds_surf_init(tds_surf *s) {
   memset(s, 0, sizeof *s);
@@ -16,6 +17,7 @@ void tds_surf_init(tds_surf *s) {
   s->constraint_tol = 1e-12;
   s->scale = 0.1;
   s->scale_limit = 1;
+  s->rng = 1; /* a fixed seed: runs repeat */
 }
 
 static void free_exprs(tds_expr **e, int n) {
@@ -52,6 +54,7 @@ void tds_surf_free(tds_surf *s) {
   tds_free(&a, s->orig_facets);
   tds_free(&a, s->cg_dir);
   tds_free(&a, s->cg_prev);
+  tds_strings_free(s);
   tds_surf_init(s);
   s->m.alloc = a;
 }
@@ -92,6 +95,24 @@ int tds_surf_con_slot(const tds_surf *s, int number) {
   for (int i = 0; i < TDS_MAX_CON; i++)
     if (s->con[i].number == number && number != 0) return i;
   return -1;
+}
+
+int tds_surf_con_named(const tds_surf *s, const char *name, size_t len) {
+  if (len == 0 || len >= sizeof s->con[0].name) return -1;
+  for (int i = 0; i < TDS_MAX_CON; i++) {
+    const char *n = s->con[i].name;
+    if (!s->con[i].number || strlen(n) != len) continue;
+    size_t k = 0;
+    while (k < len && n[k] == (char)tolower((unsigned char)name[k])) k++;
+    if (k == len) return i;
+  }
+  return -1;
+}
+
+int tds_surf_con_free_number(const tds_surf *s) {
+  int n = 1;
+  while (tds_surf_con_slot(s, n) >= 0) n++;
+  return n;
 }
 
 tds_cmask tds_surf_global_cons(const tds_surf *s) {

@@ -22,6 +22,9 @@ enum {                   /* constraint flags */
 
 typedef struct tds_constraint {
   int number;             /* user's id (1-based, as declared); 0 = unused */
+  char name[32];          /* Evolver's named constraint (`constraint plane
+                             formula ...`, numbered with the smallest free
+                             number), lower case; "" if declared by number */
   int flags;
   tds_expr *formula;      /* level set: formula(x) = 0 */
   tds_expr *energy[3];    /* edge integrand (vector field), or NULL */
@@ -96,8 +99,15 @@ typedef struct tds_surf {
   double cg_norm2;        /* |velocity|^2 of the last step (0: restart) */
   int32_t cg_nv;          /* vertex slots cg_dir covers */
   uint64_t cg_topo;       /* topo_gen the history belongs to */
+  int32_t stall_facet;    /* facet slot + 1 of g's last stall warning; 0 none */
+  int check_increase;     /* undo a g step that raises the energy, stop g */
+  int evolver_ls;         /* g's line search: Evolver's bracketing (iterate.c) */
+  uint64_t rng;           /* state of the jiggle's random numbers (jiggle.h) */
 
   char *read_text;        /* a datafile's read section, kept verbatim */
+
+  struct tds_strings *str; /* the string model's cells (string_model.h),
+                              NULL in the soapfilm model */
 
   /* derived: facets of each declared face (CSR by forig), for bodies */
   int32_t *orig_start, *orig_facets;
@@ -129,6 +139,10 @@ int tds_surf_param_set(tds_surf *s, const char *name, double value);
 
 /* Constraint slot for a user number, or -1 if not declared. */
 int tds_surf_con_slot(const tds_surf *s, int number);
+/* Constraint slot of a named constraint (name[0..len), any case), or -1. */
+int tds_surf_con_named(const tds_surf *s, const char *name, size_t len);
+/* The smallest constraint number not declared (what a named one gets). */
+int tds_surf_con_free_number(const tds_surf *s);
 
 /* The constraints declared GLOBAL: every vertex is on them, also vertices
 ** made later by refining or splitting faces. */

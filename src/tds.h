@@ -31,8 +31,39 @@ enum {
   TDS_ETOPO,    /* topology operation refused or mesh inconsistent */
   TDS_ERANGE,   /* argument out of range, element does not exist */
   TDS_EINTR,    /* interrupted by the user (Ctrl-C) */
-  TDS_ENUM      /* numerical failure (NaN, singular system) */
+  TDS_ENUM,     /* numerical failure (NaN, singular system) */
+  TDS_EBUG      /* a contract of the core was broken (TDS_REQUIRE) */
 };
+
+/* Runtime contract checks, compiled in with -DTDS_CHECKS (the unit tests,
+** `make test-asan` and the fuzzers; not the program, so `g` runs at full
+** speed). Both evaluate nothing without TDS_CHECKS.
+**
+** TDS_REQUIRE(ctx, cond), in a function that returns a status: if cond is
+** false, the function returns TDS_EBUG with "file:line: broken contract:
+** cond" in ctx->errmsg (the caller sees an error, the process goes on).
+** Use it at the entry of the public functions that take a ctx.
+**
+** TDS_ASSERT(cond), anywhere else (no ctx or no status to return): if cond
+** is false, print "file:line: broken contract: cond" on stderr and abort()
+** (a fuzzer or the test run reports it with the stack). */
+#ifdef TDS_CHECKS
+#define TDS_REQUIRE(ctx, cond)                                              \
+  do {                                                                      \
+    if (!(cond)) return tds_contract_err((ctx), __FILE__, __LINE__, #cond); \
+  } while (0)
+#define TDS_ASSERT(cond) \
+  ((cond) ? (void)0 : tds_contract_abort(__FILE__, __LINE__, #cond))
+#else
+#define TDS_REQUIRE(ctx, cond) ((void)0)
+#define TDS_ASSERT(cond) ((void)0)
+#endif
+struct tds_ctx;
+/* The failure paths of TDS_REQUIRE and TDS_ASSERT (always compiled, so
+** checked and unchecked objects link together). */
+int tds_contract_err(struct tds_ctx *ctx, const char *file, int line, const char *cond);
+void tds_contract_abort(const char *file, int line, const char *cond)
+    __attribute__((noreturn));
 
 /* The allocator hook (like lua_Alloc): one function with realloc's
 ** contract. ptr NULL allocates n bytes; n == 0 frees ptr and returns NULL;
@@ -88,6 +119,11 @@ void tds_printf(tds_ctx *ctx, const char *fmt, ...)
 /* Emit a formatted warning through ctx->warn. */
 void tds_warnf(tds_ctx *ctx, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
+
+/* Nonzero when two hooks are the same (same function and state). */
+static inline int tds_alloc_same(const tds_alloc *a, const tds_alloc *b) {
+  return a->fn == b->fn && a->ud == b->ud;
+}
 
 /* The allocation helpers; a NULL or zero-initialised `a` is the C library.
 ** tds_malloc, tds_calloc (zero-filled; n*size checked) and tds_realloc

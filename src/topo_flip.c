@@ -43,6 +43,10 @@ int tds_flip_ok(const tds_surf *s, tds_id e, tds_id *f1, tds_id *f2) {
 
 void tds_flip(tds_surf *s, tds_id e, tds_id f1, tds_id f2) {
   tds_mesh *m = &s->m;
+#ifdef TDS_CHECKS
+  tds_id g1, g2;
+  TDS_ASSERT(tds_flip_ok(s, e, &g1, &g2) && g1 == f1 && g2 == f2);
+#endif
   int k1 = side_of(m, f1, e), k2 = side_of(m, f2, e);
   /* f1 = (a, b, c) with e = a->b; f2 = (b, a, d). */
   int32_t bc = m->fe[f1][(k1 + 1) % 3], ca = m->fe[f1][(k1 + 2) % 3];
@@ -63,6 +67,49 @@ static double opposite_sum(const tds_mesh *m, tds_id e, tds_id f1, tds_id f2) {
   tds_id c = m->fv[f1][(k1 + 2) % 3], d = m->fv[f2][(k2 + 2) % 3];
   return geom_angle(m->x[c], m->x[a], m->x[b]) +
          geom_angle(m->x[d], m->x[a], m->x[b]);
+}
+
+/* Sum of the cosines of the two angles opposite edge e. */
+static double opposite_cos(const tds_mesh *m, tds_id e, tds_id f1, tds_id f2) {
+  tds_id a = m->ev[e][0], b = m->ev[e][1];
+  int k1 = side_of(m, f1, e), k2 = side_of(m, f2, e);
+  tds_id c = m->fv[f1][(k1 + 2) % 3], d = m->fv[f2][(k2 + 2) % 3];
+  return cos(geom_angle(m->x[c], m->x[a], m->x[b])) +
+         cos(geom_angle(m->x[d], m->x[a], m->x[b]));
+}
+
+/* Evolver's u: one pass over the selected edges in id order, flipping
+** each whose opposite angles have a cosine sum below -TDS_U_COS when its
+** turn comes (earlier flips of the pass included); edges that fail it
+** only after their turn wait for the next u. */
+static int equiangulate_pass(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
+                             int32_t *nflips) {
+  tds_mesh *m = &s->m;
+  int32_t ne = m->ne, flips = 0;
+  tds_pairset ps;
+  if (tds_pairset_init(&ps, &s->m.alloc, (size_t)ne) != TDS_OK) {
+    tds_pairset_free(&ps);
+    return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+  }
+  for (tds_id e = 0; e < ne; e++)
+    if (tds_alive(m->eflags, e)) tds_pairset_add(&ps, m->ev[e][0], m->ev[e][1]);
+  for (tds_id e = 0; e < ne; e++) {
+    tds_id f1, f2;
+    if (sel && !sel[e]) continue;
+    if (!tds_flip_ok(s, e, &f1, &f2)) continue;
+    if (!(opposite_cos(m, e, f1, f2) < -TDS_U_COS)) continue;
+    int k1 = side_of(m, f1, e), k2 = side_of(m, f2, e);
+    tds_id c = m->fv[f1][(k1 + 2) % 3], d = m->fv[f2][(k2 + 2) % 3];
+    if (tds_pairset_has(&ps, c, d)) continue;
+    tds_pairset_remove(&ps, m->ev[e][0], m->ev[e][1]);
+    tds_flip(s, e, f1, f2);
+    tds_pairset_add(&ps, c, d);
+    flips++;
+  }
+  tds_pairset_free(&ps);
+  if (nflips) *nflips = flips;
+  if (flips) m->coord_gen++;
+  return tds_surf_update(ctx, s);
 }
 
 static int equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
@@ -129,4 +176,12 @@ int tds_equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nfl
   int rc = tds_snap_take(ctx, s, &sn);
   if (rc != TDS_OK) return rc;
   return tds_snap_end(ctx, s, &sn, equiangulate(ctx, s, sel, nflips));
+}
+
+int tds_equiangulate_once(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
+                          int32_t *nflips) {
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
+  if (rc != TDS_OK) return rc;
+  return tds_snap_end(ctx, s, &sn, equiangulate_pass(ctx, s, sel, nflips));
 }

@@ -1,4 +1,5 @@
 /* topo_refine.c: the r command (edge midpoints, facets into 2, 3 or 4). */
+#include "string_model.h"
 #include "topo.h"
 
 #include <stdlib.h>
@@ -178,6 +179,13 @@ static int refine(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nsplit
   }
   for (tds_id e = 0; e < ne; e++)
     if (midv[e] != TDS_NONE) midv[e] = split_edge(s, e, e2);
+  /* the string model's cells take the new halves (the snapshot of
+  ** tds_refine puts everything back if this fails) */
+  if (s->str && tds_strings_split(s->str, e2, ne) != TDS_OK) {
+    tds_free(&s->m.alloc, midv);
+    tds_free(&s->m.alloc, e2);
+    return tds_seterr(ctx, TDS_ENOMEM, "out of memory while refining");
+  }
   for (tds_id f = 0; f < nf; f++)
     if (tds_alive(m->fflags, f)) split_facet(m, f, midv, e2);
   tds_free(&s->m.alloc, midv);

@@ -8,6 +8,7 @@
 #include "geom.h"
 #include "motion.h"
 #include "snap.h"
+#include "string_model.h"
 
 /* Mean of the neighbours of v along its "curve" edges (triple edges, or
 ** edges on the same constraints when v is on a contact line), if there are
@@ -72,6 +73,10 @@ static int vertex_average(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
   for (tds_id v = 0; v < m->nv; v++) {
     if (!tds_vertex_free(s, v) || (sel && !sel[v]) || m->vbdry[v] != TDS_NONE)
       continue;
+    if (s->str) { /* the string model's rule */
+      mv[v] = (uint8_t)tds_strings_vavg(s, v, nx[v]);
+      continue;
+    }
     int triple = 0, border = 0;
     for (int32_t i = m->ve_start[v]; i < m->ve_start[v + 1]; i++) {
       int val = tds_edge_valence(m, TDS_OID(m->ve[i]));

@@ -166,12 +166,20 @@ int tds_wfile_commit(tds_ctx *ctx, tds_wfile *w) {
     return tds_seterr(ctx, TDS_EIO, "cannot write '%s': %s", w->path, strerror(e));
   }
   drop_tmp(w, 0);
-  char *dir = dir_of(&w->alloc, w->path); /* make the rename itself durable */
-  int dfd = dir ? open(dir, O_RDONLY | O_CLOEXEC) : -1;
-  if (dfd >= 0) {
-    fsync(dfd);
-    close(dfd);
+  /* make the rename itself durable (the folder's name on the stack, so
+  ** that running out of memory cannot skip it) */
+  char dir[PATH_MAX];
+  const char *slash = strrchr(w->path, '/');
+  size_t n = slash ? (size_t)(slash - w->path) : 0;
+  if (slash == w->path) n = 1; /* "/" */
+  if (n < sizeof dir) {
+    memcpy(dir, slash ? w->path : ".", slash ? n : 1);
+    dir[slash ? n : 1] = 0;
+    int dfd = open(dir, O_RDONLY | O_CLOEXEC);
+    if (dfd >= 0) {
+      fsync(dfd);
+      close(dfd);
+    }
   }
-  tds_free(&w->alloc, dir);
   return TDS_OK;
 }

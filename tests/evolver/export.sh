@@ -41,13 +41,13 @@ done
 # without error, except those that use what tds does not have, each
 # stopping with a message that names its file and line:
 #   adjointc (set vertex __x to an array), cut
-#   ('eee ecutmark' attribute without '.'), detorus_capper and
-#   dirichlet_to_disk (named constraints), reorder and strips
-#   (facetedge attributes). cmccousin, unshear and cube_views print their
+#   ('eee ecutmark' attribute without '.'), detorus_capper (the torus's
+#   inverse_periods in a constraint), reorder and strips (facetedge
+#   attributes). cmccousin, unshear and cube_views print their
 #   own message (4-D space, torus, include file) and abort, which is not
 #   an error.
 cp "$EXAMPLES/cube.fe" "$tmp/cube.fe"
-EXPECTED_FAIL=" adjointc cut detorus_capper dirichlet_to_disk reorder strips "
+EXPECTED_FAIL=" adjointc cut detorus_capper reorder strips "
 for c in "$EXAMPLES"/*.cmd; do
   b=$(basename "$c" .cmd)
   printf 'read "%s.cmd"\n' "$b" > "$tmp/r.cmd"

@@ -4,6 +4,8 @@
 
 #include "eval.h"
 #include "iterate.h"
+#include "metrics.h"
+#include "stall.h"
 
 /* The cube of scripts/cube.tds with volume target 1, unmoved; energy,
 ** area and volume computed. TDS_OK or the failing status. */
@@ -156,7 +158,53 @@ static void cube_pressures(void) {
   tds_surf_free(&s);
 }
 
+/* The stall scan (stall.h) on a jittered grid: its smallest angle, found
+** from sines, is the quality metric's (acos of normalised dot products) to
+** 1e-9 degrees and names the same facet; nothing is degenerate. A vertex
+** moved onto the line of a facet's other two corners makes that facet the
+** worst, degenerate (angle below 1e-3 degrees). The collapse test: never
+** with a fixed scale, not with a small force, yes with a tiny scale and a
+** large force. */
+static void stall_scan(void) {
+  tds_ctx ctx;
+  tds_surf s;
+  h_setup(&ctx, &s);
+  REQUIRE_OK(&ctx, h_grid(&ctx, &s, 6, 0.3, 7));
+  tds_mesh *m = &s.m;
+  tds_stall_out o;
+  tds_stall_scan(&s, &o);
+  double mn = INFINITY;
+  tds_id worst = TDS_NONE;
+  for (tds_id f = 0; f < m->nf; f++) {
+    double a = tds_facet_min_angle(m, f);
+    if (a < mn) mn = a, worst = f;
+  }
+  CHECK(o.worst == worst);
+  CHECK_NEAR(o.angle, mn, 1e-9);
+  CHECK(!o.degenerate);
+  CHECK_NEAR(o.mean_area, 1.0 / 2, 1e-12); /* 72 facets tile the 6 x 6 square */
+  /* facet 0 is (0,0) (1,0) v; v = vertex (1,1) onto the x axis */
+  tds_id v = 1 + 7 * 1;
+  m->x[v][0] = 0.5, m->x[v][1] = 1e-13;
+  m->coord_gen++;
+  tds_stall_scan(&s, &o);
+  CHECK(o.worst == 0);
+  CHECK(o.degenerate);
+  CHECK(o.angle < 1e-3);
+  CHECK(tds_stall_facet(&o) == 0);
+  s.scale_limit = 1;
+  s.fixed_scale = 1, s.scale = 0;
+  CHECK(!tds_stall_collapsed(&s, -1, 1));
+  s.fixed_scale = 0, s.scale = 1e-9;
+  CHECK(tds_stall_collapsed(&s, -1e-3, 1));
+  CHECK(!tds_stall_collapsed(&s, -1e-12, 1));
+  s.scale = 0.1;
+  CHECK(!tds_stall_collapsed(&s, -1e-3, 1));
+  tds_surf_free(&s);
+}
+
 int main(void) {
+  RUN(stall_scan);
   RUN(cube_g5);
   RUN(cube_interrupt);
   RUN(cube_fixed_scale);

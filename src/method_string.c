@@ -1,0 +1,89 @@
+/*
+** method_string.c: the rows of the string model (surface dimension 1),
+** whose facets are plane cells bounded by edges (Evolver's model.htm):
+**   edge_area           -int y dx along the edge, exact for a straight
+**                       edge: -(y0 + y1)(x1 - x0)/2. Summed with the
+**                       signs of a facet's edge loop it is the facet's
+**                       area (Green), so a body's area is a sum of rows.
+**   string_gravity      -int y^2/2 dx = -(x1 - x0)(y0^2 + y0 y1 + y1^2)/6:
+**                       summed over a cell's loop, int int y dA (the
+**                       gravitational moment, weighted by G density).
+**   vertex_scalar_head  the scalar integrand at the head (tail) corner:
+**   vertex_scalar_tail  a constraint's content in the string model, which
+**                       Evolver evaluates at the vertices on the
+**                       constraint where a cell's loop leaves or meets it.
+** Only x and y enter the first two, in 2-D and 3-D space alike (Evolver's
+** string model measures areas in the x-y plane).
+*/
+#include "method.h"
+
+#include <string.h>
+
+double tds_mk_edge_area(const tds_mlocal *L, double g[3][3], double h[9][9]) {
+  const double *a = L->x[0], *b = L->x[1];
+  double sy = a[1] + b[1], dx = b[0] - a[0];
+  if (g) {
+    memset(g, 0, sizeof(double[3][3]));
+    g[0][0] = sy / 2;
+    g[1][0] = -sy / 2;
+    g[0][1] = g[1][1] = -dx / 2;
+  }
+  if (h) {
+    memset(h, 0, sizeof(double[9][9]));
+    /* d2/dx0 dy0 = d2/dx0 dy1 = 1/2, d2/dx1 dy0 = d2/dx1 dy1 = -1/2 */
+    h[0][1] = h[1][0] = h[0][4] = h[4][0] = 0.5;
+    h[3][1] = h[1][3] = h[3][4] = h[4][3] = -0.5;
+  }
+  return -sy * dx / 2;
+}
+
+double tds_mk_string_gravity(const tds_mlocal *L, double g[3][3], double h[9][9]) {
+  const double *a = L->x[0], *b = L->x[1];
+  double y0 = a[1], y1 = b[1], D = b[0] - a[0];
+  double Q = y0 * y0 + y0 * y1 + y1 * y1;
+  if (g) {
+    memset(g, 0, sizeof(double[3][3]));
+    g[0][0] = Q / 6;
+    g[1][0] = -Q / 6;
+    g[0][1] = -D * (2 * y0 + y1) / 6;
+    g[1][1] = -D * (y0 + 2 * y1) / 6;
+  }
+  if (h) {
+    memset(h, 0, sizeof(double[9][9]));
+    double p = (2 * y0 + y1) / 6, q = (y0 + 2 * y1) / 6;
+    h[0][1] = h[1][0] = p;   /* x0 y0 */
+    h[0][4] = h[4][0] = q;   /* x0 y1 */
+    h[3][1] = h[1][3] = -p;  /* x1 y0 */
+    h[3][4] = h[4][3] = -q;  /* x1 y1 */
+    h[1][1] = -2 * D / 6;
+    h[4][4] = -2 * D / 6;
+    h[1][4] = h[4][1] = -D / 6;
+  }
+  return -D * Q / 6;
+}
+
+/* The scalar integrand at corner c of the edge. */
+static double at_corner(const tds_mlocal *L, int c, double g[3][3], double h[9][9]) {
+  const double *x = L->x[c];
+  double vars[TDS_NVARS] = {x[0], x[1], x[2], 0, 0, L->G};
+  if (!g) return tds_expr_eval(L->ig[0], L->param, vars);
+  double gr[TDS_NDIFF], H[TDS_NDIFF][TDS_NDIFF];
+  double f = h ? tds_expr_eval_hess(L->ig[0], L->param, vars, gr, H)
+               : tds_expr_eval_grad(L->ig[0], L->param, vars, gr);
+  memset(g, 0, sizeof(double[3][3]));
+  for (int i = 0; i < 3; i++) g[c][i] = gr[i];
+  if (h) {
+    memset(h, 0, sizeof(double[9][9]));
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) h[3 * c + i][3 * c + j] = H[i][j];
+  }
+  return f;
+}
+
+double tds_mk_vertex_head(const tds_mlocal *L, double g[3][3], double h[9][9]) {
+  return at_corner(L, 1, g, h);
+}
+
+double tds_mk_vertex_tail(const tds_mlocal *L, double g[3][3], double h[9][9]) {
+  return at_corner(L, 0, g, h);
+}
