@@ -263,7 +263,10 @@ vertex_average = V
 
 -- j(temperature [, set]): Evolver's jiggle (jiggle.h); seeded by
 -- tds.setting("random_seed"), so a script repeats exactly.
-function j(temperature, set) tds.jiggle(temperature, set) end
+function j(temperature, set)
+  if type(temperature) ~= "number" then error("j(temperature [, set]): temperature must be a number", 2) end
+  tds.jiggle(temperature, set)
+end
 jiggle = j
 
 -- check_increase(on): with it on, a g step that would raise the energy is
