@@ -68,9 +68,8 @@ end
 
 -- element setters (vertex[i].x = ...): they check their value before
 -- changing anything, so finiteness after is the check
-local registry = debug.getregistry()
 for _, kind in ipairs { "vertex", "edge", "facet", "body" } do
-  local mt = registry["tds." .. kind]
+  local mt = tds.metatables[kind] -- the surface's own (src/lua_elem.c)
   local set = mt and mt.__newindex
   if set then
     mt.__newindex = function(h, k, v)

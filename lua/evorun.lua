@@ -1132,7 +1132,7 @@ end
 ---------------------------------------------------------------- running text
 
 local function load_src(src, chunk)
-  local fn, lerr = load(src, "@" .. (chunk or "evolver"), "t")
+  local fn, lerr = load(src, "@" .. (chunk or "evolver"), "t", _ENV) -- the surface's names
   if not fn then error("evolver translation failed: " .. lerr, 0) end
   return fn
 end

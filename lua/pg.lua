@@ -77,6 +77,7 @@ end
 function curvature(o)
   o = o or {}
   if type(o) == "number" or type(o) == "string" then o = { target = o } end
+  if type(o) ~= "table" then error("curvature([target | { target =, quiet =, measure = }]) expected", 2) end
   tds.check_options(o, "curvature", { target = "number|string", quiet = "boolean",
     measure = "string" }, 2)
   local target = o.target
@@ -132,7 +133,11 @@ tds.props.facet.min_angle = function(h) return tds.facet_min_angle(h) end
 -- Edges are made for every vertex pair; an edge of one facet whose ends
 -- are both fixed is fixed, and one whose ends share a constraint is on it.
 function trimesh(t)
+  if type(t) ~= "table" then error("trimesh{ vertices = ..., facets = ... } expected", 2) end
   local V, F = t.vertices or error("trimesh{}: vertices expected", 2), t.facets or {}
+  if type(V) ~= "table" or type(F) ~= "table" then
+    error("trimesh{}: vertices and facets must be lists", 2)
+  end
   local vdecl = {}
   for i, p in ipairs(V) do
     vdecl[i] = { p[1], p[2], p[3], fixed = p.fixed or nil, constraint = p.constraint }
@@ -198,6 +203,7 @@ end
 -- writer), then the read section. Written all or nothing; a failure is an
 -- error at the caller's line.
 function write_fe(path, o)
+  if type(path) ~= "string" then error("write_fe(path [, options]): path must be a string", 2) end
   o = o or {}
   local ok, err = tds.write_fe(path, o.header, o.read)
   if not ok then error(err, 2) end

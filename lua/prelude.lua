@@ -1,9 +1,18 @@
 -- prelude.lua: the friendly tds API, built on the raw primitives in `tds`.
--- Loaded into every tds session before the user's script. Declarations
--- raise their errors at the user's line (the line that called
--- vertices{...} etc.).
+-- Loaded into every surface's namespace (its _ENV: the global table for
+-- the tds program's surface, or the table tds.new() returns;
+-- src/lua_surface.c). Declarations raise their errors at the user's line
+-- (the line that called vertices{...} etc.).
 
 local tds = tds
+-- Where names the namespace does not define come from (nil when the
+-- namespace is the global table itself).
+local base = tds.env_base
+-- The namespace's __index below calls these: kept as locals, since in a
+-- private namespace a global name is itself looked up through __index.
+-- The raw parameter reader too: the check mode wraps tds.param with Lua
+-- code whose own global lookups would come back here.
+local type, rawset, rawget, error, rawparam = type, rawset, rawget, error, tds.param
 local KIND = { vertex = tds.vertex, edge = tds.edge, facet = tds.facet, body = tds.body }
 local NAME = { [tds.vertex] = "vertex", [tds.edge] = "edge", [tds.facet] = "face",
                [tds.body] = "body" }
@@ -215,7 +224,7 @@ end
 
 -- Commands, with Evolver's single letters and long names.
 function g(n)
-  if n ~= nil and math.type(n) ~= "integer" then
+  if n ~= nil and (math.type(n) ~= "integer" or n < 0) then
     error("g(n): n must be a whole number of iterations", 2)
   end
   tds.iterate(n or 1)
@@ -312,7 +321,10 @@ function new_body() return construct(tds.body, {}) end
 function edgeswap(set) return tds.edgeswap(list_of(set, "edgeswap")) end
 -- j(temperature [, set]): Evolver's jiggle (jiggle.h); seeded by
 -- tds.setting("random_seed"), so a script repeats exactly.
-function j(temperature, set) tds.jiggle(temperature, set) end
+function j(temperature, set)
+  if type(temperature) ~= "number" then error("j(temperature [, set]): temperature must be a number", 2) end
+  tds.jiggle(temperature, set)
+end
 jiggle = j
 
 -- check_increase(on): with it on, a g step that would raise the energy is
@@ -408,6 +420,9 @@ function help() print(HELP) end
 
 -- near(a, b, tol): |a - b| <= tol * max(1, |b|), for self-checking scripts.
 function near(a, b, tol)
+  if type(a) ~= "number" or type(b) ~= "number" or (tol ~= nil and type(tol) ~= "number") then
+    error("near(a, b [, tol]) expects numbers", 2)
+  end
   tol = tol or 1e-9
   return math.abs(a - b) <= tol * math.max(1, math.abs(b))
 end
@@ -428,7 +443,13 @@ setmetatable(_G, {
   __index = function(_, k)
     local f = live[k]
     if f then return f() end
-    if type(k) == "string" then return tds.param(k) end
+    if type(k) == "string" then
+      local p = rawparam(k)
+      if p ~= nil then return p end
+    end
+    -- rawget: another surface's parameters and live values (the global
+    -- table's own __index) are not this surface's
+    if base then return rawget(base, k) end
   end,
   __newindex = function(t, k, val)
     if type(k) == "string" and tds.param(k) ~= nil then
@@ -446,6 +467,37 @@ setmetatable(_G, {
 
 -- export(path, options) and mark(): doc/output.md (src/lua_export.c).
 export, mark = tds.export, tds.mark
+dump = tds.dump_raise
+
+-- load_datafile(path): read a Surface Evolver datafile into this surface
+-- (which must still be empty) and run its read section.
+function load_datafile(path)
+  if type(path) ~= "string" then error("load_datafile(path) expected", 2) end
+  tds.load_datafile(path)
+end
+
+-- In a namespace of its own (tds.new()), chunks loaded by its code get
+-- the namespace as their environment unless told otherwise, so a script
+-- run with s.dofile(path) declares into s. (A safe surface's library does
+-- this already, and loads text only.)
+if base then
+  local lload, lloadfile = base.load, base.loadfile
+  function load(...)
+    if select("#", ...) >= 4 then return lload(...) end
+    local chunk, name, mode = ...
+    return lload(chunk, name, mode, _ENV)
+  end
+  function loadfile(...)
+    if select("#", ...) >= 3 then return lloadfile(...) end
+    local path, mode = ...
+    return lloadfile(path, mode, _ENV)
+  end
+  function dofile(path)
+    local f, err = loadfile(path)
+    if not f then error(err, 2) end
+    return f()
+  end
+end
 tds.props.vertex.gauss_curvature = function(h) return tds.vertex_gauss_curvature(h) end
 
 -- Newton steps and Hessian eigenvalues (doc/newton.md; src/lua_newton.c).

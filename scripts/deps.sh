@@ -13,9 +13,9 @@ BUILD_PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev libmicrohttpd-dev
   libcairo2-dev fonts-dejavu-core libmumps-seq-dev liblapack-dev"
 # The tests: Surface Evolver; meshio, VTK and NumPy for /usr/bin/python3
 # (export round trips, tests/export); Chromium (the live view's browser
-# test, tests/web).
+# test, tests/web); the stock Lua interpreter (the module tds.so, tests/module).
 TEST_PKGS="evolver-nox evolver-doc python3-meshio python3-vtk9 python3-numpy
-  chromium chromium-driver"
+  chromium chromium-driver lua5.4"
 # The fuzzers (make fuzz, make fuzz-smoke): clang with libFuzzer and OpenMP.
 FUZZ_PKGS="clang libclang-rt-14-dev libomp-14-dev llvm-14"
 

@@ -91,10 +91,8 @@ static int one_value(lua_State *L, const tds_attr *a, int i, double *v, int *n,
       lua_getfield(L, -1, "__tds_kind");
       int k = (int)lua_tointeger(L, -1);
       lua_pop(L, 2);
-      if (k == TDS_BODY) {
-        lua_getfield(L, i, "id");
-        v[(*n)++] = (double)lua_tointeger(L, -1);
-        lua_pop(L, 1);
+      if (k == TDS_BODY) { /* a live body of this surface, or an error */
+        v[(*n)++] = (double)tds_check_elem(L, TDS_STATE(L), i, TDS_BODY, NULL) + 1;
         return 1;
       }
     }

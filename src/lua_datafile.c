@@ -23,7 +23,8 @@
 **   tds.datafile_name()          the loaded datafile's path (or nil)
 **   After a load, tds.on_load(path) is called if set: it runs the read
 **   section (lua/evorun.lua); its errors are the load's errors.
-**   dump(path)                   global alias of tds.dump
+**   tds.dump_raise(path)         dump(path) of the namespace: raises
+**                                the message instead of returning it
 */
 #include <stdlib.h>
 #include <string.h>
@@ -61,7 +62,7 @@ static void load(lua_State *L, tds_state *st, const char *path) {
     st->datafile = copy;
   }
   /* The read section runs now, as in Evolver (tds.on_load, lua/evorun.lua). */
-  lua_getglobal(L, "tds");
+  tds_lua_push_lib(L, st);
   lua_getfield(L, -1, "on_load");
   lua_remove(L, -2);
   if (lua_isfunction(L, -1)) {
@@ -143,7 +144,7 @@ static int l_load_chunk(lua_State *L) {
   int named_lua = (n >= 4 && !strcmp(path + n - 4, ".tds")) ||
                   (n >= 4 && !strcmp(path + n - 4, ".lua"));
   if (st->safe ? !named_lua : tds_datafile_detect(path)) {
-    lua_pushlightuserdata(L, st);
+    tds_lua_push_state(L, st);
     lua_pushvalue(L, 1);
     lua_pushcclosure(L, datafile_chunk, 2);
     return 1;
@@ -153,6 +154,11 @@ static int l_load_chunk(lua_State *L) {
     if (msg && !strstr(msg, path)) lua_pushfstring(L, "%s: %s", path, msg); /* name the file */
     return lua_error(L);
   }
+  /* A surface with a namespace of its own runs the script in it (a safe
+  ** surface's script never sees the host's globals). */
+  tds_lua_kept(L, st, "env");
+  if (lua_istable(L, -1)) lua_setupvalue(L, -2, 1);
+  else lua_pop(L, 1);
   return 1;
 }
 
@@ -312,7 +318,7 @@ void tds_open_datafile(lua_State *L, tds_state *st) {
                                  {"define_text", l_define_text},
                                  {NULL, NULL}};
   tds_lua_register(L, st, fns);
-  lua_pushlightuserdata(L, st);
+  tds_lua_push_state(L, st);
   lua_pushcclosure(L, l_dump_global, 1);
-  lua_setglobal(L, "dump");
+  lua_setfield(L, -2, "dump_raise"); /* the namespace's dump (lua/prelude.lua) */
 }

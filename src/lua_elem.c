@@ -9,7 +9,10 @@
 #include "lua_tds.h"
 #include "string_model.h"
 
+/* A handle: one element of one surface. Its user value 1 is the state's
+** userdata, so a handle keeps its surface alive. */
 typedef struct handle {
+  tds_state *st;
   int kind;
   tds_id id;
 } handle;
@@ -44,11 +47,30 @@ static int alive(const tds_surf *s, int kind, tds_id id) {
   return id >= 0 && id < nslots(s, kind) && tds_alive(flags_of(s, kind), id);
 }
 
+/* The interned handle of (kind, id) from the state userdata's cache, or a
+** new one stored there. Upvalue 1 of the running binding is the state. */
 void tds_push_elem(lua_State *L, int kind, tds_id id) {
-  handle *h = lua_newuserdatauv(L, sizeof *h, 0);
+  int sti = lua_upvalueindex(1);
+  tds_state *st = lua_touserdata(L, sti);
+  lua_Integer key = (lua_Integer)id * TDS_NKINDS + kind;
+  luaL_checkstack(L, 4, "handle");
+  lua_getiuservalue(L, sti, TDS_UV_HANDLES); /* cache */
+  if (lua_rawgeti(L, -1, key) == LUA_TUSERDATA) { /* cache h */
+    lua_remove(L, -2);
+    return;
+  }
+  lua_pop(L, 1);
+  handle *h = lua_newuserdatauv(L, sizeof *h, 1); /* cache h */
+  h->st = st;
   h->kind = kind;
   h->id = id;
-  luaL_setmetatable(L, meta_name[kind]);
+  lua_pushvalue(L, sti);
+  lua_setiuservalue(L, -2, 1);
+  lua_getiuservalue(L, sti, TDS_UV_META + kind);
+  lua_setmetatable(L, -2);
+  lua_pushvalue(L, -1);
+  lua_rawseti(L, -3, key); /* cache[key] = h */
+  lua_remove(L, -2);
 }
 
 static handle *to_handle(lua_State *L, int i) {
@@ -64,8 +86,12 @@ tds_id tds_check_elem(lua_State *L, tds_state *st, int i, int kind, int *kindp) 
   handle *h = to_handle(L, i);
   if (!h || (kind >= 0 && h->kind != kind)) {
     const char *want = kind >= 0 ? kind_name[kind] : "element";
-    luaL_typeerror(L, i, want);
+    if (h)
+      tds_lua_error(L, "%s expected, got %s %d", want, kind_name[h->kind], (int)h->id + 1);
+    tds_lua_error(L, "%s expected, got %s", want, luaL_typename(L, i));
   }
+  if (h->st != st)
+    tds_lua_error(L, "%s %d belongs to another surface", kind_name[h->kind], (int)h->id + 1);
   if (!alive(&st->s, h->kind, h->id))
     luaL_error(L, "%s %d no longer exists", kind_name[h->kind], h->id + 1);
   if (kindp) *kindp = h->kind;
@@ -231,7 +257,7 @@ static int elem_tostring(lua_State *L) {
 
 static int elem_eq(lua_State *L) {
   handle *a = to_handle(L, 1), *b = to_handle(L, 2);
-  lua_pushboolean(L, a && b && a->kind == b->kind && a->id == b->id);
+  lua_pushboolean(L, a && b && a->st == b->st && a->kind == b->kind && a->id == b->id);
   return 1;
 }
 
@@ -316,22 +342,32 @@ void tds_open_elem(lua_State *L, tds_state *st) {
                                      {NULL, NULL}};
   lua_newtable(L); /* tds.methods: per kind, methods (C ones, Lua extensions) */
   lua_newtable(L); /* tds.props: per kind, computed attributes */
+  lua_createtable(L, 0, TDS_NKINDS); /* tds.metatables: the handles' */
+  lua_pushvalue(L, -1);
+  lua_setfield(L, -5, "metatables");
+  tds_lua_push_state(L, st); /* tds methods props metatables st */
   for (int k = 0; k < TDS_NKINDS; k++) {
-    luaL_newmetatable(L, meta_name[k]); /* tds methods props mt */
+    /* The surface's own metatable: its metamethods are bound to it. */
+    lua_newtable(L); /* tds methods props metatables st mt */
+    lua_pushstring(L, meta_name[k]);
+    lua_setfield(L, -2, "__name"); /* for luaL_typeerror's messages */
     tds_lua_register(L, st, meta);
     lua_pushinteger(L, k);
     lua_setfield(L, -2, "__tds_kind");
     lua_newtable(L);
     tds_lua_register(L, st, methods);
     lua_pushvalue(L, -1);
-    lua_setfield(L, -5, kind_name[k]); /* methods.vertex = ... */
+    lua_setfield(L, -7, kind_name[k]); /* methods.vertex = ... */
     lua_setfield(L, -2, "methods");
     lua_newtable(L);
     lua_pushvalue(L, -1);
-    lua_setfield(L, -4, kind_name[k]); /* props.vertex = ... */
+    lua_setfield(L, -6, kind_name[k]); /* props.vertex = ... */
     lua_setfield(L, -2, "props");
-    lua_pop(L, 1);
+    lua_pushvalue(L, -1);
+    lua_setfield(L, -4, kind_name[k]); /* metatables.vertex = ... */
+    lua_setiuservalue(L, -2, TDS_UV_META + k);
   }
+  lua_pop(L, 2); /* tds methods props */
   lua_setfield(L, -3, "props");
   lua_setfield(L, -2, "methods");
   static const luaL_Reg fns[] = {{"next", l_next}, {"get", l_get},

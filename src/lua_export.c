@@ -20,7 +20,6 @@
 #include "lua_tds.h"
 #include "metrics.h"
 
-#define MARK_KEY "tds.export.mark"
 
 typedef struct mark {
   int32_t n;
@@ -49,7 +48,7 @@ static int l_mark(lua_State *L) {
   lua_pushcfunction(L, mark_gc);
   lua_setfield(L, -2, "__gc");
   lua_setmetatable(L, -2);
-  lua_setfield(L, LUA_REGISTRYINDEX, MARK_KEY);
+  tds_lua_keep(L, st, "mark"); /* the surface's own mark */
   return 0;
 }
 
@@ -199,6 +198,8 @@ static int l_export(lua_State *L) {
   if (lua_type(L, 1) != LUA_TSTRING)
     fail(L, st, "export(path [, options]): path must be a string");
   const char *path = lua_tostring(L, 1);
+  if (!tds_lua_may_write(L, st, path)) /* safe mode: only in its folder */
+    return tds_lua_error(L, "%s", lua_tostring(L, -1));
   if (!lua_isnoneornil(L, 2) && !lua_istable(L, 2))
     fail(L, st, "export(path [, options]): options must be a table");
   lua_settop(L, 2);
@@ -284,7 +285,7 @@ static int l_export(lua_State *L) {
     o.caps = lua_toboolean(L, 11);
     if (!o.per_body) fail(L, st, "export: option 'caps' needs per_body = true");
   }
-  lua_getfield(L, LUA_REGISTRYINDEX, MARK_KEY); /* 12 */
+  tds_lua_kept(L, st, "mark"); /* 12 */
   if (!lua_isnil(L, 12)) {
     mark *mk = lua_touserdata(L, 12);
     o.mark = (const double (*)[3])mk->x;

@@ -67,11 +67,10 @@ static void on_chunk(void *ud) {
   if (u->lv) publish(u, current_energy(u));
 }
 
+/* The surface's live view: upvalue 2 of the live functions (each surface
+** has its own; the collector stops its server). */
 static live_ud *get_ud(lua_State *L) {
-  lua_getfield(L, LUA_REGISTRYINDEX, "tds.live");
-  live_ud *u = lua_touserdata(L, -1);
-  lua_pop(L, 1);
-  return u;
+  return lua_touserdata(L, lua_upvalueindex(2));
 }
 
 static void stop(live_ud *u) {
@@ -147,11 +146,16 @@ void tds_open_live(lua_State *L, tds_state *st) {
   lua_newtable(L);
   lua_pushcfunction(L, live_gc);
   lua_setfield(L, -2, "__gc");
-  lua_setmetatable(L, -2);
-  lua_setfield(L, LUA_REGISTRYINDEX, "tds.live");
+  lua_setmetatable(L, -2); /* tds u */
   static const luaL_Reg fns[] = {{"live_start", l_live_start},
                                  {"live_stop", l_live_stop},
                                  {"live_port", l_live_port},
                                  {NULL, NULL}};
-  tds_lua_register(L, st, fns);
+  for (const luaL_Reg *f = fns; f->name; f++) {
+    tds_lua_push_state(L, st);
+    lua_pushvalue(L, -2);
+    lua_pushcclosure(L, f->func, 2);
+    lua_setfield(L, -3, f->name);
+  }
+  lua_pop(L, 1);
 }

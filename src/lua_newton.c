@@ -9,7 +9,6 @@
 #include "lua_tds.h"
 #include "newton.h"
 
-#define KEY "tds.newton"
 
 typedef struct nstate {
   tds_newton_opts o;
@@ -27,8 +26,9 @@ static int ns_gc(lua_State *L) {
   return 0;
 }
 
+/* The surface's own settings and eigenvector (anchored to its state). */
 static nstate *get_ns(lua_State *L) {
-  lua_getfield(L, LUA_REGISTRYINDEX, KEY);
+  tds_lua_kept(L, TDS_STATE(L), "newton");
   nstate *ns = lua_touserdata(L, -1);
   lua_pop(L, 1);
   return ns;
@@ -221,7 +221,7 @@ void tds_open_newton(lua_State *L, tds_state *st) {
   lua_pushcfunction(L, ns_gc);
   lua_setfield(L, -2, "__gc");
   lua_setmetatable(L, -2);
-  lua_setfield(L, LUA_REGISTRYINDEX, KEY);
+  tds_lua_keep(L, st, "newton");
   static const luaL_Reg fns[] = {
       {"hessian", l_hessian},       {"hessian_seek", l_hessian_seek},
       {"saddle", l_saddle},         {"eigenprobe", l_eigenprobe},

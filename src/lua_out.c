@@ -25,6 +25,7 @@
 typedef struct target {
   FILE *f;
   int pipe;
+  tds_state *st; /* its surface (user value 1 keeps it alive) */
 } target;
 
 static target *check_target(lua_State *L, int i) {
@@ -57,9 +58,12 @@ static int l_output_open(lua_State *L) {
   if (pipe && st->safe)
     return tds_lua_nilmsg(L, "safe mode: piping output to a command is not allowed");
   if (!pipe && !tds_lua_may_write(L, st, path)) return 2;
-  target *t = lua_newuserdatauv(L, sizeof *t, 0);
+  target *t = lua_newuserdatauv(L, sizeof *t, 1);
   t->f = NULL;
   t->pipe = pipe;
+  t->st = st;
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_setiuservalue(L, -2, 1);
   luaL_setmetatable(L, OUT_META);
   fflush(stdout);
   t->f = pipe ? popen(path, "w") : fopen(path, mode);
@@ -92,8 +96,8 @@ static int l_output_write(lua_State *L) {
 }
 
 static int l_output_close(lua_State *L) {
-  tds_state *st = TDS_STATE(L);
   target *t = luaL_checkudata(L, 1, OUT_META);
+  tds_state *st = t->st;
   if (t->f && st->ctx.out_ud == t->f) { /* never leave the core writing to it */
     st->ctx.out = NULL;
     st->ctx.out_ud = NULL;
@@ -116,10 +120,11 @@ static int l_chdir(lua_State *L) {
 }
 
 void tds_open_out(lua_State *L, tds_state *st) {
-  luaL_newmetatable(L, OUT_META);
-  lua_pushlightuserdata(L, st);
-  lua_pushcclosure(L, target_gc, 1);
-  lua_setfield(L, -2, "__gc");
+  /* The collector closes a target through its own surface (user value 1). */
+  if (luaL_newmetatable(L, OUT_META)) {
+    lua_pushcfunction(L, target_gc);
+    lua_setfield(L, -2, "__gc");
+  }
   lua_pop(L, 1);
   static const luaL_Reg fns[] = {{"chdir", l_chdir},
                                  {"output_open", l_output_open},

@@ -20,13 +20,9 @@
 #include "progress.h"
 #include "render.h"
 
-#define PROGRESS_KEY "tds.progress"
-
+/* The surface's history, anchored to its state (tds_open_render). */
 static tds_progress *progress_of(lua_State *L) {
-  lua_getfield(L, LUA_REGISTRYINDEX, PROGRESS_KEY);
-  tds_progress *p = lua_touserdata(L, -1);
-  lua_pop(L, 1);
-  return p;
+  return TDS_STATE(L)->ctx.progress;
 }
 
 static int progress_gc(lua_State *L) {
@@ -156,6 +152,8 @@ static void setvec(lua_State *L, const char *k, const double v[3]) {
 static int l_snapshot(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   const char *path = luaL_checkstring(L, 1);
+  if (!tds_lua_may_write(L, st, path)) /* safe mode: only in its folder */
+    return tds_lua_error(L, "%s", lua_tostring(L, -1));
   tds_render_opts o;
   tds_render_defaults(&o);
   if (!lua_isnoneornil(L, 2)) {
@@ -250,6 +248,8 @@ static void push_layout(lua_State *L, const tds_plot_info *pi, int npanels) {
 static int l_plot(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   const char *path = luaL_checkstring(L, 1);
+  if (!tds_lua_may_write(L, st, path)) /* safe mode: only in its folder */
+    return tds_lua_error(L, "%s", lua_tostring(L, -1));
   int w = 800, h = 600, mode = 0; /* energy: 0 linear, 1 log, 2 excess */
   if (!lua_isnoneornil(L, 2)) {
     luaL_checktype(L, 2, LUA_TTABLE);
@@ -297,6 +297,8 @@ static int l_plot(lua_State *L) {
 static int l_histogram_png(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   const char *path = luaL_checkstring(L, 1);
+  if (!tds_lua_may_write(L, st, path)) /* safe mode: only in its folder */
+    return tds_lua_error(L, "%s", lua_tostring(L, -1));
   luaL_checktype(L, 2, LUA_TTABLE);
   double lo = luaL_checknumber(L, 3), hi = luaL_checknumber(L, 4);
   const char *title = luaL_checkstring(L, 5), *xtitle = luaL_checkstring(L, 6);
@@ -366,6 +368,6 @@ void tds_open_render(lua_State *L, tds_state *st) {
   lua_pushcfunction(L, progress_gc);
   lua_setfield(L, -2, "__gc");
   lua_setmetatable(L, -2);
-  lua_setfield(L, LUA_REGISTRYINDEX, PROGRESS_KEY);
+  tds_lua_keep(L, st, "progress");
   st->ctx.progress = p;
 }

@@ -73,12 +73,20 @@ static int refused(lua_State *L) {
   return tds_lua_error(L, "safe mode: %s is not allowed", lua_tostring(L, lua_upvalueindex(1)));
 }
 
-static void refuse(lua_State *L, const char *lib, const char *fn) {
-  lua_getglobal(L, lib);
-  if (!lua_istable(L, -1)) {
-    lua_pop(L, 1);
-    return;
+/* Push the library table `name` (such as os) of the table at absolute
+** index lib, or lib itself for NULL; or return 0 if there is none. */
+static int get_lib(lua_State *L, int lib, const char *name) {
+  if (!name) {
+    lua_pushvalue(L, lib);
+    return 1;
   }
+  if (lua_getfield(L, lib, name) == LUA_TTABLE) return 1;
+  lua_pop(L, 1);
+  return 0;
+}
+
+static void refuse(lua_State *L, int libs, const char *lib, const char *fn) {
+  if (!get_lib(L, libs, lib)) return;
   lua_pushfstring(L, "%s.%s", lib, fn);
   lua_pushcclosure(L, refused, 1);
   lua_setfield(L, -2, fn);
@@ -128,12 +136,17 @@ static int safe_rename(lua_State *L) {
 }
 
 /* Force argument `mode` (a position) to "t", keeping any later argument
-** (an env given as nil must stay given). */
+** (an env given as nil must stay given); without an env argument, the
+** sandbox's default environment (upvalue 3, if a table) is given. */
 static int text_mode(lua_State *L, int mode) {
   int n = lua_gettop(L);
   if (n < mode - 1) lua_settop(L, mode - 1);
   lua_pushliteral(L, "t");
   if (n >= mode) lua_replace(L, mode);
+  if (n <= mode && lua_istable(L, lua_upvalueindex(3))) {
+    lua_settop(L, mode);
+    lua_pushvalue(L, lua_upvalueindex(3));
+  }
   return call_original(L);
 }
 
@@ -143,11 +156,15 @@ static int safe_load(lua_State *L) { return text_mode(L, 3); }
 /* loadfile([name [, mode [, env]]]): text only */
 static int safe_loadfile(lua_State *L) { return text_mode(L, 2); }
 
-/* dofile([name]): text only */
+/* dofile([name]): text only, in the sandbox's default environment */
 static int safe_dofile(lua_State *L) {
   const char *name = luaL_optstring(L, 1, NULL);
   lua_settop(L, 1);
   if (luaL_loadfilex(L, name, "t") != LUA_OK) return lua_error(L);
+  if (lua_istable(L, lua_upvalueindex(3))) {
+    lua_pushvalue(L, lua_upvalueindex(3));
+    lua_setupvalue(L, -2, 1);
+  }
   lua_call(L, 0, LUA_MULTRET);
   return lua_gettop(L) - 1;
 }
@@ -170,19 +187,30 @@ static int safe_searcher(lua_State *L) {
   return 2;
 }
 
-/* Replace lib.fn by a C closure (original, state). */
-static void wrap(lua_State *L, tds_state *st, const char *lib, const char *fn,
-                 lua_CFunction f) {
-  if (lib) lua_getglobal(L, lib);
-  else lua_pushglobaltable(L);
+/* Replace lib.fn by a C closure (original, state, default environment). */
+static void wrap(lua_State *L, tds_state *st, int libs, int env, const char *lib,
+                 const char *fn, lua_CFunction f) {
+  if (!get_lib(L, libs, lib)) return;
   lua_getfield(L, -1, fn);
-  lua_pushlightuserdata(L, st);
-  lua_pushcclosure(L, f, 2);
+  tds_lua_push_state(L, st);
+  if (env) lua_pushvalue(L, env);
+  else lua_pushnil(L);
+  lua_pushcclosure(L, f, 3);
   lua_setfield(L, -2, fn);
   lua_pop(L, 1);
 }
 
 int tds_lua_safe(lua_State *L, tds_state *st, const char *outdir) {
+  lua_pushglobaltable(L);
+  int ok = tds_lua_sandbox(L, st, lua_gettop(L), 0, outdir);
+  if (ok) lua_pop(L, 1);
+  else lua_remove(L, -2);
+  return ok;
+}
+
+int tds_lua_sandbox(lua_State *L, tds_state *st, int lib, int env, const char *outdir) {
+  lib = lua_absindex(L, lib);
+  if (env) env = lua_absindex(L, env);
   char *real = realpath(outdir ? outdir : ".", NULL);
   if (!real) {
     lua_pushfstring(L, "output folder '%s': %s", outdir ? outdir : ".", strerror(errno));
@@ -197,18 +225,21 @@ int tds_lua_safe(lua_State *L, tds_state *st, const char *outdir) {
   free(st->outdir);
   st->outdir = real;
   st->safe = 1;
-  refuse(L, "os", "execute");
-  refuse(L, "io", "popen");
-  refuse(L, "os", "tmpname");
-  refuse(L, "io", "tmpfile");
-  refuse(L, "package", "loadlib");
-  wrap(L, st, "io", "open", safe_open);
-  wrap(L, st, "io", "output", safe_output);
-  wrap(L, st, "os", "remove", safe_remove);
-  wrap(L, st, "os", "rename", safe_rename);
-  wrap(L, st, NULL, "load", safe_load);
-  wrap(L, st, NULL, "loadfile", safe_loadfile);
-  wrap(L, st, NULL, "dofile", safe_dofile);
+  refuse(L, lib, "os", "execute");
+  refuse(L, lib, "io", "popen");
+  refuse(L, lib, "os", "tmpname");
+  refuse(L, lib, "io", "tmpfile");
+  refuse(L, lib, "package", "loadlib");
+  wrap(L, st, lib, env, "io", "open", safe_open);
+  wrap(L, st, lib, env, "io", "output", safe_output);
+  wrap(L, st, lib, env, "os", "remove", safe_remove);
+  wrap(L, st, lib, env, "os", "rename", safe_rename);
+  wrap(L, st, lib, env, NULL, "load", safe_load);
+  wrap(L, st, lib, env, NULL, "loadfile", safe_loadfile);
+  wrap(L, st, lib, env, NULL, "dofile", safe_dofile);
+  lua_pushnil(L);
+  lua_setfield(L, lib, "debug");
+  if (env) return 1; /* a surface's sandbox has its own require (lua_surface.c) */
   /* require: preloaded modules and Lua text files only */
   lua_getglobal(L, "package");
   lua_pushliteral(L, "");
@@ -225,7 +256,5 @@ int tds_lua_safe(lua_State *L, tds_state *st, const char *outdir) {
   lua_pushnil(L);
   lua_setfield(L, -2, "debug");
   lua_pop(L, 2);
-  lua_pushnil(L);
-  lua_setglobal(L, "debug");
   return 1;
 }

@@ -8,8 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "prelude.inc"
-
 /* Push "file:line: " of the innermost user code on the stack from level
 ** up (skipping C functions and the embedded prelude), or "" if none. */
 static void where_user_from(lua_State *L, int level) {
@@ -71,20 +69,10 @@ int tds_lua_nilmsg(lua_State *L, const char *fmt, ...) {
 
 void tds_lua_register(lua_State *L, tds_state *st, const luaL_Reg *fns) {
   for (; fns->name; fns++) {
-    lua_pushlightuserdata(L, st);
+    tds_lua_push_state(L, st);
     lua_pushcclosure(L, fns->func, 1);
     lua_setfield(L, -2, fns->name);
   }
-}
-
-static int state_gc(lua_State *L) {
-  tds_state *st = lua_touserdata(L, 1);
-  tds_surf_free(&st->s);
-  free(st->datafile);
-  st->datafile = NULL;
-  free(st->outdir);
-  st->outdir = NULL;
-  return 0;
 }
 
 int tds_lua_is_quit(lua_State *L, int idx, int *code) {
@@ -96,24 +84,37 @@ int tds_lua_is_quit(lua_State *L, int idx, int *code) {
   return isq;
 }
 
-/* package.preload loader for an embedded module (upvalue: its index). */
-static int load_embedded(lua_State *L) {
-  int i = (int)lua_tointeger(L, lua_upvalueindex(1));
-  char chunk[64];
-  snprintf(chunk, sizeof chunk, "=[tds %s]", lua_sources[i].name);
-  if (luaL_loadbuffer(L, (const char *)lua_sources[i].data,
-                      lua_sources[i].size, chunk) != LUA_OK)
-    return lua_error(L);
-  lua_call(L, 0, 1);
-  return 1;
-}
-
 /* SIGINT: flag the core's loops and stop running Lua code (as lua.c).
 ** The stop is sticky until the chunk ends: the hook stays armed, so a
 ** pcall that catches the interruption is interrupted again at its next
 ** instruction, and the whole chunk (script, -e code, prompt line) stops. */
 static lua_State *sig_L;
-static tds_state *sig_st;
+/* Every live surface: the handler flags all of them, so a command running
+** on a tds.new() surface stops too. Changed with the signals blocked. */
+static tds_state *all_states;
+
+void tds_lua_track(tds_state *st, int on) {
+  sigset_t set, old;
+  sigemptyset(&set);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &set, &old);
+  if (on) {
+    st->next_state = all_states;
+    all_states = st;
+  } else {
+    for (tds_state **p = &all_states; *p; p = &(*p)->next_state)
+      if (*p == st) {
+        *p = st->next_state;
+        break;
+      }
+  }
+  pthread_sigmask(SIG_SETMASK, &old, NULL);
+}
+
+static void set_interrupt(int v) {
+  for (tds_state *p = all_states; p; p = p->next_state) p->ctx.interrupt = v;
+}
 static volatile sig_atomic_t sig_seen; /* an interruption since the chunk began */
 static int sig_also_term;              /* --on-interrupt: SIGTERM stops too */
 
@@ -126,7 +127,7 @@ static void stop_hook(lua_State *L, lua_Debug *ar) {
   if (lua_getinfo(L, "S", ar) &&
       (ar->what[0] == 'C' || strncmp(ar->source, "=[tds ", 6) == 0))
     return;
-  if (sig_st) sig_st->ctx.interrupt = 0;
+  set_interrupt(0);
   where_user_from(L, 0); /* the user's line, not the prelude's */
   lua_pushliteral(L, "interrupted");
   lua_concat(L, 2);
@@ -136,7 +137,7 @@ static void stop_hook(lua_State *L, lua_Debug *ar) {
 static void on_sigint(int sig) {
   signal(sig, SIG_DFL); /* a second Ctrl-C kills the process */
   sig_seen = 1;
-  if (sig_st) sig_st->ctx.interrupt = 1;
+  set_interrupt(1);
   if (sig_L)
     lua_sethook(sig_L, stop_hook, LUA_MASKCALL | LUA_MASKRET | LUA_MASKCOUNT, 1);
 }
@@ -144,9 +145,9 @@ static void on_sigint(int sig) {
 void tds_lua_sigint(lua_State *L, tds_state *st, int on) {
   if (on) {
     sig_L = L;
-    sig_st = st;
+    (void)st; /* every surface is flagged (all_states) */
     sig_seen = 0;
-    st->ctx.interrupt = 0;
+    set_interrupt(0);
     signal(SIGINT, on_sigint);
     if (sig_also_term) signal(SIGTERM, on_sigint);
   } else {
@@ -154,53 +155,9 @@ void tds_lua_sigint(lua_State *L, tds_state *st, int on) {
     if (sig_also_term) signal(SIGTERM, SIG_DFL);
     lua_sethook(L, NULL, 0, 0);
     sig_L = NULL;
-    sig_st = NULL;
   }
 }
 
 int tds_lua_interrupted(void) { return sig_seen != 0; }
 
 void tds_lua_sigterm_stops(int on) { sig_also_term = on; }
-
-tds_state *tds_lua_open(lua_State *L) {
-  luaL_openlibs(L);
-  tds_state *st = lua_newuserdatauv(L, sizeof *st, 0);
-  memset(st, 0, sizeof *st);
-  tds_ctx_init(&st->ctx);
-  tds_surf_init(&st->s);
-  lua_newtable(L); /* metatable */
-  lua_pushcfunction(L, state_gc);
-  lua_setfield(L, -2, "__gc");
-  lua_setmetatable(L, -2);
-  lua_setfield(L, LUA_REGISTRYINDEX, "tds.state");
-
-  lua_newtable(L); /* the raw library */
-  tds_open_elem(L, st);
-  tds_open_decl(L, st);
-  tds_open_cmd(L, st);
-  tds_open_model(L, st);
-  tds_open_datafile(L, st);
-  tds_open_pg(L, st);
-  tds_open_export(L, st);
-  tds_open_live(L, st);
-  tds_open_render(L, st);
-  tds_open_check(L, st);
-  tds_open_out(L, st);
-  tds_open_topo(L, st);
-  tds_open_newton(L, st);
-  tds_open_string(L, st);
-  lua_setglobal(L, "tds");
-
-  lua_getglobal(L, "package");
-  lua_getfield(L, -1, "preload");
-  for (int i = 0; lua_sources[i].name; i++) {
-    lua_pushinteger(L, i);
-    lua_pushcclosure(L, load_embedded, 1);
-    lua_setfield(L, -2, lua_sources[i].name);
-  }
-  lua_pop(L, 2);
-  lua_getglobal(L, "require");
-  lua_pushstring(L, "prelude");
-  if (lua_pcall(L, 1, 0, 0) != LUA_OK) return NULL;
-  return st;
-}

@@ -1,10 +1,11 @@
 /*
 ** lua_tds.h: the Lua bindings' shared state and helpers.
 **
-** One tds_state per lua_State, stored as a full userdata in the registry
-** and passed to every binding as upvalue 1. Bindings check arguments,
-** call the core, and turn a failing status into a Lua error carrying the
-** core's message (tds_lua_fail).
+** One tds_state per surface: a full userdata passed to every binding of
+** that surface as upvalue 1 (several surfaces may live in one lua_State,
+** lua_surface.c). Bindings check arguments, call the core, and turn a
+** failing status into a Lua error carrying the core's message
+** (tds_lua_fail).
 */
 #ifndef TDS_LUA_TDS_H
 #define TDS_LUA_TDS_H
@@ -22,7 +23,20 @@ typedef struct tds_state {
   void *after_ud;                 /* (the live view publishes through it) */
   int safe;          /* safe mode (lua_safe.c) */
   char *outdir;      /* safe mode: the only folder written to (resolved) */
+  struct tds_state *next_state; /* the process's surfaces (tds_lua_track) */
 } tds_state;
+
+/* User values of a state's userdata: the interned handles (a weak-valued
+** table keyed by id * TDS_NKINDS + kind), the surface's raw library (its
+** `tds` table), then the handles' metatable of each kind (TDS_UV_META +
+** kind), private to the surface. */
+#define TDS_UV_HANDLES 1
+#define TDS_UV_LIB 2
+#define TDS_UV_META 3
+/* A table where bindings anchor userdata that live as long as the surface
+** (tds_lua_keep). */
+#define TDS_UV_KEEP (TDS_UV_META + TDS_NKINDS)
+#define TDS_STATE_NUV (TDS_UV_KEEP + 1)
 
 #define TDS_STATE(L) ((tds_state *)lua_touserdata(L, lua_upvalueindex(1)))
 
@@ -61,6 +75,34 @@ int tds_lua_nilmsg(lua_State *L, const char *fmt, ...);
 /* Register functions with the state as upvalue into the table on top. */
 void tds_lua_register(lua_State *L, tds_state *st, const luaL_Reg *fns);
 
+/* Push the full userdata of st (a live surface of L; lua_surface.c). A
+** closure that needs st takes this as an upvalue, which keeps st alive. */
+void tds_lua_push_state(lua_State *L, tds_state *st);
+/* Pop the value on top into surface st's anchors under `name`: it lives
+** as long as st (a per-surface object the C side points to). */
+void tds_lua_keep(lua_State *L, tds_state *st, const char *name);
+/* Push the value anchored to st under `name` (nil if none). */
+void tds_lua_kept(lua_State *L, tds_state *st, const char *name);
+/* Push the raw library (the `tds` table) of surface st. */
+void tds_lua_push_lib(lua_State *L, tds_state *st);
+
+/* A new surface (lua_surface.c): its state and raw bindings (the table
+** `tds` of its namespace), its prelude run with the table at index env as
+** its namespace (its globals). env may be the global table (the program's
+** default surface, tds.globals()). safe: the surface's file writes stay
+** in outdir and the code it runs sees a sandboxed library (doc/embedding.md).
+** Returns the state, or NULL with an error message on the stack. */
+tds_state *tds_lua_surface_new(lua_State *L, int env, int safe, const char *outdir);
+
+/* The module opener (`require "tds"`): returns the table { new, globals }. */
+int luaopen_tds(lua_State *L);
+
+/* The sandbox of safe mode applied to the table at index lib (the global
+** table for `tds --safe`, or a surface's private copy of the library);
+** env: index of the table that load/loadfile/dofile use as the default
+** environment, or 0 for the global table. Returns 1, or 0 with a message. */
+int tds_lua_sandbox(lua_State *L, tds_state *st, int lib, int env, const char *outdir);
+
 /* Openers of the binding files; each adds its functions to the table on
 ** top of the stack (the raw `tds` table). */
 void tds_open_elem(lua_State *L, tds_state *st);
@@ -87,10 +129,14 @@ void tds_open_out(lua_State *L, tds_state *st);       /* lua_out.c */
 void tds_open_topo(lua_State *L, tds_state *st);      /* lua_topo.c */
 void tds_open_newton(lua_State *L, tds_state *st);    /* lua_newton.c */
 
-/* Push a handle for element (kind, 0-based id). */
+/* Push the handle of element (kind, 0-based id) of the surface of the
+** running binding (its upvalue 1). Handles are interned: while a handle is
+** alive, the same element gives the same userdata (so handles work as
+** table keys), and each knows its surface. */
 void tds_push_elem(lua_State *L, int kind, tds_id id);
-/* Check that argument i is a live element of `kind` (-1: any); returns its
-** 0-based id and stores the kind. */
+/* Check that argument i is a live element of `kind` (-1: any) of surface
+** st (a handle of another surface is an error); returns its 0-based id
+** and stores the kind. */
 tds_id tds_check_elem(lua_State *L, tds_state *st, int i, int kind, int *kindp);
 
 /* Element selection from an iterator or handle list argument: returns a
@@ -101,6 +147,10 @@ uint8_t *tds_lua_selection(lua_State *L, tds_state *st, int arg, int kind);
 /* Sigint support for the REPL and main: install / restore the handler that
 ** sets ctx.interrupt and interrupts running Lua code. */
 void tds_lua_sigint(lua_State *L, tds_state *st, int on);
+
+/* Add (on) or remove a surface from those Ctrl-C interrupts: every
+** surface's command stops, not only the program's surface's. */
+void tds_lua_track(tds_state *st, int on);
 
 /* Whether the last chunk run under tds_lua_sigint was interrupted. */
 int tds_lua_interrupted(void);

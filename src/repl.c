@@ -18,10 +18,59 @@
 ** a string becomes one through its __tostring, inside the protected call, so
 ** a __tostring that raises cannot escape (it gives LUA_ERRERR instead of a
 ** PANIC). q()'s quit table passes through. */
+/* Append to the message on top a short traceback of the user's code: the
+** frames of scripts, -e code and Evolver text (not C, not tds's embedded
+** modules), innermost first, when there are two or more (a message of
+** code at the top level has its position already). At most TB_MAX lines. */
+#define TB_MAX 12
+static void user_traceback(lua_State *L) {
+  lua_Debug ar;
+  int n = 0, shown = 0;
+  for (int level = 1; lua_getstack(L, level, &ar); level++) {
+    lua_getinfo(L, "S", &ar);
+    if (ar.what[0] != 'C' && strncmp(ar.source, "=[tds ", 6) != 0) n++;
+  }
+  if (n < 2) return;
+  lua_pushliteral(L, "\nstack traceback (your code):");
+  lua_concat(L, 2);
+  for (int level = 1; lua_getstack(L, level, &ar); level++) {
+    lua_getinfo(L, "Sln", &ar);
+    if (ar.what[0] == 'C' || strncmp(ar.source, "=[tds ", 6) == 0) continue;
+    if (++shown > TB_MAX) {
+      lua_pushliteral(L, "\n\t...");
+      lua_concat(L, 2);
+      break;
+    }
+    lua_pushfstring(L, "\n\t%s:%d: in ", ar.short_src, ar.currentline);
+    if (*ar.what == 'm') lua_pushliteral(L, "main chunk");
+    else if (ar.name) lua_pushfstring(L, "function '%s'", ar.name);
+    else lua_pushfstring(L, "function <%s:%d>", ar.short_src, ar.linedefined);
+    lua_concat(L, 3);
+  }
+}
+
+/* A message positioned in tds's embedded Lua ("[tds pg]:113: ...", an
+** error the module did not foresee) gets the user's position instead. */
+static void user_position(lua_State *L) {
+  const char *msg = lua_tostring(L, -1), *p;
+  if (strncmp(msg, "[tds ", 5) != 0 || !(p = strstr(msg, "]:"))) return;
+  p += 2;
+  while (isdigit((unsigned char)*p)) p++;
+  if (p[0] != ':' || p[1] != ' ') return;
+  tds_lua_where(L);
+  lua_pushstring(L, p + 2);
+  lua_concat(L, 2);
+  lua_remove(L, -2);
+}
+
 static int message_handler(lua_State *L) {
-  if (lua_type(L, 1) == LUA_TSTRING || tds_lua_is_quit(L, 1, NULL)) return 1;
-  if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING) return 1;
-  lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
+  if (tds_lua_is_quit(L, 1, NULL)) return 1;
+  if (lua_type(L, 1) != LUA_TSTRING &&
+      !(luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING))
+    lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
+  if (lua_gettop(L) == 1) lua_pushvalue(L, 1);
+  user_position(L);
+  user_traceback(L);
   return 1;
 }
 

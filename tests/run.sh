@@ -11,6 +11,7 @@
 #   web/NAME       the live view in headless Chromium (tests/web)
 #   pictures/NAME  pictures and the progress line (tests/pictures)
 #   repro          the fuzzing reproducers (tests/repro.sh)
+#   module/NAME    tests/module/NAME.lua in the stock lua5.4 with build/tds.so
 #   evolver/NAME   the same input through Surface Evolver and tds
 #
 # With no RUNNER, all run, in two lanes at once (Evolver's comparisons in
@@ -43,6 +44,7 @@ runners() {
   for w in tests/web/*.sh; do w=${w##*/}; echo "web/${w%.sh}"; done
   for p in tests/pictures/*.py; do p=${p##*/}; echo "pictures/${p%.py}"; done
   echo repro
+  for m in tests/module/*.lua; do m=${m##*/}; echo "module/${m%.lua}"; done
   for e in tests/evolver/*.sh; do e=${e##*/}; echo "evolver/${e%.sh}"; done
 }
 
@@ -70,6 +72,7 @@ run_one() {
     pictures/*) /usr/bin/python3 "tests/pictures/$name.py" "$TDS" "$BUILD" ||
                   echo "FAIL $1: exit status $?" ;;
     repro) sh tests/repro.sh ;;
+    module/*) sh tests/module/run.sh "$BUILD" "$name" ;;
     evolver/*) sh "tests/evolver/$name.sh" || echo "FAIL $1: exit status $?" ;;
   esac
 }
