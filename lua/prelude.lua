@@ -314,10 +314,17 @@ local function construct(kind, entry)
   if not ok then error(err, 3) end
   return id
 end
-function new_vertex(x, y, z) return construct(tds.vertex, { x, y, z }) end
-function new_edge(t, h) return construct(tds.edge, { t, h }) end
-function new_facet(...) return construct(tds.facet, { ... }) end
-function new_body() return construct(tds.body, {}) end
+-- (not tail calls: construct raises at its caller's caller)
+function new_vertex(x, y, z)
+  if type(x) ~= "number" or type(y) ~= "number" or type(z) ~= "number" then
+    error("new_vertex(x, y, z): three numbers expected", 2)
+  end
+  local id = construct(tds.vertex, { x, y, z })
+  return id
+end
+function new_edge(t, h) local id = construct(tds.edge, { t, h }) return id end
+function new_facet(...) local id = construct(tds.facet, { ... }) return id end
+function new_body() local id = construct(tds.body, {}) return id end
 function edgeswap(set) return tds.edgeswap(list_of(set, "edgeswap")) end
 -- j(temperature [, set]): Evolver's jiggle (jiggle.h); seeded by
 -- tds.setting("random_seed"), so a script repeats exactly.
