@@ -22,6 +22,13 @@
 ** elements go to *nsplit (edges split) if not NULL. */
 int tds_refine(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nsplit);
 
+/* Edge dst, split from src, takes its flags, constraints, boundary,
+** tension, colour, datafile edge and user attributes (topo_refine.c). */
+void tds_edge_inherit(tds_mesh *m, tds_id dst, tds_id src);
+/* Facet dst, split from src, takes its flags, constraints, tension, colour,
+** bodies, datafile face and user attributes (topo_refine.c). */
+void tds_facet_inherit(tds_mesh *m, tds_id dst, tds_id src);
+
 /* A new vertex at the midpoint of edge e, with the edge's fixed flag,
 ** constraints and boundary (its parameter found from the nearer end on
 ** it); the edge itself is not changed (topo_refine.c). Storage must be

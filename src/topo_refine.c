@@ -18,7 +18,16 @@ static int32_t half(const int32_t *e2, int32_t oe, int second) {
   return second ? TDS_OREF(e, 1) : TDS_OREF(e2[e], 1);
 }
 
-static void inherit_facet(tds_mesh *m, tds_id dst, tds_id src) {
+void tds_edge_inherit(tds_mesh *m, tds_id dst, tds_id src) {
+  m->eflags[dst] = m->eflags[src];
+  m->econ[dst] = m->econ[src];
+  m->ebdry[dst] = m->ebdry[src];
+  m->eten[dst] = m->eten[src];
+  m->ecolor[dst] = m->ecolor[src];
+  tds_mesh_inherit(m, TDS_EDGE, dst, src);
+}
+
+void tds_facet_inherit(tds_mesh *m, tds_id dst, tds_id src) {
   m->fflags[dst] = m->fflags[src];
   m->fcon[dst] = m->fcon[src];
   m->ften[dst] = m->ften[src];
@@ -40,7 +49,7 @@ static tds_id inner_edge(tds_mesh *m, tds_id f, tds_id v0, tds_id v1) {
 static tds_id new_facet(tds_mesh *m, tds_id src, int32_t a, int32_t b, int32_t c) {
   int32_t oe[3] = {a, b, c};
   tds_id f = tds_mesh_add_facet(m, oe);
-  inherit_facet(m, f, src);
+  tds_facet_inherit(m, f, src);
   return f;
 }
 
@@ -139,12 +148,7 @@ static tds_id split_edge(tds_surf *s, tds_id e, int32_t *e2) {
   tds_id v = tds_edge_midpoint(s, e);
   tds_id n = tds_mesh_add_edge(m, v, h);
   m->ev[e][1] = v;
-  m->eflags[n] = m->eflags[e];
-  m->econ[n] = m->econ[e];
-  m->ebdry[n] = m->ebdry[e];
-  m->eten[n] = m->eten[e];
-  m->ecolor[n] = m->ecolor[e];
-  tds_mesh_inherit(m, TDS_EDGE, n, e);
+  tds_edge_inherit(m, n, e);
   e2[e] = n;
   return v;
 }

@@ -58,11 +58,7 @@ static void split_one(tds_surf *s, tds_id e) {
       }
   }
   tds_id n = tds_mesh_add_edge(m, v, h);
-  m->eflags[n] = m->eflags[e];
-  m->econ[n] = m->econ[e];
-  m->ebdry[n] = m->ebdry[e];
-  m->eten[n] = m->eten[e];
-  m->ecolor[n] = m->ecolor[e];
+  tds_edge_inherit(m, n, e);
   m->ev[e][1] = v;
   for (int i = 0; i < nfe; i++) {
     tds_id f = fs[i];
@@ -95,13 +91,7 @@ static void split_one(tds_surf *s, tds_id e) {
     }
     int32_t *add = pa, *keep = pb;
     tds_id g = tds_mesh_add_facet(m, add);
-    m->fflags[g] = m->fflags[f];
-    m->fcon[g] = m->fcon[f];
-    m->ften[g] = m->ften[f];
-    m->fcolor[g] = m->fcolor[f];
-    m->fb[g][0] = m->fb[f][0];
-    m->fb[g][1] = m->fb[f][1];
-    m->forig[g] = m->forig[f] != TDS_NONE ? m->forig[f] : f;
+    tds_facet_inherit(m, g, f);
     tds_mesh_set_facet(m, f, keep);
   }
   m->topo_gen++;
@@ -217,13 +207,7 @@ static void split_centre(tds_surf *s, tds_id f) {
   for (int k = 1; k < 3; k++) {
     int32_t t[3] = {oe[k], TDS_OREF(sp[(k + 1) % 3], 0), TDS_OREF(sp[k], 1)};
     tds_id g = tds_mesh_add_facet(m, t);
-    m->fflags[g] = m->fflags[f];
-    m->fcon[g] = m->fcon[f];
-    m->ften[g] = m->ften[f];
-    m->fcolor[g] = m->fcolor[f];
-    m->fb[g][0] = m->fb[f][0];
-    m->fb[g][1] = m->fb[f][1];
-    m->forig[g] = m->forig[f] != TDS_NONE ? m->forig[f] : f;
+    tds_facet_inherit(m, g, f);
   }
   int32_t t0[3] = {oe[0], TDS_OREF(sp[1], 0), TDS_OREF(sp[0], 1)};
   tds_mesh_set_facet(m, f, t0);

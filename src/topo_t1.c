@@ -18,6 +18,7 @@
 #include <stdlib.h>
 
 #include "motion.h"
+#include "topo.h"
 #include "snap.h"
 #include "vec3.h"
 
@@ -139,13 +140,7 @@ static int expand(tds_mesh *m, tds_id v, int nt, const tds_id *te, const tds_id 
     m->econ[n] = m->fcon[f];
     tds_mesh_set_facet(m, f, oe);
     tds_id g = tds_mesh_add_facet(m, g3);
-    m->fflags[g] = m->fflags[f];
-    m->fcon[g] = m->fcon[f];
-    m->ften[g] = m->ften[f];
-    m->fcolor[g] = m->fcolor[f];
-    m->fb[g][0] = m->fb[f][0];
-    m->fb[g][1] = m->fb[f][1];
-    m->forig[g] = m->forig[f] != TDS_NONE ? m->forig[f] : f;
+    tds_facet_inherit(m, g, f);
   }
   tds_mesh_kill(m, TDS_VERTEX, v);
   m->topo_gen++;
