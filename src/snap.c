@@ -235,3 +235,14 @@ int tds_surf_all_finite(tds_ctx *ctx, const tds_surf *s, int derived) {
     if (!isfinite(g[k])) return tds_seterr(ctx, TDS_ENUM, "%s is %g", gname[k], g[k]);
   return TDS_OK;
 }
+
+int tds_snap_run(tds_ctx *ctx, tds_surf *s, tds_snap_cmd fn, const uint8_t *sel, int32_t *n) {
+  if (n) *n = 0;
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
+  if (rc != TDS_OK) return rc;
+  int32_t cnt = 0;
+  rc = tds_snap_end(ctx, s, &sn, fn(ctx, s, sel, &cnt));
+  if (n) *n = rc == TDS_OK ? cnt : 0;
+  return rc;
+}

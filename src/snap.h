@@ -43,6 +43,11 @@ void tds_snap_restore(tds_surf *s, tds_snap *sn);
 ** the command" to the message. Returns rc. */
 int tds_snap_end(tds_ctx *ctx, tds_surf *s, tds_snap *sn, int rc);
 
+/* Run a selection command fn(ctx, s, sel, &count) all or nothing under a
+** snapshot: *n gets the count on success, 0 on failure (n may be NULL). */
+typedef int (*tds_snap_cmd)(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
+int tds_snap_run(tds_ctx *ctx, tds_surf *s, tds_snap_cmd fn, const uint8_t *sel, int32_t *n);
+
 /* Release a snapshot that is not needed (the command succeeded). */
 void tds_snap_free(tds_snap *sn);
 

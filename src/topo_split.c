@@ -305,12 +305,5 @@ static int edgeswap(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
 }
 
 int tds_edgeswap(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
-  if (n) *n = 0;
-  tds_snap sn;
-  int rc = tds_snap_take(ctx, s, &sn);
-  if (rc != TDS_OK) return rc;
-  int32_t cnt = 0;
-  rc = tds_snap_end(ctx, s, &sn, edgeswap(ctx, s, sel, &cnt));
-  if (n) *n = rc == TDS_OK ? cnt : 0;
-  return rc;
+  return tds_snap_run(ctx, s, edgeswap, sel, n);
 }
