@@ -375,7 +375,8 @@ local INTERNAL = {
   G = function() local g, on = tds.gravity(); return on and g or 0.0 end,
   space_dimension = function() return 3.0 end,
   surface_dimension = function() return 2.0 end,
-  torus = function() return 0.0 end,
+  torus = function() return tds.torus() ~= 0 and 1.0 or 0.0 end,
+  torus_filled = function() return tds.torus() == 2 and 1.0 or 0.0 end,
   -- the identity and the datafile's view transforms (display only in tds)
   transform_count = function() return tds.setting("view_transforms") + 1.0 end,
   symmetry_group = function() return 0.0 end,
@@ -952,6 +953,13 @@ B.ritz = function(c, n)
   tds.ritz(c ~= nil and num(c, "ritz") or 0, n or 5)
 end
 B.lanczos = function(c, n) return B.ritz(c, n or 15) end
+
+-- The torus model (src/lua_torus.c, doc/torus.md).
+B.wrap_vertex = function(v, w)
+  if v == nil or w == nil then fail("wrap_vertex needs a vertex and a wrap: wrap_vertex(1, 4096)") end
+  tds.wrap_vertex(num(v, "wrap_vertex"), num(w, "wrap_vertex"))
+end
+B.detorus = function() need_surface("detorus"); tds.detorus() end
 B.move = function(t)
   if t == nil then fail("move needs a step: move 0.1") end
   tds.move(num(t, "move"))
@@ -964,7 +972,7 @@ for w in ([[O J e A a b f k M p Q W y Z z s P D F H h X
   dirichlet dirichlet_seek sobolev sobolev_seek
   pop_quad_to_quad t1_edgeswap raw_vertex_average
   rawest_vertex_average rawv rawestv vertex_merge
-  edge_merge facet_merge facet_crosscut rebody zoom detorus wrap_vertex 
+  edge_merge facet_merge facet_crosscut rebody zoom
   addload
   logfile keylogfile history pause subcommand breakpoint whereami flush_counts
   reset_counts metis kmetis body_metis ometis
@@ -974,7 +982,7 @@ for w in ([[O J e A a b f k M p Q W y Z z s P D F H h X
   quietgo quietload verbose approximate_curvature runge_kutta
   post_project volgrads_every area_normalization effective_area normal_motion
   ysmp bunch_kaufman sparse_constraints augmented_hessian
-  torus_filled kusner conf_edge normal_curvature boundary_curvature
+  kusner conf_edge normal_curvature boundary_curvature
   show_all_quantities interp_bdry_param break_after_warning break_on_warning
   itdebug memdebug debug estimate extrapolate set_body_target quantity]]):gmatch("%S+") do UNSUPPORTED[w] = true end
 E.UNSUPPORTED = UNSUPPORTED

@@ -257,6 +257,12 @@ end
 equiangulate = u
 
 function V(set) tds.vertex_average(set) end
+-- The torus model (doc/torus.md, src/lua_torus.c).
+function periods() return tds.periods() end
+function wrap_vertex(v, w) tds.wrap_vertex(v, w) end
+-- (not `rewrap`: Evolver's rewrap.cmd defines that command itself)
+function torus_rewrap() return tds.rewrap() end
+function detorus() tds.detorus() end
 -- facet_crosscut(f, tail, head): split a string-model cell (doc/string.md)
 function facet_crosscut(f, t, h) return tds.facet_crosscut(f, t, h) end
 vertex_average = V

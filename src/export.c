@@ -2,6 +2,7 @@
 ** export.c: options, the triangle mesh of each file, fields, and writing
 ** every file atomically (contract in export.h; writers in export_*.c).
 */
+#include "torus.h"
 #include "export.h"
 
 #include <math.h>
@@ -353,6 +354,15 @@ static char *body_path(const tds_alloc *a, const char *path, tds_id body) {
 }
 
 int tds_export(tds_ctx *ctx, tds_surf *s, const char *path, const tds_export_opts *o) {
+  if (s->m.torus) { /* each facet unwrapped, never an edge across the cell */
+    tds_surf view;
+    int vrc = tds_torus_view(ctx, s, &view);
+    if (vrc == TDS_OK) {
+      vrc = tds_export(ctx, &view, path, o);
+      tds_torus_view_free(&view);
+    }
+    return vrc;
+  }
   int rc = check_opts(ctx, s, o);
   if (rc != TDS_OK) return rc;
   tds_mesh *m = &s->m;

@@ -112,6 +112,7 @@ void tds_open_model(lua_State *L, tds_state *st);     /* lua_model.c */
 void tds_open_datafile(lua_State *L, tds_state *st);  /* lua_datafile.c */
 void tds_open_pg(lua_State *L, tds_state *st);        /* lua_pg.c */
 void tds_open_string(lua_State *L, tds_state *st);    /* lua_string.c */
+void tds_open_torus(lua_State *L, tds_state *st);     /* lua_torus.c */
 void tds_open_export(lua_State *L, tds_state *st);    /* lua_export.c */
 void tds_open_live(lua_State *L, tds_state *st);      /* lua_live.c */
 void tds_open_render(lua_State *L, tds_state *st);    /* lua_render.c */

@@ -1,4 +1,5 @@
 /* recalc.c: re-place vertices from parameters (contracts in recalc.h). */
+#include "torus.h"
 #include "recalc.h"
 
 #include <stdlib.h>
@@ -23,12 +24,15 @@ int tds_recalc(tds_ctx *ctx, tds_surf *s) {
   tds_id bad = TDS_NONE;
   for (tds_id v = 0; v < nv && bad == TDS_NONE; v++)
     if (tds_alive(m->vflags, v) && tds_motion_enforce(s, v) != TDS_OK) bad = v;
-  if (bad != TDS_NONE) {
+  /* the torus's PERIODS formulas (torus.h); checked before they change */
+  int prc = bad == TDS_NONE && m->torus ? tds_torus_periods(ctx, s) : TDS_OK;
+  if (bad != TDS_NONE || prc != TDS_OK) {
     memcpy(m->x, x0, (size_t)nv * sizeof *x0);
     memcpy(m->vp, p0, (size_t)nv * sizeof *p0);
   }
   tds_free(&s->m.alloc, x0);
   tds_free(&s->m.alloc, p0);
+  if (prc != TDS_OK) return prc;
   if (bad != TDS_NONE)
     return tds_seterr(ctx, TDS_ENUM,
                       "recalc: vertex %d cannot be placed on its %s with the "

@@ -1,4 +1,5 @@
 /* render.c: pictures of a surface with cairo (see render.h). */
+#include "torus.h"
 #include "render.h"
 
 #include <cairo.h>
@@ -270,6 +271,15 @@ static void paint_facets(cairo_t *cr, const rfacet *rf, int32_t n, int smooth,
 
 int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
                    const char *path, tds_render_info *info) {
+  if (s->m.torus) { /* each facet unwrapped, never an edge across the cell */
+    tds_surf view;
+    int vrc = tds_torus_view(ctx, s, &view);
+    if (vrc == TDS_OK) {
+      vrc = tds_render_png(ctx, &view, o, path, info);
+      tds_torus_view_free(&view);
+    }
+    return vrc;
+  }
   tds_mesh *m = &s->m;
   tds_render_info in;
   memset(&in, 0, sizeof in);

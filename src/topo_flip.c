@@ -42,6 +42,33 @@ int tds_flip_ok(const tds_surf *s, tds_id e, tds_id *f1, tds_id *f2) {
   return 1;
 }
 
+/* The corners a, b (e's ends), c (f1's third) and d (f2's third) of the
+** quad around e, as one patch: f1 unwrapped from its first corner, f2
+** translated to meet it along e (torus.h). Without a torus, the stored
+** positions. Returns the packed wrap from c to d in that patch. */
+static int32_t quad(const tds_mesh *m, tds_id e, tds_id f1, tds_id f2, double q[4][3]) {
+  int k1 = side_of(m, f1, e), k2 = side_of(m, f2, e);
+  int ca = k1, cb = (k1 + 1) % 3, cc = (k1 + 2) % 3;  /* f1 = (a, b, c) */
+  int da = (k2 + 1) % 3, dd = (k2 + 2) % 3;            /* f2 = (b, a, d) */
+  if (!m->torus) {
+    memcpy(q[0], m->x[m->fv[f1][ca]], sizeof q[0]);
+    memcpy(q[1], m->x[m->fv[f1][cb]], sizeof q[1]);
+    memcpy(q[2], m->x[m->fv[f1][cc]], sizeof q[2]);
+    memcpy(q[3], m->x[m->fv[f2][dd]], sizeof q[3]);
+    return 0;
+  }
+  int32_t shift = tds_wrap_add(tds_torus_corner_wrap(m, f1, ca),
+                               tds_wrap_neg(tds_torus_corner_wrap(m, f2, da)));
+  int32_t wd = tds_wrap_add(tds_torus_corner_wrap(m, f2, dd), shift);
+  tds_torus_facet_corner(m, f1, ca, q[0]);
+  tds_torus_facet_corner(m, f1, cb, q[1]);
+  tds_torus_facet_corner(m, f1, cc, q[2]);
+  double t[3];
+  tds_wrap_vec(m->period, wd, t);
+  for (int i = 0; i < 3; i++) q[3][i] = m->x[m->fv[f2][dd]][i] + t[i];
+  return tds_wrap_add(wd, tds_wrap_neg(tds_torus_corner_wrap(m, f1, cc)));
+}
+
 void tds_flip(tds_surf *s, tds_id e, tds_id f1, tds_id f2) {
   tds_mesh *m = &s->m;
 #ifdef TDS_CHECKS
@@ -53,6 +80,10 @@ void tds_flip(tds_surf *s, tds_id e, tds_id f1, tds_id f2) {
   int32_t bc = m->fe[f1][(k1 + 1) % 3], ca = m->fe[f1][(k1 + 2) % 3];
   int32_t ad = m->fe[f2][(k2 + 1) % 3], db = m->fe[f2][(k2 + 2) % 3];
   tds_id c = m->fv[f1][(k1 + 2) % 3], d = m->fv[f2][(k2 + 2) % 3];
+  if (m->torus) {
+    double q[4][3];
+    m->ewrap[e] = quad(m, e, f1, f2, q);
+  }
   m->ev[e][0] = c; /* e becomes c->d */
   m->ev[e][1] = d;
   int32_t t1[3] = {ad, TDS_OREF(e, 1), ca}; /* a, d, c */
@@ -63,20 +94,16 @@ void tds_flip(tds_surf *s, tds_id e, tds_id f1, tds_id f2) {
 
 /* Sum of the two angles opposite edge e (f1 forwards, f2 backwards). */
 static double opposite_sum(const tds_mesh *m, tds_id e, tds_id f1, tds_id f2) {
-  tds_id a = m->ev[e][0], b = m->ev[e][1];
-  int k1 = side_of(m, f1, e), k2 = side_of(m, f2, e);
-  tds_id c = m->fv[f1][(k1 + 2) % 3], d = m->fv[f2][(k2 + 2) % 3];
-  return geom_angle(m->x[c], m->x[a], m->x[b]) +
-         geom_angle(m->x[d], m->x[a], m->x[b]);
+  double q[4][3];
+  quad(m, e, f1, f2, q);
+  return geom_angle(q[2], q[0], q[1]) + geom_angle(q[3], q[0], q[1]);
 }
 
 /* Sum of the cosines of the two angles opposite edge e. */
 static double opposite_cos(const tds_mesh *m, tds_id e, tds_id f1, tds_id f2) {
-  tds_id a = m->ev[e][0], b = m->ev[e][1];
-  int k1 = side_of(m, f1, e), k2 = side_of(m, f2, e);
-  tds_id c = m->fv[f1][(k1 + 2) % 3], d = m->fv[f2][(k2 + 2) % 3];
-  return cos(geom_angle(m->x[c], m->x[a], m->x[b])) +
-         cos(geom_angle(m->x[d], m->x[a], m->x[b]));
+  double q[4][3];
+  quad(m, e, f1, f2, q);
+  return cos(geom_angle(q[2], q[0], q[1])) + cos(geom_angle(q[3], q[0], q[1]));
 }
 
 /* Evolver's u: one pass over the selected edges in id order, flipping
@@ -173,7 +200,6 @@ static int equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
 
 /* All or nothing, as tds_refine. */
 int tds_equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nflips) {
-  if (s->m.torus) return tds_torus_unsupported(ctx, "u (equiangulate)");
   tds_snap sn;
   int rc = tds_snap_take(ctx, s, &sn);
   if (rc != TDS_OK) return rc;
@@ -182,7 +208,6 @@ int tds_equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nfl
 
 int tds_equiangulate_once(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
                           int32_t *nflips) {
-  if (s->m.torus) return tds_torus_unsupported(ctx, "equiangulate");
   tds_snap sn;
   int rc = tds_snap_take(ctx, s, &sn);
   if (rc != TDS_OK) return rc;

@@ -41,12 +41,17 @@ static int over_facets(const tds_mesh *m, tds_id v, double out[3]) {
     tds_corners C;
     tds_gather_facet(m, f, &C);
     const double *a = C.x[0], *b = C.x[1], *c = C.x[2];
-    double ab[3], ac[3], N[3];
+    /* on a torus the facet is gathered from its first corner: sh moves it
+    ** to v's copy (0 otherwise) */
+    int cv = m->fv[f][0] == v ? 0 : m->fv[f][1] == v ? 1 : 2;
+    double ab[3], ac[3], N[3], sh[3];
+    v3_sub(sh, m->x[v], C.x[cv]);
     v3_sub(ab, b, a);
     v3_sub(ac, c, a);
     v3_cross(N, ab, ac);
     double A = 0.5 * v3_norm(N);
     for (int k = 0; k < 3; k++) sum[k] += A * (a[k] + b[k] + c[k]) / 3;
+    if (m->torus) v3_axpy(sum, A, sh);
     wsum += A;
     v3_add(nsum, nsum, N);
   }
@@ -108,7 +113,6 @@ static int vertex_average(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
 /* All or nothing: a move that makes the energy non-finite is taken back. */
 int tds_vertex_average(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
                        int32_t *nmoved) {
-  if (s->m.torus) return tds_torus_unsupported(ctx, "V (vertex_average)");
   tds_snap sn;
   int rc = tds_snap_take(ctx, s, &sn);
   if (rc != TDS_OK) return rc;

@@ -90,4 +90,25 @@ int tds_torus_unsupported(tds_ctx *ctx, const char *what);
 ** vertex, a wrap out of range) leaves everything unchanged. */
 int tds_torus_wrap_vertex(tds_ctx *ctx, tds_surf *s, tds_id v, int32_t w);
 
+/* Evolver's detorus on a mesh: the torus model ends, each facet kept
+** where it is drawn from its first corner (raw cells): vertices it reaches
+** across the cell get copies there (attributes inherited), edges likewise;
+** elements no facet uses any more are removed. Bodies keep their facets
+** (their volumes are no longer closed: patch up as in Evolver). TDS_OK or
+** TDS_ENOMEM (nothing changed). */
+int tds_torus_detorus(tds_ctx *ctx, tds_mesh *m);
+
+/* Move every vertex into the unit cell (lattice coordinates in [0, 1))
+** with tds_torus_wrap_vertex (Evolver's rewrap.cmd); *n gets how many
+** moved. The volumes do not change (tds needs no volconst adjustment). */
+int tds_torus_rewrap(tds_ctx *ctx, tds_surf *s, int32_t *n);
+
+/* For exports and pictures: *view is a shallow copy of s (sharing its
+** model: parameters, constraints, quantities) whose mesh is a detorused
+** deep copy, so every facet is drawn unwrapped from its first corner and
+** no edge crosses the cell. Release with tds_torus_view_free (never
+** tds_surf_free). TDS_OK or TDS_ENOMEM. */
+int tds_torus_view(tds_ctx *ctx, const tds_surf *s, tds_surf *view);
+void tds_torus_view_free(tds_surf *view);
+
 #endif

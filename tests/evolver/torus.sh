@@ -111,3 +111,80 @@ end
 report('torus/$f/evolver-dump-volumes', worst <= 1e-12, worst, '<= 1e-12')
 " 2>&1 || echo "FAIL torus/$f/evolver-dump: tds exited with an error"
 done
+
+# PERIODS with a parameter: recalc re-evaluates them (energy, volumes 1e-12
+# against Evolver); tds's dump keeps the formula, which Evolver reads to the
+# same energy after its own change.
+{
+  printf 'parameter per = 1\nTORUS_FILLED\nperiods\nper 0 0\n0 1 0\n0 0 1\n'
+  sed -n '/^vertices/,$p' "$EXAMPLES/twointor.fe" | sed '/^read/,$d'
+} > "$tmp/per.fe"
+ev=$(evolver_run "$tmp/per.fe" "per := 1.5; recalc; $PRINT")
+"$TDS" -q "$tmp/per.fe" -e "
+dofile('$ROOT/tests/evolver/compare.lua')
+per = 1.5
+recalc()
+same('torus/periods/recalc-energy', total_energy, $(echo "$ev" | grab E0), 1e-12)
+local worst = 0
+for s in ('$(echo "$ev" | lines B0)'):gmatch('([^;]+);') do
+  local id, v = s:match('(%S+) (%S+)')
+  worst = math.max(worst, math.abs(body[tonumber(id)].volume - tonumber(v)))
+end
+report('torus/periods/recalc-volumes', worst <= 1e-12, worst, '<= 1e-12')
+per = 1
+recalc()
+local ok, msg = dump('$tmp/per.dmp')
+if not ok then error(msg) end" 2>&1 || echo "FAIL torus/periods: tds exited with an error"
+evd=$(evolver_run "$tmp/per.dmp" "per := 1.5; recalc; $PRINT")
+"$TDS" -q "$ROOT/tests/evolver/compare.lua" -e "
+same('torus/periods/dump-evolver-energy', tonumber('$(echo "$evd" | grab E0)') or 0/0, $(echo "$ev" | grab E0), 1e-12)"
+
+# u across the cell: phelanc refined twice, every vertex moved by a
+# deterministic offset, three u: the same flips as Evolver's each time
+# (379, 14, 0) and the same energy after each (1e-12: the same facets).
+cat > "$tmp/u.cmd" <<'CMD'
+r
+r
+foreach vertex vv do { vv.x := vv.x + 0.03*sin(vv.id*12.9898); vv.y := vv.y + 0.03*sin(vv.id*78.233); vv.z := vv.z + 0.03*sin(vv.id*37.719) }
+printf "E0 %.17g\n", total_energy
+u
+printf "E1 %.17g\n", total_energy
+u
+printf "E2 %.17g\n", total_energy
+u
+printf "E3 %.17g\n", total_energy
+CMD
+ev=$(evolver_run "$tmp/phelanc.fe" "$(cat "$tmp/u.cmd")")
+td=$(cd "$tmp" && "$TDS" phelanc.fe -f u.cmd 2>&1)
+want=$(echo "$ev" | grep -o 'switched in equiangulation: [0-9]*' | tr '\n' ' ')
+got=$(echo "$td" | grep -o 'switched in equiangulation: [0-9]*' | tr '\n' ' ')
+if [ -n "$want" ] && [ "$got" = "$want" ]; then echo "PASS torus/phelanc/u-flips"
+else echo "FAIL torus/phelanc/u-flips: tds '$got', Evolver '$want'"; fi
+"$TDS" -q "$ROOT/tests/evolver/compare.lua" -e "
+for k = 0, 3 do
+  local function val(s) return tonumber(('\\n' .. s):match('\\nE' .. k .. ' (%S+)')) or 0/0 end
+  same('torus/phelanc/u-energy' .. k, val([[$td]]), val([[$ev]]), 1e-12)
+end"
+
+# symtest.fe (a symmetry group) is refused at its keyword.
+got=$("$TDS" -q "$EXAMPLES/symtest.fe" -e '' 2>&1 < /dev/null)
+want="$EXAMPLES/symtest.fe:7: SYMMETRY_GROUP is not supported yet"
+if [ "$got" = "$want" ]; then echo "PASS torus/symtest/refused"
+else echo "FAIL torus/symtest/refused: '$got', want '$want'"; fi
+
+# The twointor tutorial (../shared/reference/tutorial.md, section 4): its
+# gogo (g 5; r; g 5; hessian; r; g 5; hessian; hessian) gives V 122 E 408
+# F 288 and V 530 E 1680 F 1152 after the two r, and Evolver ends at
+# 3.34315307547943 with volumes 0.5. The last energy is compared to 2e-8:
+# both programs' hessian steps keep the tangential placement their g steps
+# left (different line searches), and tds ends 1.4e-8 lower.
+"$TDS" -q "$tmp/twointor.fe" -e "
+dofile('$ROOT/tests/evolver/compare.lua')
+g(5) r()
+report('torus/tutorial/r1-counts', counts() == '122 408 288 2', counts(), '122 408 288 2')
+g(5) hessian() r()
+report('torus/tutorial/r2-counts', counts() == '530 1680 1152 2', counts(), '530 1680 1152 2')
+g(5) hessian() hessian()
+same('torus/tutorial/gogo-energy', total_energy, 3.34315307547943, 2e-8)
+same('torus/tutorial/gogo-volume', body[2].volume, 0.5, 1e-12)
+" 2>&1 || echo "FAIL torus/tutorial: tds exited with an error"

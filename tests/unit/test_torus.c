@@ -11,6 +11,8 @@
 #include "datafile.h"
 #include "eval.h"
 #include "helpers.h"
+#include "gather.h"
+#include "topo.h"
 #include "torus.h"
 
 #define EX "/usr/share/doc/evolver/examples/"
@@ -156,11 +158,103 @@ static void copy_invariance(void) {
   tds_surf_free(&s);
 }
 
+/* detorus: the surface as drawn, no torus: the same area (1e-12), no
+** wraps, a valid mesh, and no edge longer than half the cell (the longest
+** edge of twointor after r is 0.36). */
+static void detorus_keeps_area(void) {
+  tds_ctx ctx;
+  tds_surf s;
+  h_setup(&ctx, &s);
+  REQUIRE_OK(&ctx, tds_datafile_load(&ctx, &s, EX "twointor.fe"));
+  REQUIRE_OK(&ctx, tds_refine(&ctx, &s, NULL, NULL));
+  REQUIRE_OK(&ctx, tds_surf_update(&ctx, &s));
+  double a0 = s.area;
+  REQUIRE_OK(&ctx, tds_torus_detorus(&ctx, &s.m));
+  CHECK(s.m.torus == 0);
+  CHECK_MESH(&ctx, &s.m);
+  REQUIRE_OK(&ctx, tds_surf_update(&ctx, &s));
+  CHECK_NEAR(s.area, a0, 1e-12 * a0);
+  double longest = 0;
+  for (tds_id e = 0; e < s.m.ne; e++) {
+    if (!tds_alive(s.m.eflags, e)) continue;
+    CHECK(s.m.ewrap[e] == 0);
+    double d[3];
+    tds_edge_vec(&s.m, TDS_OREF(e, 0), d);
+    longest = fmax(longest, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+  }
+  CHECK(longest < 0.5);
+  tds_surf_free(&s);
+}
+
+/* rewrap after a seeded scatter of vertices over neighbouring cells puts
+** every vertex in the cell (lattice coordinates in [0, 1)) and keeps the
+** energy and volumes (1e-14). */
+static void rewrap_into_cell(void) {
+  tds_ctx ctx;
+  tds_surf s;
+  h_setup(&ctx, &s);
+  REQUIRE_OK(&ctx, tds_datafile_load(&ctx, &s, "tests/evolver/torus/kelvin.fe"));
+  REQUIRE_OK(&ctx, tds_surf_update(&ctx, &s));
+  double e0 = s.energy, v0 = s.m.bvol[0];
+  uint64_t st = 3;
+  for (tds_id v = 0; v < s.m.nv; v++) {
+    int k[3];
+    for (int i = 0; i < 3; i++) k[i] = (int)floor(h_uniform(&st, -1, 2));
+    REQUIRE_OK(&ctx, tds_torus_wrap_vertex(&ctx, &s, v, tds_wrap_pack(k)));
+  }
+  int32_t n = 0;
+  REQUIRE_OK(&ctx, tds_torus_rewrap(&ctx, &s, &n));
+  CHECK(n > 0);
+  CHECK_MESH(&ctx, &s.m);
+  for (tds_id v = 0; v < s.m.nv; v++) {
+    const double *x = s.m.x[v]; /* bcc: x = sum c_i P_i, c = (y+z, x+z, x+y) */
+    double c[3] = {x[1] + x[2], x[0] + x[2], x[0] + x[1]};
+    for (int i = 0; i < 3; i++) CHECK(c[i] >= -1e-12 && c[i] < 1 + 1e-12);
+  }
+  REQUIRE_OK(&ctx, tds_surf_update(&ctx, &s));
+  CHECK_NEAR(s.energy, e0, 1e-14 * e0);
+  CHECK_NEAR(s.m.bvol[0], v0, 1e-14);
+  tds_surf_free(&s);
+}
+
+/* V does not depend on which copy of the cell vertices are stored in:
+** phelanc refined, V from the stored copies and V after a seeded scatter
+** of the vertices over neighbouring cells give the same energy (1e-13:
+** the same averages of other numbers) and volumes. */
+static void vertex_average_copies(void) {
+  double e[2], v[2][8];
+  for (int pass = 0; pass < 2; pass++) {
+    tds_ctx ctx;
+    tds_surf s;
+    h_setup(&ctx, &s);
+    REQUIRE_OK(&ctx, tds_datafile_load(&ctx, &s, EX "phelanc.fe"));
+    REQUIRE_OK(&ctx, tds_refine(&ctx, &s, NULL, NULL));
+    uint64_t st = 11;
+    for (tds_id x = 0; pass && x < s.m.nv; x++) {
+      int k[3];
+      for (int i = 0; i < 3; i++) k[i] = (int)floor(h_uniform(&st, -1, 2));
+      REQUIRE_OK(&ctx, tds_torus_wrap_vertex(&ctx, &s, x, tds_wrap_pack(k)));
+    }
+    int32_t n = 0;
+    REQUIRE_OK(&ctx, tds_vertex_average(&ctx, &s, NULL, &n));
+    CHECK(n > 300);
+    CHECK_MESH(&ctx, &s.m);
+    e[pass] = s.energy;
+    for (tds_id b = 0; b < 8; b++) v[pass][b] = s.m.bvol[b];
+    tds_surf_free(&s);
+  }
+  CHECK_NEAR(e[1], e[0], 1e-13 * e[0]);
+  for (tds_id b = 0; b < 8; b++) CHECK_NEAR(v[1][b], v[0][b], 1e-13);
+}
+
 int main(void) {
   RUN(wrap_packing);
   RUN(wrap_codes);
   RUN(gradient_fd_twointor);
   RUN(gradient_fd_phelanc);
   RUN(copy_invariance);
+  RUN(detorus_keeps_area);
+  RUN(rewrap_into_cell);
+  RUN(vertex_average_copies);
   return check_done();
 }

@@ -1,0 +1,73 @@
+/* lua_torus.c: Lua bindings of the torus model (torus.h):
+**   tds.torus() -> 0 (none), 1 (TORUS) or 2 (TORUS_FILLED)
+**   tds.periods() -> {{x, y, z}, {x, y, z}, {x, y, z}} or nil
+**   tds.wrap_vertex(v, code)   Evolver's wrap_vertex (code: a wrap code)
+**   tds.rewrap() -> n          vertices moved into the unit cell
+**   tds.detorus()              the surface as drawn, no torus any more */
+#include "lua_tds.h"
+#include "snap.h"
+#include "torus.h"
+
+static int l_torus(lua_State *L) {
+  lua_pushinteger(L, TDS_STATE(L)->s.m.torus);
+  return 1;
+}
+
+static int l_periods(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  if (!st->s.m.torus) return 0;
+  lua_createtable(L, 3, 0);
+  for (int i = 0; i < 3; i++) {
+    lua_createtable(L, 3, 0);
+    for (int j = 0; j < 3; j++) {
+      lua_pushnumber(L, st->s.m.period[i][j]);
+      lua_rawseti(L, -2, j + 1);
+    }
+    lua_rawseti(L, -2, i + 1);
+  }
+  return 1;
+}
+
+static int l_wrap_vertex(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  tds_id v = lua_isnumber(L, 1) ? (tds_id)(luaL_checknumber(L, 1) - 1)
+                                : tds_check_elem(L, st, 1, TDS_VERTEX, NULL);
+  double code = tds_lua_checkfinite(L, 2, "wrap code");
+  int32_t w;
+  if (tds_torus_wrap_from_code(code, &w) != TDS_OK)
+    return luaL_error(L, "wrap_vertex: %f is not a wrap code (6 bits per period)", code);
+  int rc = tds_torus_wrap_vertex(&st->ctx, &st->s, v, w);
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+  tds_surf_update(&st->ctx, &st->s);
+  return 0;
+}
+
+static int l_rewrap(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  tds_snap sn;
+  int rc = tds_snap_take(&st->ctx, &st->s, &sn);
+  int32_t n = 0;
+  if (rc == TDS_OK) rc = tds_snap_end(&st->ctx, &st->s, &sn, tds_torus_rewrap(&st->ctx, &st->s, &n));
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+  tds_surf_update(&st->ctx, &st->s);
+  lua_pushinteger(L, n);
+  return 1;
+}
+
+static int l_detorus(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  int rc = tds_torus_detorus(&st->ctx, &st->s.m);
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+  tds_surf_update(&st->ctx, &st->s);
+  return 0;
+}
+
+void tds_open_torus(lua_State *L, tds_state *st) {
+  static const luaL_Reg fns[] = {{"torus", l_torus},
+                                 {"periods", l_periods},
+                                 {"wrap_vertex", l_wrap_vertex},
+                                 {"rewrap", l_rewrap},
+                                 {"detorus", l_detorus},
+                                 {NULL, NULL}};
+  tds_lua_register(L, st, fns);
+}
