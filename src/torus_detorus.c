@@ -66,7 +66,8 @@ int tds_torus_detorus(tds_ctx *ctx, tds_mesh *m) {
   copies cv = {0}, ce = {0};
   int32_t *newfe = tds_malloc(a, (size_t)(3 * (nf > 0 ? nf : 1)) * sizeof *newfe);
   uint8_t *bare = tds_calloc(a, (size_t)(ne > 0 ? ne : 1), 1);
-  int rc = newfe && bare ? TDS_OK : TDS_ENOMEM;
+  uint8_t *used = tds_calloc(a, (size_t)(nv + 3 * nf + ne + 1), 1);
+  int rc = newfe && bare && used ? TDS_OK : TDS_ENOMEM;
   if (!rc) rc = copies_init(a, &cv, (size_t)(3 * nf + ne));
   if (!rc) rc = copies_init(a, &ce, (size_t)(3 * nf + ne));
   if (!rc && (tds_mesh_reserve(m, TDS_VERTEX, nv + 3 * nf + ne) ||
@@ -75,6 +76,7 @@ int tds_torus_detorus(tds_ctx *ctx, tds_mesh *m) {
   if (rc) {
     tds_free(a, newfe);
     tds_free(a, bare);
+    tds_free(a, used);
     copies_free(a, &cv);
     copies_free(a, &ce);
     return tds_seterr(ctx, rc, "out of memory");
@@ -120,14 +122,11 @@ int tds_torus_detorus(tds_ctx *ctx, tds_mesh *m) {
   }
   for (tds_id e = 0; e < m->ne; e++) m->ewrap[e] = 0;
   /* vertices left on no edge (every use moved to a copy) go too */
-  uint8_t *used = tds_calloc(a, (size_t)(m->nv > 0 ? m->nv : 1), 1);
-  if (used) {
-    for (tds_id e = 0; e < m->ne; e++)
-      if (tds_alive(m->eflags, e)) used[m->ev[e][0]] = used[m->ev[e][1]] = 1;
-    for (tds_id v = 0; v < nv; v++)
-      if (tds_alive(m->vflags, v) && !used[v] && !(m->vflags[v] & TDS_BARE))
-        tds_mesh_kill(m, TDS_VERTEX, v);
-  }
+  for (tds_id e = 0; e < m->ne; e++)
+    if (tds_alive(m->eflags, e)) used[m->ev[e][0]] = used[m->ev[e][1]] = 1;
+  for (tds_id v = 0; v < nv; v++)
+    if (tds_alive(m->vflags, v) && !used[v] && !(m->vflags[v] & TDS_BARE))
+      tds_mesh_kill(m, TDS_VERTEX, v);
   tds_free(a, used);
   tds_free(a, newfe);
   tds_free(a, bare);

@@ -31,6 +31,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "torus.h"
 #include "check.h"
 #include "datafile.h"
 #include "export.h"
@@ -296,7 +297,8 @@ typedef struct opcase {
                         'q' and 'c' run-time define of a quantity and of a
                         global constraint with an energy integrand, 'n' a
                         Newton step (hessian), 's' hessian_seek, 'e'
-                        eigenvalues (ritz: 3 lowest), 'S' saddle */
+                        eigenvalues (ritz: 3 lowest), 'S' saddle, 'D'
+                        detorus */
 } opcase;
 
 static int prepare(tds_ctx *ctx, tds_surf *s, const opcase *c) {
@@ -376,6 +378,7 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
   case 'g': return tds_iterate(ctx, s, 2);
   case 'u': return tds_equiangulate(ctx, s, NULL, &n);
   case 'V': return tds_vertex_average(ctx, s, NULL, &n);
+  case 'D': return tds_torus_detorus(ctx, &s->m);
   default: return tds_datafile_dump(ctx, s, dump_path);
   }
 }
@@ -554,6 +557,16 @@ static void oom_newton(void) {
   sweep_all('e', 1, 5);
   sweep_all('S', 1, 5);
 }
+/* The torus model: twointor.fe (wraps, lifts of the volumes, TORUS_FILLED)
+** through load, r, g, u, V, dump, the Hessian, export and detorus. */
+static void oom_torus(void) {
+  const char ops[] = "LrguVdhxD";
+  for (int i = 0; ops[i] && !check_failed_; i++) {
+    opcase c = {EX "twointor.fe", ops[i] == 'L' || ops[i] == 'r' ? 0 : 1,
+                ops[i] == 'u' || ops[i] == 'V' ? 2 : 0, ops[i]};
+    sweep(&c);
+  }
+}
 static void oom_define(void) {
   sweep_all('q', 0, 0);
   sweep_all('c', 0, 0);
@@ -602,6 +615,7 @@ int main(void) {
   RUN(oom_export);
   RUN(oom_define);
   RUN(oom_newton);
+  RUN(oom_torus);
   unlink(bubble_path);
   unlink(pbubble_path);
   unlink(dump_path);
