@@ -1,5 +1,6 @@
 /* pg.c: the driver of the projected-gradient method (see pg.h, pg_int.h
 ** and doc/method.md): work arrays, the iteration loop, termination. */
+#include "torus.h"
 #include "pg.h"
 
 #include <math.h>
@@ -149,6 +150,7 @@ nomem:
 }
 
 int tds_pg_flip_all(tds_ctx *ctx, tds_surf *s, int32_t *nflips) {
+  if (s->m.torus) return tds_torus_unsupported(ctx, "pg's flips");
   pgw w;
   int rc = pg_work_init(ctx, s, &w, 0);
   if (rc != TDS_OK) return rc;
@@ -267,6 +269,7 @@ static int evaluate(tds_ctx *ctx, tds_surf *s, pgw *w, int flips, double sfac,
 
 int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
                tds_pg_result *res) {
+  if (s->m.torus) return tds_torus_unsupported(ctx, "pg");
   double t0 = now();
   memset(res, 0, sizeof *res);
   if (s->str) /* the string model (struct tds_strings): no triangles */
