@@ -162,6 +162,12 @@ static int pat_build(tds_ctx *ctx, const tds_mesh *m, int32_t nvm, pat *p, int32
   return TDS_OK;
 }
 
+/* A vertex on no constraint and no boundary: its motion basis is the
+** identity, with no curvature (tds_hess_vertex_space's answer, quicker). */
+static int plain(const tds_mesh *m, tds_id v) {
+  return m->vcon[v] == 0 && m->vbdry[v] == TDS_NONE;
+}
+
 int tds_nsys_assemble(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys *out,
                       int *miss) {
   memset(out, 0, sizeof *out);
@@ -207,8 +213,8 @@ int tds_nsys_assemble(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_n
   ustart[0] = 0;
   for (int32_t k = 0; k < nvm; k++) {
     static const double zero[3] = {0, 0, 0};
-    double B[3][3], C[3][3];
-    int d = tds_hess_vertex_space(s, vert[k], zero, B, C);
+    double B[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, C[3][3];
+    int d = plain(m, vert[k]) ? 3 : tds_hess_vertex_space(s, vert[k], zero, B, C);
     int c = d == 0 ? 0 : tds_normal_columns(&vn[vert[k]], (const double(*)[3])B, d, !o->normal, W[k]);
     for (int i = 0; i < 3; i++)
       for (int b = 0; b < c; b++) {
@@ -261,8 +267,8 @@ int tds_nsys_assemble(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_n
         v3_axpy(f, qw[fq.eq[e]], fq.g[e]);
         acnt[fq.eq[e] + 1] += c;
       }
-    double B[3][3], C[3][3];
-    int d = tds_hess_vertex_space(s, v, f, B, C);
+    double B[3][3], C[3][3] = {{0}};
+    int d = plain(m, v) ? 3 : tds_hess_vertex_space(s, v, f, B, C);
     int32_t self = p.nbstart[k + 1] - 1;
     for (int b = 0; b < c; b++) {
       int32_t j = ustart[k] + b;

@@ -35,10 +35,41 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
           for (int j = 0; j < 3; j++) w->P[i][j] += c[i] * c[j] / A;
     }
   }
-  /* the dominant direction: power iteration from the plain sum */
+  /* Where every facet's normal is within 30 degrees of the plain sum's,
+  ** each agrees in sign with the dominant direction too (that lies
+  ** within 60 degrees of the sum: its Rayleigh quotient is at least the
+  ** sum's), so the plain sum is the answer; elsewhere the dominant
+  ** direction by power iteration from the plain sum, and the facets
+  ** added again with their signs. */
   double (*ref)[3] = tds_malloc(al, ((size_t)m->nv + 1) * sizeof *ref);
-  if (!ref) return TDS_ENOMEM;
+  unsigned char *bad = tds_calloc(al, (size_t)m->nv + 1, 1);
+  if (!ref || !bad) {
+    tds_free(al, ref);
+    tds_free(al, bad);
+    return TDS_ENOMEM;
+  }
   for (tds_id v = 0; v < m->nv; v++) {
+    double l = v3_norm(vn[v].an);
+    if (l > 0) {
+      for (int i = 0; i < 3; i++) ref[v][i] = vn[v].an[i] / l;
+    } else {
+      bad[v] = 1;
+    }
+  }
+  int nbad = 0;
+  for (tds_id f = 0; f < m->nf; f++) {
+    if (m->fflags[f] & TDS_DEAD) continue;
+    double c[3];
+    facet_vec(m, f, c);
+    double lim = 0.8660254037844386 * v3_norm(c); /* cos 30 degrees */
+    for (int k = 0; k < 3; k++) {
+      tds_id v = m->fv[f][k];
+      if (!bad[v] && !(v3_dot(c, ref[v]) >= lim)) bad[v] = 1;
+    }
+  }
+  for (tds_id v = 0; v < m->nv; v++) {
+    if (!bad[v]) continue;
+    nbad++;
     vnorm *w = &vn[v];
     double r[3];
     v3_copy(r, w->an);
@@ -62,15 +93,16 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
     v3_copy(ref[v], r);
     memset(w->an, 0, sizeof w->an);
   }
-  for (tds_id f = 0; f < m->nf; f++) {
+  for (tds_id f = 0; f < m->nf && nbad; f++) {
     if (m->fflags[f] & TDS_DEAD) continue;
     double c[3];
     facet_vec(m, f, c);
     for (int k = 0; k < 3; k++) {
       tds_id v = m->fv[f][k];
-      v3_axpy(vn[v].an, v3_dot(c, ref[v]) < 0 ? -1 : 1, c);
+      if (bad[v]) v3_axpy(vn[v].an, v3_dot(c, ref[v]) < 0 ? -1 : 1, c);
     }
   }
+  tds_free(al, bad);
   tds_free(al, ref);
   for (tds_id e = 0; e < m->ne; e++) {
     if (m->eflags[e] & TDS_DEAD) continue;
