@@ -63,6 +63,10 @@ struct term {
 static void scatter_hess(tds_hess_acc *ha, const tds_id *vs, int kind, double w,
                          double (*h)[9]) {
   if (w == 0) return;
+  if (ha->add) {
+    ha->add(ha, vs, kind, w, h);
+    return;
+  }
   for (int c = 0; c < kind; c++) {
     int32_t r = ha->vidx[vs[c]];
     if (r < 0) continue;
