@@ -475,7 +475,10 @@ function E.setindex(a, i, v)
   if type(a) ~= "table" then fail("indexing a value that is not an array") end
   local k = math.floor(num(i))
   if k < 1 or k > #a then fail(("array index %d out of range 1..%d"):format(k, #a)) end
-  a[k] = v
+  local ok, err = pcall(function() a[k] = v end)
+  if not ok then -- a facetedge attribute's column (lua/evoelem.lua) named as the user knows it
+    fail((tostring(err):gsub("^.-:%d+: ", ""):gsub("^facet (%d+): fe__", "facet %1: facetedge attribute ")))
+  end
 end
 
 local function newarray(dims, d, ty, init)

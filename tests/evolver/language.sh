@@ -9,7 +9,7 @@
 . "$(dirname "$0")/lib.sh"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-for run in flow:cube elements:cube elements:catbody errors:cube histogram:cube define:cube matrix:cube facetedge:cube facetedge:catbody named:cube model:cube; do
+for run in flow:cube elements:cube elements:catbody errors:cube histogram:cube define:cube matrix:cube facetedge:cube facetedge:catbody named:cube model:cube feattr:cube feattr:catbody; do
   c=${run%%:*} fe=${run#*:}
   evolver_run "$EXAMPLES/$fe.fe" "$(cat "$ROOT/tests/evolver/lang/$c.cmd")" > "$tmp/ev.out"
   cp "$EXAMPLES/$fe.fe" "$tmp/in.fe"
