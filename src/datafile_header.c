@@ -153,14 +153,15 @@ static int integrals(df *d, tds_expr *en[3], tds_expr *ct[3], int flags,
 /* The number after keyword kw (constraint, boundary): in 1..1e9 and not
 ** declared before (slot_of finds declared ones); what = "kw N". */
 static int decl_number(df *d, const char *kw, int (*slot_of)(const tds_surf *, int),
-                       int64_t *n, char *what, size_t cap) {
+                       int app_kind, int64_t *n, char *what, size_t cap) {
   char u[64];
   int rc = df_header_int(d, 0, df_upper(kw, u, sizeof u), n);
   if (rc) return rc;
   if (*n < 1 || *n > 1000000000)
     return df_err(d, NULL, TDS_ESYNTAX, "%s: number %lld out of range", u, (long long)*n);
   snprintf(what, cap, "%s %lld", kw, (long long)*n);
-  if (slot_of(d->s, (int)*n) >= 0)
+  int slot = slot_of(d->s, (int)*n);
+  if (slot >= 0 && !df_app_detach(d, app_kind, slot)) /* addload replaces */
     return df_err(d, NULL, TDS_ESYNTAX, "%s is declared twice", what);
   return TDS_OK;
 }
@@ -182,10 +183,11 @@ static int h_constraint(df *d, const hdr_kw *k) {
     for (size_t i = 0; i < nl; i++) name[i] = (char)(a[i] >= 'A' && a[i] <= 'Z' ? a[i] + 32 : a[i]);
     d->p += nl;
     snprintf(what, sizeof what, "constraint %s", name);
-    if (tds_surf_con_named(d->s, name, nl) >= 0)
+    int old = tds_surf_con_named(d->s, name, nl);
+    if (old >= 0 && !df_app_detach(d, DF_APP_CON, old))
       return df_err(d, a, TDS_ESYNTAX, "%s is declared twice", what);
-    n = tds_surf_con_free_number(d->s);
-  } else if ((rc = decl_number(d, k->name, tds_surf_con_slot, &n, what, sizeof what))) {
+    n = old >= 0 ? d->s->con[old].number : tds_surf_con_free_number(d->s);
+  } else if ((rc = decl_number(d, k->name, tds_surf_con_slot, DF_APP_CON, &n, what, sizeof what))) {
     return rc;
   }
   int flags = 0;
@@ -234,7 +236,7 @@ static int h_constraint(df *d, const hdr_kw *k) {
 static int h_boundary(df *d, const hdr_kw *k) {
   int64_t n, np;
   char what[64];
-  int rc = decl_number(d, k->name, tds_model_boundary_slot, &n, what, sizeof what);
+  int rc = decl_number(d, k->name, tds_model_boundary_slot, DF_APP_BDRY, &n, what, sizeof what);
   if (rc) return rc;
   int have;
   if ((rc = df_more(d, &have))) return rc;
@@ -299,7 +301,8 @@ static int h_quantity(df *d, const hdr_kw *k) {
                   "%s: expected ENERGY, FIXED = value or INFO_ONLY, found %s", what,
                   df_describe(d->p, b, sizeof b));
   }
-  if (tds_model_quantity_find(d->s, name) >= 0)
+  int oldq = tds_model_quantity_find(d->s, name);
+  if (oldq >= 0 && !df_app_detach(d, DF_APP_QUANT, oldq))
     return df_err_line(d, qline, TDS_ESYNTAX, "%s is declared twice", what);
   if (kind == 3) return df_not_supported(d, d->p, "conserved");
   d->p += wl;
@@ -475,6 +478,8 @@ static int h_dimension(df *d, const hdr_kw *k) {
   int space = k->name[1] == 'p';
   if (space ? n != 2 && n != 3 : n != 1 && n != 2)
     return df_err(d, NULL, TDS_ESYNTAX, "%s %lld is not supported yet", u, (long long)n);
+  if (d->app && (space ? n != 3 : n != 2))
+    return df_err(d, NULL, TDS_ESYNTAX, "addload of a string-model datafile is not supported yet");
   if (space) d->space_dim = (int)n;
   else d->string_model = n == 1;
   return TDS_OK;
@@ -482,6 +487,7 @@ static int h_dimension(df *d, const hdr_kw *k) {
 
 static int h_string(df *d, const hdr_kw *k) {
   (void)k;
+  if (d->app) return df_err(d, NULL, TDS_ESYNTAX, "addload of a string-model datafile is not supported yet");
   d->string_model = 1;
   return TDS_OK;
 }
@@ -613,7 +619,7 @@ static int h_version(df *d, const hdr_kw *k) {
 /* KEEP_ORIGINALS: element ids as the file gives them (datafile_int.h). */
 static int h_keep(df *d, const hdr_kw *k) {
   (void)k;
-  d->keep_ids = 1;
+  d->keep_ids = !d->app; /* addload renumbers, as Evolver */
   return TDS_OK;
 }
 

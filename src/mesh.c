@@ -330,6 +330,8 @@ void tds_mesh_inherit(tds_mesh *m, int kind, tds_id dst, tds_id src) {
   file[dst] = file[src];
   for (int c = 0; c < m->nucol[kind]; c++) {
     tds_ucol *u = &m->ucol[kind][c];
+    if (kind == TDS_FACET && !strncmp(u->name, TDS_FE_ATTR_PREFIX, sizeof TDS_FE_ATTR_PREFIX - 1))
+      continue; /* facetedge attributes: new sides start at 0, as in Evolver */
     memcpy(u->v + (size_t)dst * (size_t)u->size, u->v + (size_t)src * (size_t)u->size,
            (size_t)u->size * sizeof *u->v);
   }

@@ -297,7 +297,8 @@ typedef struct opcase {
                         'q' and 'c' run-time define of a quantity and of a
                         global constraint with an energy integrand, 'n' a
                         Newton step (hessian), 's' hessian_seek, 'e'
-                        eigenvalues (ritz: 3 lowest), 'S' saddle */
+                        eigenvalues (ritz: 3 lowest), 'S' saddle, 'A'
+                        addload of the same file, 'R' replace_load */
 } opcase;
 
 static int prepare(tds_ctx *ctx, tds_surf *s, const opcase *c) {
@@ -373,6 +374,8 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
   }
   case 'x': return tds_export(ctx, s, dump_path, &xo);
   case 'L': return tds_datafile_load(ctx, s, c->file);
+  case 'A': return tds_datafile_addload(ctx, s, c->file);
+  case 'R': return tds_datafile_replace_load(ctx, s, c->file);
   case 'r': return tds_refine(ctx, s, NULL, &n);
   case 'g': return tds_iterate(ctx, s, 2);
   case 'u': return tds_equiangulate(ctx, s, NULL, &n);
@@ -564,6 +567,10 @@ static void oom_pop_edges(void) {
     sweep(&c);
   }
 }
+static void oom_addload(void) {
+  sweep_all('A', 1, 0);
+  sweep_all('R', 0, 1);
+}
 static void oom_define(void) {
   sweep_all('q', 0, 0);
   sweep_all('c', 0, 0);
@@ -612,6 +619,7 @@ int main(void) {
   RUN(oom_export);
   RUN(oom_define);
   RUN(oom_pop_edges);
+  RUN(oom_addload);
   RUN(oom_newton);
   unlink(bubble_path);
   unlink(pbubble_path);
