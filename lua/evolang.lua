@@ -1144,7 +1144,9 @@ local function fixer(on)
     local w = self:next()
     local t = self:peek()
     if t.t == "name" and not KINDS[t.s] and not (self:lookup(t.s) or {}).kind then
-      self:err(w.s .. " " .. t.raw .. ": fixing parameters (optimizing_parameter) is not supported yet", t)
+      -- a named quantity (known only when the command runs) or a parameter
+      self:next()
+      return "E.fixname(" .. q(t.s) .. ", " .. q(t.raw) .. ", " .. tostring(on) .. ")"
     end
     local g = self:generator()
     return genloop(g, "E.setattr(" .. g.var .. ", 'fixed', " .. tostring(on) .. ", true)")

@@ -373,8 +373,8 @@ local INTERNAL = {
   iteration_counter = function() return tds.setting("iterations") + 0.0 end,
   gravity_constant = function() return (tds.gravity()) end,
   G = function() local g, on = tds.gravity(); return on and g or 0.0 end,
-  space_dimension = function() return 3.0 end,
-  surface_dimension = function() return 2.0 end,
+  space_dimension = function() local _, d = tds.dimensions(); return d + 0.0 end,
+  surface_dimension = function() local d = tds.dimensions(); return d + 0.0 end,
   torus = function() return 0.0 end,
   -- the identity and the datafile's view transforms (display only in tds)
   transform_count = function() return tds.setting("view_transforms") + 1.0 end,
@@ -404,6 +404,13 @@ local INTERNAL = {
   end,
 }
 E.INTERNAL = INTERNAL
+-- Evolver's read-write variables of the knot and Hooke methods: surface
+-- parameters (the method rows read them there), with Evolver's defaults.
+local METHOD_VARS = { knot_power = 2, hooke_length = 0, hooke_power = 2, hooke2_power = 2,
+                      curvature_power = 2 }
+for name, dflt in pairs(METHOD_VARS) do
+  INTERNAL[name] = function() local p = tds.param(name); if p == nil then return dflt end return p end
+end
 -- Colour names are integers (syntax.htm#colors).
 for i, c in ipairs { "black", "blue", "green", "cyan", "red", "magenta", "brown", "lightgray",
                      "darkgray", "lightblue", "lightgreen", "lightcyan", "lightred",
@@ -417,6 +424,11 @@ INTERNAL.transparent = INTERNAL.clear
 
 -- Variables that may be assigned with their effect.
 local SETTABLE = {
+  knot_power = function(v) tds.param("knot_power", num(v)) end,
+  hooke_length = function(v) tds.param("hooke_length", num(v)) end,
+  hooke_power = function(v) tds.param("hooke_power", num(v)) end,
+  hooke2_power = function(v) tds.param("hooke2_power", num(v)) end,
+  curvature_power = function(v) tds.param("curvature_power", num(v)) end,
   scale = function(v) tds.scale(num(v)) end,
   gravity_constant = function(v) local _, on = tds.gravity(); tds.gravity(num(v), on) end,
   constraint_tolerance = function(v) tds.setting("constraint_tolerance", num(v)) end,
@@ -828,12 +840,14 @@ B.n = cutcmd("n", "cutoff angle", tds.notch)
 B.notch = cutcmd("notch", "cutoff angle", tds.notch)
 B.o = function()
   flush()
+  if tds.dimensions() == 1 then tds.string_pop(); return end -- the string model's o
   local ok, err = pcall(tds.pop, nil)
   if not ok then err = tostring(err); fail("o: " .. (err:match("not supported.*") or err)) end
 end
+-- O: pops edges; in the string model the same as o (Evolver pops vertices there).
 B.O = function()
   flush()
-  tds.pop_edges(nil)
+  if tds.dimensions() == 1 then tds.string_pop() else tds.pop_edges(nil) end
 end
 B.j = function(t) flush(); tds.jiggle(t ~= nil and num(t, "j") or nil) end
 B.V = function(n) for _ = 1, times(n, "V") do flush(); tds.vertex_average(nil) end end
@@ -1159,6 +1173,9 @@ function E.oncollection(name, kind, list)
   elseif name == "reverse_orientation" then
     if kind ~= "edge" and kind ~= "facet" then fail("reverse_orientation needs edges or facets") end
     if #list > 0 then tds.reverse_orientation(list) end
+  elseif name == "pop" and tds.dimensions() == 1 then -- the string model: Evolver's o on them
+    if kind ~= "vertex" then fail("pop " .. kind .. ": the string model pops vertices only (as Evolver)") end
+    if #list > 0 then tds.string_pop(list, true) end
   elseif name == "pop" then
     if kind ~= "vertex" and kind ~= "edge" then fail("pop works on vertices and edges, not " .. kind) end
     tds.pop(list)
