@@ -34,7 +34,7 @@ typedef struct tds_nsys {
 ** points across the sheet, as Evolver's hessian normal does. */
 typedef struct vnorm {
   double an[3];
-  double P[3][3];       /* sum area n n^T */
+  double P[3][3];       /* sum area n n^T (only where the normals spread) */
   double td[3];
   int nt, nf, bent;     /* bent: two triple edges not along one line */
 } vnorm;

@@ -25,14 +25,10 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
     if (m->fflags[f] & TDS_DEAD) continue;
     double c[3];
     facet_vec(m, f, c);
-    double A = v3_norm(c);
     for (int k = 0; k < 3; k++) {
       vnorm *w = &vn[m->fv[f][k]];
       v3_add(w->an, w->an, c);
       w->nf++;
-      if (A > 0)
-        for (int i = 0; i < 3; i++)
-          for (int j = 0; j < 3; j++) w->P[i][j] += c[i] * c[j] / A;
     }
   }
   /* Where every facet's normal is within 30 degrees of the plain sum's,
@@ -67,9 +63,21 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
       if (!bad[v] && !(v3_dot(c, ref[v]) >= lim)) bad[v] = 1;
     }
   }
+  for (tds_id v = 0; v < m->nv; v++) nbad += bad[v];
+  for (tds_id f = 0; f < m->nf && nbad; f++) { /* sum area n n^T where needed */
+    if (m->fflags[f] & TDS_DEAD) continue;
+    double c[3];
+    facet_vec(m, f, c);
+    double A = v3_norm(c);
+    for (int k = 0; k < 3; k++) {
+      vnorm *w = &vn[m->fv[f][k]];
+      if (bad[m->fv[f][k]] && A > 0)
+        for (int i = 0; i < 3; i++)
+          for (int j = 0; j < 3; j++) w->P[i][j] += c[i] * c[j] / A;
+    }
+  }
   for (tds_id v = 0; v < m->nv; v++) {
     if (!bad[v]) continue;
-    nbad++;
     vnorm *w = &vn[v];
     double r[3];
     v3_copy(r, w->an);
