@@ -396,6 +396,7 @@ local INTERNAL = {
   linear_metric = function() return tds.hessian_setting("linear_metric") and 1.0 or 0.0 end,
   linear_metric_mix = function() return tds.hessian_setting("linear_metric_mix") end,
   last_eigenvalue = function() return tds.hessian_setting("last_eigenvalue") end,
+  hessian_epsilon = function() return tds.hessian_setting("hessian_epsilon") end,
   total_length = function()
     local s = 0.0
     for _, e in ipairs(E.all("edge")) do s = s + e.length end
@@ -422,6 +423,7 @@ local SETTABLE = {
   scale_limit = function(v) tds.setting("scale_limit", num(v)) end,
   random_seed = function(v) math.randomseed(math.floor(num(v))) end,
   linear_metric_mix = function(v) tds.hessian_setting("linear_metric_mix", num(v)) end,
+  hessian_epsilon = function(v) tds.hessian_setting("hessian_epsilon", num(v)) end,
 }
 
 function E.getv(name, cur)
@@ -942,9 +944,9 @@ B.hessian = function() need_surface("hessian"); tds.hessian() end
 B.hessian_seek = function(s) need_surface("hessian_seek"); tds.hessian_seek(s ~= nil and num(s, "hessian_seek") or nil) end
 B.saddle = function(s) need_surface("saddle"); tds.saddle(s ~= nil and num(s, "saddle") or nil) end
 B.eigenprobe = function(c, iters)
-  if iters ~= nil then fail("eigenprobe(value, iterations): the inverse iteration form is not supported yet (use ritz(value, 1))") end
   need_surface("eigenprobe")
-  tds.eigenprobe(c ~= nil and num(c, "eigenprobe") or 0)
+  if iters ~= nil then iters = times(iters, "eigenprobe") end
+  tds.eigenprobe(c ~= nil and num(c, "eigenprobe") or 0, iters)
 end
 B.ritz = function(c, n)
   need_surface("ritz")

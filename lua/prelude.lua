@@ -511,7 +511,7 @@ tds.props.vertex.gauss_curvature = function(h) return tds.vertex_gauss_curvature
 function hessian() return tds.hessian() end
 function hessian_seek(maxscale) return tds.hessian_seek(maxscale) end
 function saddle(maxscale) return tds.saddle(maxscale) end
-function eigenprobe(c) return tds.eigenprobe(c or 0) end
+function eigenprobe(c, n) return tds.eigenprobe(c or 0, n) end
 function ritz(shift, n) return tds.ritz(shift or 0, n or 5) end
 function lanczos(shift, n) return tds.ritz(shift or 0, n or 15) end
 function move(t) return tds.move(t) end

@@ -46,7 +46,7 @@ static void quiet(DMUMPS_STRUC_C *id) {
   id->icntl[3] = 0;
 }
 
-int tds_la_factor(tds_ctx *ctx, const tds_spmat *A, tds_la **out) {
+int tds_la_factor(tds_ctx *ctx, const tds_spmat *A, double eps, tds_la **out) {
   *out = NULL;
   if (A->nrow != A->ncol || !A->upper)
     return tds_seterr(ctx, TDS_ERANGE, "la: the matrix must be square and symmetric (upper)");
@@ -102,7 +102,8 @@ int tds_la_factor(tds_ctx *ctx, const tds_spmat *A, tds_la **out) {
   id->icntl[6] = 6;    /* ICNTL(7): QAMD */
   id->icntl[12] = 1;   /* ICNTL(13): no ScaLAPACK root (keeps inertia) */
   id->icntl[23] = 1;   /* ICNTL(24): detect null pivots */
-  id->cntl[2] = -1e-10 * (amax > 0 ? amax : 1); /* CNTL(3) < 0: absolute threshold */
+  if (!(eps > 0)) eps = 1e-10;
+  id->cntl[2] = -eps * (amax > 0 ? amax : 1); /* CNTL(3) < 0: absolute threshold */
   for (int tries = 0;; tries++) {
     id->job = 4; /* analyse and factor */
     dmumps_c(id);
