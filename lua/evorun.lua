@@ -682,6 +682,7 @@ local TOGGLE_MSG = {
   hessian_normal = "hessian_normal %s. (was %s)",
   linear_metric = "Linear interpolation metric with Hessian %s.(was %s)",
   hessian_diff = "hessian_diff %s. (was %s)",
+  hessian_special_normal = "hessian_special_normal %s. (was %s)",
 }
 
 -- Byte order of binary_printf: "<" little endian (Evolver's default on
@@ -695,7 +696,8 @@ local function toggle_get(name)
   if name == "check_increase" then return tds.setting("check_increase") end
   if name == "little_endian" then return endian == "<" end
   if name == "big_endian" then return endian == ">" end
-  if name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff" then
+  if name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff"
+      or name == "hessian_special_normal" then
     return tds.hessian_setting(name)
   end
 end
@@ -706,7 +708,8 @@ local function toggle_set(name, on)
   elseif name == "check_increase" then tds.setting("check_increase", on)
   elseif name == "little_endian" then endian = on and "<" or ">"
   elseif name == "big_endian" then endian = on and ">" or "<"
-  elseif name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff" then
+  elseif name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff"
+      or name == "hessian_special_normal" then
     tds.hessian_setting(name, on)
   end
 end

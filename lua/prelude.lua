@@ -526,6 +526,7 @@ end
 hessian_normal = newton_toggle("hessian_normal", "hessian_normal %s. (was %s)")
 linear_metric = newton_toggle("linear_metric", "Linear interpolation metric with Hessian %s.(was %s)")
 hessian_diff = newton_toggle("hessian_diff", "hessian_diff %s. (was %s)")
+hessian_special_normal = newton_toggle("hessian_special_normal", "hessian_special_normal %s. (was %s)")
 
 -- Evolver's command language: the runtime (tds.E, evolver [[...]]), read
 -- sections run at load, and the prompt's Lua/Evolver rule.

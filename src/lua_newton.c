@@ -209,12 +209,13 @@ static int l_eigenvector(lua_State *L) {
 }
 
 /* tds.hessian_setting(name [, value]) -> value: hessian_normal,
-** linear_metric, linear_metric_mix, hessian_diff, hessian_epsilon;
+** linear_metric, linear_metric_mix, hessian_diff, hessian_epsilon,
+** hessian_special_normal;
 ** last_eigenvalue (read) */
 static int l_setting(lua_State *L) {
   static const char *const names[] = {"hessian_normal", "linear_metric", "linear_metric_mix",
                                       "hessian_diff", "last_eigenvalue", "hessian_epsilon",
-                                      NULL};
+                                      "hessian_special_normal", NULL};
   nstate *ns = get_ns(L);
   int which = luaL_checkoption(L, 1, NULL, names);
   int set = !lua_isnone(L, 2);
@@ -238,6 +239,10 @@ static int l_setting(lua_State *L) {
       ns->o.epsilon = x;
     }
     lua_pushnumber(L, ns->o.epsilon);
+    break;
+  case 6:
+    if (set) ns->o.special_normal = lua_toboolean(L, 2);
+    lua_pushboolean(L, ns->o.special_normal);
     break;
   case 4: /* read-only */
     if (set) return tds_lua_error(L, "last_eigenvalue is read-only");

@@ -52,6 +52,8 @@ typedef struct tds_newton_opts {
   int linear_metric;    /* M as above instead of the identity */
   double metric_mix;    /* linear_metric_mix, 0 .. 1 */
   int diff;             /* hessian_diff: H by central differences */
+  int special_normal;   /* hessian_special_normal: the normal is the
+                           datafile's HESSIAN_SPECIAL_NORMAL_VECTOR */
   double epsilon;       /* hessian_epsilon: a pivot below epsilon x the
                            largest entry counts as zero (la.h); <= 0: 1e-10 */
   int general;          /* assemble through the xyz Hessian (hess.h) and

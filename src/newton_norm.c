@@ -3,7 +3,9 @@
 #include <math.h>
 #include <string.h>
 
+#include "expr.h"
 #include "fixq.h"
+#include "motion.h"
 #include "newton_int.h"
 #include "vec3.h"
 
@@ -204,4 +206,24 @@ int tds_normal_columns(const vnorm *vn, const double B[3][3], int d, int full,
   }
   if (c == 0) return tds_normal_columns(vn, B, d, 1, W);
   return c;
+}
+
+int tds_special_normals(tds_ctx *ctx, const tds_surf *s, vnorm *vn) {
+  const tds_mesh *m = &s->m;
+  if (!s->special_normal[0])
+    return tds_seterr(ctx, TDS_ERANGE, "hessian_special_normal is on but the datafile has no "
+                      "HESSIAN_SPECIAL_NORMAL_VECTOR");
+  for (tds_id v = 0; v < m->nv; v++) {
+    if ((m->vflags[v] & TDS_DEAD) || vn[v].nt || !vn[v].nf) continue;
+    double vars[TDS_NVARS];
+    tds_motion_vars(s, m->x[v], m->vp[v], vars);
+    for (int i = 0; i < 3; i++) {
+      double c = tds_expr_eval(s->special_normal[i], s->parval, vars);
+      if (!isfinite(c))
+        return tds_seterr(ctx, TDS_ENUM, "HESSIAN_SPECIAL_NORMAL_VECTOR: c%d is not finite at "
+                          "vertex %d", i + 1, (int)v + 1);
+      vn[v].an[i] = c;
+    }
+  }
+  return TDS_OK;
 }
