@@ -1200,7 +1200,10 @@ function M.translate(text, line0)
     local extra = {}
     if tds and tds.attributes then
       for _, k in ipairs { tds.vertex, tds.edge, tds.facet, tds.body } do
-        for _, a in ipairs(tds.attributes(k)) do if a.user then extra[a.name] = true end end
+        for _, a in ipairs(tds.attributes(k)) do
+          if a.user then extra[a.name] = true end
+          if a.user and a.name:sub(1, 4) == "fe__" then extra[a.name:sub(5)] = true end -- facetedge's
+        end
       end
     end
     local p = setmetatable({ text = text, toks = lex(text, line0), i = 1, nsym = 0, depth = 0, scopes = { {} },

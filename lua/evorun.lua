@@ -381,7 +381,8 @@ local INTERNAL = {
   symmetry_group = function() return 0.0 end,
   simplex_representation = function() return 0.0 end,
   lagrange_order = function() return 1.0 end,
-  linear = function() return 1.0 end,
+  linear = function() return E.lagrange1 and 0.0 or 1.0 end,
+  lagrange = function() return E.lagrange1 and 1.0 or 0.0 end,
   quadratic = function() return 0.0 end,
   clock = function() return os.clock() end,
   cpu_counter = function() return os.clock() end,
@@ -476,7 +477,10 @@ function E.setindex(a, i, v)
   if type(a) ~= "table" then fail("indexing a value that is not an array") end
   local k = math.floor(num(i))
   if k < 1 or k > #a then fail(("array index %d out of range 1..%d"):format(k, #a)) end
-  a[k] = v
+  local ok, err = pcall(function() a[k] = v end)
+  if not ok then -- a facetedge attribute's column (lua/evoelem.lua) named as the user knows it
+    fail((tostring(err):gsub("^.-:%d+: ", ""):gsub("^facet (%d+): fe__", "facet %1: facetedge attribute ")))
+  end
 end
 
 local function newarray(dims, d, ty, init)
@@ -832,6 +836,10 @@ B.o = function()
   local ok, err = pcall(tds.pop, nil)
   if not ok then err = tostring(err); fail("o: " .. (err:match("not supported.*") or err)) end
 end
+B.O = function()
+  flush()
+  tds.pop_edges(nil)
+end
 B.j = function(t) flush(); tds.jiggle(t ~= nil and num(t, "j") or nil) end
 B.V = function(n) for _ = 1, times(n, "V") do flush(); tds.vertex_average(nil) end end
 B.vertex_average = B.V
@@ -926,10 +934,63 @@ B.load = function(path)
     if err:find("^" .. path:gsub("%p", "%%%0") .. ":%d") then error(err, 0) end -- has its place
     fail(err)
   end
+  E.lagrange1 = false -- a new surface: the linear model
 end
-B.replace_load = B.load
 B.permload = B.load
+-- addload "file": its elements added to the surface (renumbered after the
+-- existing ones), its top section's declarations replacing those of the
+-- same name; its read section is not run. replace_load: the elements go
+-- first. Both are all or nothing.
+local function addload(fn, what, path)
+  if type(path) ~= "string" then fail(what .. " needs a datafile name: " .. what .. " \"file.fe\"") end
+  flush()
+  E.touch()
+  local ok, err = pcall(fn, path)
+  if not ok then
+    err = tostring(err)
+    if err:find("^" .. path:gsub("%p", "%%%0") .. ":%d") then error(err, 0) end
+    fail(err)
+  end
+end
+B.addload = function(path) addload(tds.addload, "addload", path) end
+B.replace_load = function(path) addload(tds.replace_load, "replace_load", path) end
 B.exec = function(text) E.exec(text) end
+
+-- The element model. tds has linear elements only: `linear`, `M 1` and
+-- `lagrange 1` (the same geometry in Evolver, stored another way) are
+-- accepted and report what Evolver reports; `quadratic`, `M 2` and
+-- `lagrange n` (n >= 2) are not supported yet. E.lagrange1: `lagrange 1`
+-- was given (Evolver's LAGRANGE model) since the last `linear`.
+local converted = false -- Evolver converts to named quantities once
+local NO_HIGHER = " (tds has linear elements only; linear and lagrange 1 are accepted)"
+B.linear = function()
+  if E.lagrange1 then E.out("Changing to LINEAR model. (was LAGRANGE)\n") end
+  E.lagrange1 = false
+end
+B.quadratic = function() fail("quadratic: not supported yet" .. NO_HIGHER) end
+B.lagrange = function(n)
+  if n == nil then fail("Syntax: LAGRANGE order") end
+  n = num(n, "lagrange")
+  if n % 1 ~= 0 then fail(("lagrange: order %g must be a whole number"):format(n)) end
+  if n < 1 then fail("Lagrange order must be at least 1.") end
+  if n > 1 then fail(("lagrange: not supported yet for order %d%s"):format(n, NO_HIGHER)) end
+  if E.lagrange1 then
+    E.out("Changing to LAGRANGE 1 model. (was LAGRANGE 1)\n")
+  else
+    E.out("Changing to LAGRANGE model. (was LINEAR)\n")
+    if not converted then E.out("Converting to all named quantities...Done.\n") end
+    converted = true
+  end
+  E.lagrange1 = true
+end
+B.M = function(n)
+  if n == nil then fail("M: give the model: M 1 (linear) or M 2 (quadratic)") end
+  n = num(n, "M")
+  if n == 2 then fail("M: not supported yet for M 2, the quadratic model" .. NO_HIGHER) end
+  if n ~= 1 then fail(("M %g: the model is 1 (linear) or 2 (quadratic)"):format(n)) end
+  if not E.lagrange1 then E.out("Model already LINEAR.\n") end
+  B.linear()
+end
 
 -- A toggle's name alone turns it on, as in Evolver (conj_grad; quiet).
 for name in pairs(TOGGLE_MSG) do B[name] = function() E.toggle(name, true) end end
@@ -964,13 +1025,12 @@ end
 
 -- Evolver commands tds does not have: named in the error.
 local UNSUPPORTED = {}
-for w in ([[O J e A a b f k M p Q W y Z z s P D F H h X
-  hessian_menu lagrange
+for w in ([[J e A a b f k p Q W y Z z s P D F H h X
+  hessian_menu
   dirichlet dirichlet_seek sobolev sobolev_seek
   pop_quad_to_quad t1_edgeswap raw_vertex_average
   rawest_vertex_average rawv rawestv vertex_merge
   edge_merge facet_merge facet_crosscut rebody zoom detorus wrap_vertex 
-  addload
   logfile keylogfile history pause subcommand breakpoint whereami flush_counts
   reset_counts metis kmetis body_metis ometis
   exprint show show_expr showq show_trans close_show transforms transform_expr
@@ -1105,7 +1165,7 @@ function E.oncollection(name, kind, list)
     if kind ~= "edge" and kind ~= "facet" then fail("reverse_orientation needs edges or facets") end
     if #list > 0 then tds.reverse_orientation(list) end
   elseif name == "pop" then
-    if kind ~= "vertex" then fail("pop " .. kind .. ": not supported yet (pop vertices)") end
+    if kind ~= "vertex" and kind ~= "edge" then fail("pop works on vertices and edges, not " .. kind) end
     tds.pop(list)
   elseif name == "edgeswap" then
     if kind ~= "edge" then fail("edgeswap needs edges") end

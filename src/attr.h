@@ -82,6 +82,12 @@ typedef struct tds_attr {
 /* A user attribute's storage: `size` doubles per element slot, grown with
 ** the mesh (mesh.c), zero for new elements, inherited by elements split
 ** from an element of the same kind (refine). */
+/* Evolver's facetedge attributes (`define facetedge attribute w real`)
+** are the facet attribute fe__w of shape [3][...], one value per side
+** (lua/evoelem.lua); a facet split off another does not inherit them
+** (tds_mesh_inherit): Evolver's new facetedges start at 0. */
+#define TDS_FE_ATTR_PREFIX "fe__"
+
 typedef struct tds_ucol {
   char name[TDS_ATTR_NAMELEN];
   int type;            /* TDS_AT_REAL or TDS_AT_INT */

@@ -19,7 +19,6 @@
 
 /* Evolver keywords whose features the core does not have yet. */
 static const char *const unsupported[] = {
-    "torus", "torus_filled", "periods", "display_periods", "display_origin",
     "quadratic", "lagrange", "lagrange_order", "simplex_representation",
     "symmetry_group", "metric", "conformal_metric", "klein_metric",
     "method_instance", "optimizing_parameter", "optimising_parameter", "wulff",
@@ -33,10 +32,10 @@ static const char *const unsupported[] = {
     "temperature", "length_method_name", "area_method_name",
     "volume_method_name", "fixed_area",
     "area_fixed", "load_library", "interp_bdry_param",
-    "view_transform_generators", "function", "procedure",
+    "function", "procedure",
     "gradient_mode", "parameter_file", "ideal_gas", "knot_energy",
     "conserved", "on_assign_call", "nonwall", "content_rank", "axial_point",
-    "wrap", "phase", "actual_volume", "form_integrand", "k_form_order",
+    "phase", "actual_volume", "form_integrand", "k_form_order",
     "parameter_1", "element_modulus", "clip_coeff", NULL};
 
 int df_unsupported(const char *w) {
@@ -154,14 +153,15 @@ static int integrals(df *d, tds_expr *en[3], tds_expr *ct[3], int flags,
 /* The number after keyword kw (constraint, boundary): in 1..1e9 and not
 ** declared before (slot_of finds declared ones); what = "kw N". */
 static int decl_number(df *d, const char *kw, int (*slot_of)(const tds_surf *, int),
-                       int64_t *n, char *what, size_t cap) {
+                       int app_kind, int64_t *n, char *what, size_t cap) {
   char u[64];
   int rc = df_header_int(d, 0, df_upper(kw, u, sizeof u), n);
   if (rc) return rc;
   if (*n < 1 || *n > 1000000000)
     return df_err(d, NULL, TDS_ESYNTAX, "%s: number %lld out of range", u, (long long)*n);
   snprintf(what, cap, "%s %lld", kw, (long long)*n);
-  if (slot_of(d->s, (int)*n) >= 0)
+  int slot = slot_of(d->s, (int)*n);
+  if (slot >= 0 && !df_app_detach(d, app_kind, slot)) /* addload replaces */
     return df_err(d, NULL, TDS_ESYNTAX, "%s is declared twice", what);
   return TDS_OK;
 }
@@ -183,10 +183,11 @@ static int h_constraint(df *d, const hdr_kw *k) {
     for (size_t i = 0; i < nl; i++) name[i] = (char)(a[i] >= 'A' && a[i] <= 'Z' ? a[i] + 32 : a[i]);
     d->p += nl;
     snprintf(what, sizeof what, "constraint %s", name);
-    if (tds_surf_con_named(d->s, name, nl) >= 0)
+    int old = tds_surf_con_named(d->s, name, nl);
+    if (old >= 0 && !df_app_detach(d, DF_APP_CON, old))
       return df_err(d, a, TDS_ESYNTAX, "%s is declared twice", what);
-    n = tds_surf_con_free_number(d->s);
-  } else if ((rc = decl_number(d, k->name, tds_surf_con_slot, &n, what, sizeof what))) {
+    n = old >= 0 ? d->s->con[old].number : tds_surf_con_free_number(d->s);
+  } else if ((rc = decl_number(d, k->name, tds_surf_con_slot, DF_APP_CON, &n, what, sizeof what))) {
     return rc;
   }
   int flags = 0;
@@ -235,7 +236,7 @@ static int h_constraint(df *d, const hdr_kw *k) {
 static int h_boundary(df *d, const hdr_kw *k) {
   int64_t n, np;
   char what[64];
-  int rc = decl_number(d, k->name, tds_model_boundary_slot, &n, what, sizeof what);
+  int rc = decl_number(d, k->name, tds_model_boundary_slot, DF_APP_BDRY, &n, what, sizeof what);
   if (rc) return rc;
   int have;
   if ((rc = df_more(d, &have))) return rc;
@@ -320,7 +321,8 @@ static int h_quantity(df *d, const hdr_kw *k) {
                   "%s: expected ENERGY, FIXED = value or INFO_ONLY, found %s", what,
                   df_describe(d->p, b, sizeof b));
   }
-  if (tds_model_quantity_find(d->s, name) >= 0)
+  int oldq = tds_model_quantity_find(d->s, name);
+  if (oldq >= 0 && !df_app_detach(d, DF_APP_QUANT, oldq))
     return df_err_line(d, qline, TDS_ESYNTAX, "%s is declared twice", what);
   if (kind == 3) return df_not_supported(d, d->p, "conserved");
   d->p += wl;
@@ -496,6 +498,8 @@ static int h_dimension(df *d, const hdr_kw *k) {
   int space = k->name[1] == 'p';
   if (space ? n != 2 && n != 3 : n != 1 && n != 2)
     return df_err(d, NULL, TDS_ESYNTAX, "%s %lld is not supported yet", u, (long long)n);
+  if (d->app && (space ? n != 3 : n != 2))
+    return df_err(d, NULL, TDS_ESYNTAX, "addload of a string-model datafile is not supported yet");
   if (space) d->space_dim = (int)n;
   else d->string_model = n == 1;
   return TDS_OK;
@@ -503,6 +507,7 @@ static int h_dimension(df *d, const hdr_kw *k) {
 
 static int h_string(df *d, const hdr_kw *k) {
   (void)k;
+  if (d->app) return df_err(d, NULL, TDS_ESYNTAX, "addload of a string-model datafile is not supported yet");
   d->string_model = 1;
   return TDS_OK;
 }
@@ -563,6 +568,45 @@ static int h_view_transforms(df *d, const hdr_kw *k) {
   return TDS_OK;
 }
 
+/* TORUS, TORUS_FILLED, PERIODS (datafile_torus.c) */
+static int h_torus(df *d, const hdr_kw *k) {
+  return df_torus(d, k->name[5] == '_');
+}
+static int h_periods(df *d, const hdr_kw *k) {
+  (void)k;
+  return df_periods(d);
+}
+/* DISPLAY_PERIODS (3 rows of 3) and DISPLAY_ORIGIN (3): display only. */
+static int h_display_periods(df *d, const hdr_kw *k) {
+  (void)k;
+  return skip_values(d, 9, "DISPLAY_PERIODS");
+}
+static int h_display_origin(df *d, const hdr_kw *k) {
+  (void)k;
+  return skip_values(d, 3, "DISPLAY_ORIGIN");
+}
+/* CLIPPED, CONNECTED, RAW_CELLS: how a torus surface is shown (Evolver's
+** toggles; exports write facets unwrapped, see doc/torus.md). */
+static int h_display_mode(df *d, const hdr_kw *k) {
+  (void)d;
+  (void)k;
+  return TDS_OK;
+}
+
+/* VIEW_TRANSFORM_GENERATORS n, then n 4x4 matrices: display only (the
+** copies of a torus cell Evolver draws; phelanc.fe). */
+static int h_view_generators(df *d, const hdr_kw *k) {
+  (void)k;
+  int64_t n;
+  int rc = df_header_int(d, 0, "VIEW_TRANSFORM_GENERATORS", &n);
+  if (rc) return rc;
+  if (n > 100000)
+    return df_err(d, NULL, TDS_ESYNTAX, "VIEW_TRANSFORM_GENERATORS: too many (%lld)",
+                  (long long)n);
+  for (int64_t t = 0; t < n && !rc; t++) rc = skip_values(d, 16, "VIEW_TRANSFORM_GENERATORS");
+  return rc;
+}
+
 /* A keyword asking for what tds does anyway. */
 static int h_nothing(df *d, const hdr_kw *k) {
   (void)d;
@@ -595,7 +639,7 @@ static int h_version(df *d, const hdr_kw *k) {
 /* KEEP_ORIGINALS: element ids as the file gives them (datafile_int.h). */
 static int h_keep(df *d, const hdr_kw *k) {
   (void)k;
-  d->keep_ids = 1;
+  d->keep_ids = !d->app; /* addload renumbers, as Evolver */
   return TDS_OK;
 }
 
@@ -611,6 +655,17 @@ static const hdr_kw header_kw[] = {
     {"gap_constant", h_value, AT(gap_constant), ANY},
     {"symmetric_content", h_symmetric, 0, 0},
     {"string", h_string, 0, 0},
+    {"torus", h_torus, 0, 0},
+    {"torus_filled", h_torus, 0, 0},
+    {"periods", h_periods, 0, 0},
+    {"torus_periods", h_periods, 0, 0},
+    {"display_periods", h_display_periods, 0, 0},
+    {"display_origin", h_display_origin, 0, 0},
+    {"clipped", h_display_mode, 0, 0},
+    {"clipped_cells", h_display_mode, 0, 0},
+    {"connected", h_display_mode, 0, 0},
+    {"connected_cells", h_display_mode, 0, 0},
+    {"raw_cells", h_display_mode, 0, 0},
     {"constraint_tolerance", h_value, AT(constraint_tol), POSITIVE},
     {"space_dimension", h_dimension, 0, 0},
     {"surface_dimension", h_dimension, 0, 0},
@@ -619,6 +674,7 @@ static const hdr_kw header_kw[] = {
     {"view_matrix", h_view_matrix, 0, 0},
     {"slice_coeff", h_slice, 0, 0},
     {"view_transforms", h_view_transforms, 0, 0},
+    {"view_transform_generators", h_view_generators, 0, 0},
     {"evolver_version", h_version, 0, 0},
     {"soapfilm", h_nothing, 0, 0},
     {"linear", h_nothing, 0, 0},
