@@ -397,6 +397,7 @@ local INTERNAL = {
   linear_metric = function() return tds.hessian_setting("linear_metric") and 1.0 or 0.0 end,
   linear_metric_mix = function() return tds.hessian_setting("linear_metric_mix") end,
   last_eigenvalue = function() return tds.hessian_setting("last_eigenvalue") end,
+  hessian_epsilon = function() return tds.hessian_setting("hessian_epsilon") end,
   total_length = function()
     local s = 0.0
     for _, e in ipairs(E.all("edge")) do s = s + e.length end
@@ -435,6 +436,7 @@ local SETTABLE = {
   scale_limit = function(v) tds.setting("scale_limit", num(v)) end,
   random_seed = function(v) math.randomseed(math.floor(num(v))) end,
   linear_metric_mix = function(v) tds.hessian_setting("linear_metric_mix", num(v)) end,
+  hessian_epsilon = function(v) tds.hessian_setting("hessian_epsilon", num(v)) end,
 }
 
 function E.getv(name, cur)
@@ -696,6 +698,7 @@ local TOGGLE_MSG = {
   hessian_normal = "hessian_normal %s. (was %s)",
   linear_metric = "Linear interpolation metric with Hessian %s.(was %s)",
   hessian_diff = "hessian_diff %s. (was %s)",
+  hessian_special_normal = "hessian_special_normal %s. (was %s)",
 }
 
 -- Byte order of binary_printf: "<" little endian (Evolver's default on
@@ -709,7 +712,8 @@ local function toggle_get(name)
   if name == "check_increase" then return tds.setting("check_increase") end
   if name == "little_endian" then return endian == "<" end
   if name == "big_endian" then return endian == ">" end
-  if name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff" then
+  if name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff"
+      or name == "hessian_special_normal" then
     return tds.hessian_setting(name)
   end
 end
@@ -720,7 +724,8 @@ local function toggle_set(name, on)
   elseif name == "check_increase" then tds.setting("check_increase", on)
   elseif name == "little_endian" then endian = on and "<" or ">"
   elseif name == "big_endian" then endian = on and ">" or "<"
-  elseif name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff" then
+  elseif name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff"
+      or name == "hessian_special_normal" then
     tds.hessian_setting(name, on)
   end
 end
@@ -1017,9 +1022,9 @@ B.hessian = function() need_surface("hessian"); tds.hessian() end
 B.hessian_seek = function(s) need_surface("hessian_seek"); tds.hessian_seek(s ~= nil and num(s, "hessian_seek") or nil) end
 B.saddle = function(s) need_surface("saddle"); tds.saddle(s ~= nil and num(s, "saddle") or nil) end
 B.eigenprobe = function(c, iters)
-  if iters ~= nil then fail("eigenprobe(value, iterations): the inverse iteration form is not supported yet (use ritz(value, 1))") end
   need_surface("eigenprobe")
-  tds.eigenprobe(c ~= nil and num(c, "eigenprobe") or 0)
+  if iters ~= nil then iters = times(iters, "eigenprobe") end
+  tds.eigenprobe(c ~= nil and num(c, "eigenprobe") or 0, iters)
 end
 B.ritz = function(c, n)
   need_surface("ritz")

@@ -105,6 +105,9 @@ typedef struct tds_surf {
   uint64_t rng;           /* state of the jiggle's random numbers (jiggle.h) */
 
   char *read_text;        /* a datafile's read section, kept verbatim */
+  struct tds_expr *special_normal[3]; /* HESSIAN_SPECIAL_NORMAL_VECTOR c1..c3
+                              (Newton steps' normals with
+                              hessian_special_normal), or NULL */
 
   struct tds_strings *str; /* the string model's cells (string_model.h),
                               NULL in the soapfilm model */

@@ -297,7 +297,8 @@ typedef struct opcase {
                         'q' and 'c' run-time define of a quantity and of a
                         global constraint with an energy integrand, 'n' a
                         Newton step (hessian), 's' hessian_seek, 'e'
-                        eigenvalues (ritz: 3 lowest), 'S' saddle, 'A'
+                        eigenvalues (ritz: 3 lowest), 'S' saddle, 'i'
+                        inverse iteration (eigenprobe(0.5, 20)), 'A'
                         addload of the same file, 'R' replace_load */
 } opcase;
 
@@ -354,6 +355,13 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
     int iters;
     tds_inertia in;
     return tds_newton_ritz(ctx, s, &no, NAN, 3, vals, &got, &in, NULL, &iters, NULL);
+  }
+  case 'i': {
+    tds_newton_opts no = {.normal = 1, .linear_metric = 1, .metric_mix = 0.5};
+    double val;
+    int iters;
+    tds_inertia in;
+    return tds_newton_invit(ctx, s, &no, 0.5, 20, &val, &in, NULL, &iters);
   }
   case 'S': {
     tds_newton_opts no = {.normal = 1, .metric_mix = 0.5};
@@ -558,6 +566,7 @@ static void oom_newton(void) {
   sweep_all('s', 1, 5);
   sweep_all('e', 1, 5);
   sweep_all('S', 1, 5);
+  sweep_all('i', 1, 5);
 }
 /* O on octa.fe (six runs of one edge: split, then pulled) and refined
 ** once (runs of two edges). */
