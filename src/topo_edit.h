@@ -75,6 +75,12 @@ int tds_edgeswap(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
 ** before. *n: vertices split. */
 int tds_pop_vertices(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
 
+/* Pop vertex v whose star is one cone that is not minimal by Evolver's
+** sphere construction (topo_popcone.c): no snapshot, no energy update.
+** *done = 0 (nothing changed) when its regions do not make simple cells.
+** TDS_OK or TDS_ENOMEM (then half changed: callers run under a snapshot). */
+int tds_pop_cone(tds_surf *s, tds_id v, int *done);
+
 /* O / pop on edges (sel over edges, NULL: all; topo_popedge.c): each
 ** selected live edge with more than three facets, not fixed, on no
 ** constraint (beyond global ones) or boundary, is split into two chains
