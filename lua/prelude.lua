@@ -347,6 +347,22 @@ function check_increase(on)
   print(("Increase check %s. (was %s)"):format(on and "ON" or "OFF", was and "on" or "off"))
 end
 
+-- autopop(on), immediate_autopop(on), autochop(on [, length]): the mesh
+-- maintenance g does before each step (doc/commands.md). No argument
+-- toggles.
+local function gtoggle(name, what)
+  return function(on, len)
+    local was = tds.setting(name)
+    if on == nil then on = not was end
+    if len ~= nil then tds.setting("autochop_length", len) end
+    tds.setting(name, on and true or false)
+    print(("%s %s. (was %s)"):format(what, on and "ON" or "OFF", was and "on" or "off"))
+  end
+end
+autopop = gtoggle("autopop", "Autopopping")
+immediate_autopop = gtoggle("immediate_autopop", "Immediate autopop mode")
+autochop = gtoggle("autochop", "Autochopping")
+
 -- recalc(): after assigning parameters, put boundary vertices where their
 -- parameters say and constrained vertices back on their constraints (g, r
 -- and pg do this first by themselves).

@@ -266,3 +266,5 @@ int tds_delete_facets(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n)
 int tds_areaweed(tds_ctx *ctx, tds_surf *s, double area, int32_t *n) {
   return run(ctx, s, 1, BY_AREA, NULL, area, n);
 }
+
+int tds_delete_facet_raw(tds_surf *s, tds_id f) { return delete_facet(s, f); }

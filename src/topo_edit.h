@@ -102,6 +102,16 @@ int tds_pop_one_edge(tds_surf *s, tds_id e, int32_t *npulled);
 ** all or nothing; the two counts in *nedges, *nverts. */
 int tds_pop(tds_ctx *ctx, tds_surf *s, int32_t *nedges, int32_t *nverts);
 
+/* The same without a snapshot (for autopop inside g, which has one). */
+int tds_pop_raw(tds_ctx *ctx, tds_surf *s, int32_t *nedges, int32_t *nverts);
+
+/* Raw pieces (no snapshot, no energy update; storage is reserved inside):
+** split edge e at its midpoint as l does (TDS_OK or TDS_ENOMEM), delete
+** facet f as `delete facet` does (1 done, 0 nothing collapsible, -1 out
+** of memory). */
+int tds_split_edge_raw(tds_surf *s, tds_id e);
+int tds_delete_facet_raw(tds_surf *s, tds_id f);
+
 
 /* pop_edge_to_tri (sel over edges): each edge of valence 3 between two
 ** free tetrahedral points (four triple edges each, all other edges of

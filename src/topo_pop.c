@@ -162,12 +162,10 @@ int tds_pop_vertices(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) 
   return tds_snap_run(ctx, s, pop, sel, n);
 }
 
-int tds_pop(tds_ctx *ctx, tds_surf *s, int32_t *nedges, int32_t *nverts) {
+int tds_pop_raw(tds_ctx *ctx, tds_surf *s, int32_t *nedges, int32_t *nverts) {
   *nedges = *nverts = 0;
-  tds_snap sn;
-  int rc = tds_snap_take(ctx, s, &sn);
-  if (rc != TDS_OK) return rc;
   int32_t ne0 = s->m.ne, ne = 0, nv = 0;
+  int rc = TDS_OK;
   for (tds_id e = 0; e < ne0 && rc == TDS_OK; e++) {
     int32_t k = 0;
     rc = tds_pop_one_edge(s, e, &k);
@@ -176,7 +174,20 @@ int tds_pop(tds_ctx *ctx, tds_surf *s, int32_t *nedges, int32_t *nverts) {
     ne += k;
   }
   if (rc == TDS_OK) rc = pop(ctx, s, NULL, &nv);
-  rc = tds_snap_end(ctx, s, &sn, rc);
+  if (rc == TDS_OK) {
+    *nedges = ne;
+    *nverts = nv;
+  }
+  return rc;
+}
+
+int tds_pop(tds_ctx *ctx, tds_surf *s, int32_t *nedges, int32_t *nverts) {
+  *nedges = *nverts = 0;
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
+  if (rc != TDS_OK) return rc;
+  int32_t ne = 0, nv = 0;
+  rc = tds_snap_end(ctx, s, &sn, tds_pop_raw(ctx, s, &ne, &nv));
   if (rc == TDS_OK) {
     *nedges = ne;
     *nverts = nv;

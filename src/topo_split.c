@@ -307,3 +307,9 @@ static int edgeswap(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
 int tds_edgeswap(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
   return tds_snap_run(ctx, s, edgeswap, sel, n);
 }
+
+int tds_split_edge_raw(tds_surf *s, tds_id e) {
+  if (room_for_split(&s->m, tds_edge_valence(&s->m, e)) != TDS_OK) return TDS_ENOMEM;
+  split_one(s, e);
+  return TDS_OK;
+}
