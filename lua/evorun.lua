@@ -834,6 +834,8 @@ B.o = function()
   local ok, err = pcall(tds.pop, nil)
   if not ok then err = tostring(err); fail("o: " .. (err:match("not supported.*") or err)) end
 end
+B.renumber_all = function() flush(); tds.renumber_all() end
+B.rebody = function() flush(); tds.rebody() end
 B.O = function()
   flush()
   tds.pop_edges(nil)
@@ -974,8 +976,8 @@ for w in ([[J e A a b f k M p Q W y Z z s P D F H h X
   hessian_menu lagrange
   dirichlet dirichlet_seek sobolev sobolev_seek
   pop_quad_to_quad t1_edgeswap raw_vertex_average
-  rawest_vertex_average rawv rawestv vertex_merge
-  edge_merge facet_merge facet_crosscut rebody zoom detorus wrap_vertex 
+  rawest_vertex_average rawv rawestv
+  edge_merge facet_merge facet_crosscut zoom detorus wrap_vertex 
   addload
   logfile keylogfile history pause subcommand breakpoint whereami flush_counts
   reset_counts metis kmetis body_metis ometis

@@ -294,6 +294,23 @@ function o(set)
 end
 pop = o
 function O() return tds.pop_edges(nil) end
+-- renumber_all(): ids 1, 2, ... for the live elements of each kind, in
+-- order (after deletions); returns how many ids changed.
+function renumber_all() return tds.renumber_all() end
+-- rebody(): each body cut into pieces becomes one body per piece.
+function rebody() return tds.rebody() end
+-- vertex_merge(v1, v2): vertex v2 (a handle or an id) joins v1.
+function vertex_merge(a, b)
+  local function vx(v)
+    if type(v) == "number" then
+      local h = math.tointeger(v) and vertex[math.tointeger(v)]
+      if h == nil then error(("vertex_merge: vertex %s does not exist"):format(v), 3) end
+      return h
+    end
+    return v
+  end
+  return tds.vertex_merge(vx(a), vx(b))
+end
 pop_edges = O
 function pop_edge_to_tri(set) return tds.pop_edge_to_tri(list_of(set, "pop_edge_to_tri")) end
 function pop_tri_to_edge(set) return tds.pop_tri_to_edge(list_of(set, "pop_tri_to_edge")) end

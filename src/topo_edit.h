@@ -129,6 +129,26 @@ int tds_pop_edge_to_tri(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *
 ** edge across, joining the two bodies' sides. *n: facets transformed. */
 int tds_pop_tri_to_edge(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
 
+/* renumber_all (topo_renumber.c): the live elements of each kind get ids
+** 1, 2, ... in their present order, every reference following; dead slots
+** are dropped. *n: elements whose id changed. Refused in the string model
+** (its cells are not renumbered yet). */
+int tds_renumber_all(tds_ctx *ctx, tds_surf *s, int32_t *n);
+
+/* vertex_merge (0-based ids): vertex v2 joins v1 (which stays where it
+** is): every edge and facet at v2 now has v1, and v2 goes. Refused (the
+** surface as before) when the two are joined by an edge or have a
+** neighbour in common (the merge would lay two edges side by side), as
+** Evolver's manual asks. */
+int tds_vertex_merge(tds_ctx *ctx, tds_surf *s, tds_id v1, tds_id v2);
+
+/* rebody: the facets of each body are divided into edge-connected sets
+** (a body cut in two by a pinched neck); the set with the lowest facet
+** keeps the body, each other set gets a new body with the same attributes
+** (as Evolver's rebody). Bodies with target volumes: every piece's target
+** becomes its actual volume. *n: new bodies. */
+int tds_rebody(tds_ctx *ctx, tds_surf *s, int32_t *n);
+
 /* dissolve (kind, sel): remove elements without closing the gap, as if
 ** their lines were erased from the datafile: only vertices without edges,
 ** edges without facets, facets on at most one body (or the same body on
