@@ -370,6 +370,7 @@ local INTERNAL = {
   facetedge_count = function() return 3.0 * tds.count(tds.facet) end,
   scale = function() return (tds.scale()) end,
   scale_limit = function() return tds.setting("scale_limit") end,
+  autochop_length = function() return tds.setting("autochop_length") end,
   iteration_counter = function() return tds.setting("iterations") + 0.0 end,
   gravity_constant = function() return (tds.gravity()) end,
   G = function() local g, on = tds.gravity(); return on and g or 0.0 end,
@@ -434,6 +435,7 @@ local SETTABLE = {
   gravity_constant = function(v) local _, on = tds.gravity(); tds.gravity(num(v), on) end,
   constraint_tolerance = function(v) tds.setting("constraint_tolerance", num(v)) end,
   scale_limit = function(v) tds.setting("scale_limit", num(v)) end,
+  autochop_length = function(v) tds.setting("autochop_length", num(v)) end,
   random_seed = function(v) math.randomseed(math.floor(num(v))) end,
   linear_metric_mix = function(v) tds.hessian_setting("linear_metric_mix", num(v)) end,
   hessian_epsilon = function(v) tds.hessian_setting("hessian_epsilon", num(v)) end,
@@ -693,6 +695,9 @@ local TOGGLE_MSG = {
   quiet = "Quiet %s. (was %s)",
   gravity = "Gravity %s. (was %s)",
   check_increase = "Increase check %s. (was %s)",
+  autopop = "Autopopping %s.\n (was %s)",
+  immediate_autopop = "Immediate autopop mode %s.\n (was %s)",
+  autochop = "Autochopping %s. (was %s)",
   little_endian = "little_endian %s. (was %s)",
   big_endian = "big_endian %s. (was %s)",
   hessian_normal = "hessian_normal %s. (was %s)",
@@ -710,6 +715,7 @@ local function toggle_get(name)
   if name == "quiet" then return tds.quiet() end
   if name == "gravity" then local _, on = tds.gravity(); return on end
   if name == "check_increase" then return tds.setting("check_increase") end
+  if name == "autopop" or name == "immediate_autopop" or name == "autochop" then return tds.setting(name) end
   if name == "little_endian" then return endian == "<" end
   if name == "big_endian" then return endian == ">" end
   if name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff"
@@ -722,6 +728,7 @@ local function toggle_set(name, on)
   elseif name == "quiet" then tds.quiet(on)
   elseif name == "gravity" then local g = tds.gravity(); tds.gravity(g, on)
   elseif name == "check_increase" then tds.setting("check_increase", on)
+  elseif name == "autopop" or name == "immediate_autopop" or name == "autochop" then tds.setting(name, on)
   elseif name == "little_endian" then endian = on and "<" or ">"
   elseif name == "big_endian" then endian = on and ">" or "<"
   elseif name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff"
@@ -849,6 +856,8 @@ B.o = function()
   local ok, err = pcall(tds.pop, nil)
   if not ok then err = tostring(err); fail("o: " .. (err:match("not supported.*") or err)) end
 end
+B.renumber_all = function() flush(); tds.renumber_all() end
+B.rebody = function() flush(); tds.rebody() end
 -- O: pops edges; in the string model the same as o (Evolver pops vertices there).
 B.O = function()
   flush()
@@ -1043,13 +1052,13 @@ for w in ([[J e A a b f k p Q W y Z z s P D F H h X
   hessian_menu
   dirichlet dirichlet_seek sobolev sobolev_seek
   pop_quad_to_quad t1_edgeswap raw_vertex_average
-  rawest_vertex_average rawv rawestv vertex_merge
-  edge_merge facet_merge facet_crosscut rebody zoom detorus wrap_vertex 
+  rawest_vertex_average rawv rawestv
+  edge_merge facet_merge facet_crosscut zoom detorus wrap_vertex 
   logfile keylogfile history pause subcommand breakpoint whereami flush_counts
   reset_counts metis kmetis body_metis ometis
   exprint show show_expr showq show_trans close_show transforms transform_expr
   display_text delete_text postscript binary_off_file off_file geomview
-  homothety autopop autochop ribiere
+  homothety ribiere
   quietgo quietload verbose approximate_curvature runge_kutta
   post_project volgrads_every area_normalization effective_area normal_motion
   ysmp bunch_kaufman sparse_constraints augmented_hessian

@@ -102,6 +102,10 @@ typedef struct tds_surf {
   int32_t stall_facet;    /* facet slot + 1 of g's last stall warning; 0 none */
   int check_increase;     /* undo a g step that raises the energy, stop g */
   int evolver_ls;         /* g's line search: Evolver's bracketing (iterate.c) */
+  int autopop;            /* g deletes edges and facets about to vanish, pops */
+  int immediate_autopop;  /* ... each as soon as it is found (autopop.h) */
+  int autochop;           /* g bisects edges about to grow past autochop_length */
+  double autochop_length;
   uint64_t rng;           /* state of the jiggle's random numbers (jiggle.h) */
 
   char *read_text;        /* a datafile's read section, kept verbatim */

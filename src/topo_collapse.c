@@ -276,3 +276,5 @@ int tds_areaweed(tds_ctx *ctx, tds_surf *s, double area, int32_t *n) {
   if (s->m.torus) return tds_torus_unsupported(ctx, "w (areaweed)");
   return run(ctx, s, 1, BY_AREA, NULL, area, n);
 }
+
+int tds_delete_facet_raw(tds_surf *s, tds_id f) { return delete_facet(s, f); }

@@ -293,7 +293,7 @@ typedef struct opcase {
   const char *file;  /* datafile loaded by the set-up (or by the op) */
   int refine, steps; /* set-up after the load: r's, then g steps */
   char op;           /* 'L' load, 'r', 'g', 'u', 'V', 'd' dump, 'p' pg,
-                        'h' Hessian (assembly, KKT, reduction), 'x' export, 'O' pop edges,
+                        'h' Hessian (assembly, KKT, reduction), 'x' export, 'O' pop edges, 'o' pop edges and vertices, 'N' renumber_all, 'B' rebody,
                         'q' and 'c' run-time define of a quantity and of a
                         global constraint with an energy integrand, 'n' a
                         Newton step (hessian), 's' hessian_seek, 'e'
@@ -389,6 +389,12 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
   case 'u': return tds_equiangulate(ctx, s, NULL, &n);
   case 'V': return tds_vertex_average(ctx, s, NULL, &n);
   case 'O': return tds_pop_edges(ctx, s, NULL, &n);
+  case 'N': return tds_renumber_all(ctx, s, &n);
+  case 'B': return tds_rebody(ctx, s, &n);
+  case 'o': {
+    int32_t nv;
+    return tds_pop(ctx, s, &n, &nv);
+  }
   default: return tds_datafile_dump(ctx, s, dump_path);
   }
 }
@@ -574,7 +580,14 @@ static void oom_pop_edges(void) {
   for (int r = 0; r < 2 && !check_failed_; r++) {
     opcase c = {EX "octa.fe", r, 0, 'O'};
     sweep(&c);
+    opcase c2 = {EX "octa.fe", r, 0, 'o'}; /* and the sphere at the centre */
+    sweep(&c2);
   }
+  /* renumber_all and rebody on a double bubble (two bodies, ids dense) */
+  opcase c3 = {bubble_path, 1, 0, 'N'};
+  sweep(&c3);
+  opcase c4 = {bubble_path, 1, 0, 'B'};
+  sweep(&c4);
 }
 static void oom_addload(void) {
   sweep_all('A', 1, 0);
