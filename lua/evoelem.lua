@@ -515,6 +515,24 @@ function E.histogram(log, list, f)
 end
 
 
+-- sizeof(name) of an extra attribute: its number of values per element
+-- (a facetedge attribute's per side); an array variable of that name wins.
+function E.attrsize(name)
+  local v = rawget(_G, name)
+  if type(v) == "table" then return #v + 0.0 end
+  for _, k in ipairs { "vertex", "edge", "facet", "body" } do
+    for _, n in ipairs { name, k == "facet" and FEPRE .. name or nil } do
+      local u = userattr(k, n)
+      if u then
+        local size = 1
+        for i, d in ipairs(u.dims or {}) do if not (n ~= name and i == 1) then size = size * d end end
+        return size + 0.0
+      end
+    end
+  end
+  fail(("sizeof: '%s' is not an array or an extra attribute"):format(name))
+end
+
 function E.has_extra(h, name)
   if isfe(h) then return userattr("facet", FEPRE .. name) ~= nil end
   return E.isel(h) and userattr(kindof(h), name) ~= nil

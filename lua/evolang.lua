@@ -416,6 +416,12 @@ function P:postfix()
       or w == "valid_boundary" or w == "matrix_inverse" or w == "matrix_multiply"
       or w == "matrix_determinant") and self:isop("(", 1) then
     self:next(); self:next()
+    local a1, a2 = self:peek(), self:peek(1)
+    if w == "sizeof" and a1.t == "name" and self.extra[a1.s] and not self:lookup(a1.s)
+       and a2.t == "op" and a2.v == ")" then -- sizeof(extra_attribute): its values per element
+      self:next(); self:next()
+      return "E.attrsize(" .. q(a1.s) .. ")", "n"
+    end
     if w == "valid_element" then
       local kt = self:next()
       if kt.t ~= "name" or not KINDS[kt.s] then self:err("valid_element(kind[id]) expected", kt) end
