@@ -440,7 +440,8 @@ for w in ([[ambient_pressure_value background breakflag body_dissolve_count brig
   rotation_order scale_scale scrollbuffersize self_sim_coeff string_curve_tolerance
   t1_edgeswap_count target_tolerance temperature thickness torus_periods total_time
   unfix_count vertex_dissolve_count vertex_pop_count view_transforms_unique_point
-  where_count window_aspect_ratio autochop_length console_title]]):gmatch("%S+") do
+  where_count window_aspect_ratio autochop_length console_title usr1 usr2 usr3 usr4 usr5
+  usr6 usr7 usr8 usr9 x4 x5 x6 x7 x8 x9]]):gmatch("%S+") do
   EVOLVER_VARS[w] = true
 end
 E.EVOLVER_VARS = EVOLVER_VARS
@@ -1065,7 +1066,7 @@ for w in ([[deturck diffusion hessian_normal_one hessian_normal_perp hessian_spe
   pop_enjoin pop_to_edge pop_to_face septum_flag force_deletion star_finagling
   force_edgeswap k_altitude_mode assume_oriented calculate_in_3d self_similar
   immediate_autopop autopop_quartic longj simplex_to_fe ooglfile geompipe reorder_storage
-  free_discards dump_memlist]]):gmatch("%S+") do
+  free_discards dump_memlist wrap_inverse wrap_compose]]):gmatch("%S+") do
   UNSUPPORTED[w] = true
 end
 E.UNSUPPORTED = UNSUPPORTED
