@@ -263,6 +263,10 @@ static int same_surf(const tds_surf *a, const tds_surf *b) {
              b->energy, b->area, b->scale, (long long)b->iterations);
     return 0;
   }
+  if (a->view_transforms != b->view_transforms || a->nvgen != b->nvgen) {
+    snprintf(why, sizeof why, "view transforms differ");
+    return 0;
+  }
   if (a->npar != b->npar || a->nquant != b->nquant || a->nbdry != b->nbdry ||
       (a->npar && memcmp(a->parval, b->parval, (size_t)a->npar * sizeof *a->parval))) {
     snprintf(why, sizeof why, "parameters, quantities or boundaries differ");
@@ -299,7 +303,8 @@ typedef struct opcase {
                         Newton step (hessian), 's' hessian_seek, 'e'
                         eigenvalues (ritz: 3 lowest), 'S' saddle, 'i'
                         inverse iteration (eigenprobe(0.5, 20)), 'A'
-                        addload of the same file, 'R' replace_load */
+                        addload of the same file, 'R' replace_load, 'T'
+                        replacing the view transforms */
 } opcase;
 
 static int prepare(tds_ctx *ctx, tds_surf *s, const opcase *c) {
@@ -383,6 +388,12 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
   case 'x': return tds_export(ctx, s, dump_path, &xo);
   case 'L': return tds_datafile_load(ctx, s, c->file);
   case 'A': return tds_datafile_addload(ctx, s, c->file);
+  case 'T': {
+    static const double mm[2][16] = {{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1},
+                                     {-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}};
+    static const uint8_t sw[2] = {0, 1};
+    return tds_surf_set_view(ctx, s, 0, 2, mm, sw);
+  }
   case 'R': return tds_datafile_replace_load(ctx, s, c->file);
   case 'r': return tds_refine(ctx, s, NULL, &n);
   case 'g': return tds_iterate(ctx, s, 2);
@@ -592,6 +603,7 @@ static void oom_pop_edges(void) {
 static void oom_addload(void) {
   sweep_all('A', 1, 0);
   sweep_all('R', 0, 1);
+  sweep_all('T', 0, 0);
 }
 static void oom_define(void) {
   sweep_all('q', 0, 0);
