@@ -625,20 +625,6 @@ static int h_display_mode(df *d, const hdr_kw *k) {
   return TDS_OK;
 }
 
-/* VIEW_TRANSFORM_GENERATORS n, then n 4x4 matrices: display only (the
-** copies of a torus cell Evolver draws; phelanc.fe). */
-static int h_view_generators(df *d, const hdr_kw *k) {
-  (void)k;
-  int64_t n;
-  int rc = df_header_int(d, 0, "VIEW_TRANSFORM_GENERATORS", &n);
-  if (rc) return rc;
-  if (n > 100000)
-    return df_err(d, NULL, TDS_ESYNTAX, "VIEW_TRANSFORM_GENERATORS: too many (%lld)",
-                  (long long)n);
-  for (int64_t t = 0; t < n && !rc; t++) rc = skip_values(d, 16, "VIEW_TRANSFORM_GENERATORS");
-  return rc;
-}
-
 /* A keyword asking for what tds does anyway. */
 static int h_nothing(df *d, const hdr_kw *k) {
   (void)d;
