@@ -138,7 +138,20 @@ typedef struct df {
   int32_t nread[4];    /* elements of each kind read so far */
   int64_t fid;         /* the current element line's id in the file */
   int64_t orig;        /* its ORIGINAL value, or -1 */
+  struct df_app *app;  /* append mode (addload): what to put back on failure */
 } df;
+
+/* ---- append mode (datafile_append.c) ----
+** df_app_begin saves what the file may change and numbers the new
+** elements after the existing ones; df_app_detach(d, kind, slot) lets the
+** file redeclare an existing constraint, boundary or quantity slot (1:
+** done, its old definition kept aside; 0: not in append mode, or already
+** redeclared by this file); df_app_end keeps the result (ok) or puts the
+** surface back as it was. */
+enum { DF_APP_CON, DF_APP_BDRY, DF_APP_QUANT };
+int df_app_begin(df *d);
+int df_app_detach(df *d, int kind, int slot);
+void df_app_end(df *d, int ok);
 
 /* Free the id maps (datafile_elements.c). */
 void df_free_ids(df *d);

@@ -23,6 +23,9 @@ static void unit_periods(tds_mesh *m) {
 int df_torus(df *d, int filled) {
   if (d->string_model)
     return df_not_supported(d, NULL, "torus"); /* the string model's torus */
+  if (d->app)
+    return df_err(d, NULL, TDS_ESYNTAX, "%s in a file added by addload is not supported yet",
+                  filled ? "TORUS_FILLED" : "TORUS");
   if (d->s->m.torus)
     return df_err(d, NULL, TDS_ESYNTAX, "%s: the torus model is already declared",
                   filled ? "TORUS_FILLED" : "TORUS");
