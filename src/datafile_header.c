@@ -21,7 +21,7 @@
 static const char *const unsupported[] = {
     "torus", "torus_filled", "periods", "display_periods", "display_origin",
     "quadratic", "lagrange", "lagrange_order", "simplex_representation",
-    "symmetry_group", "metric", "conformal_metric", "klein_metric",
+    "symmetry_group", "conformal_metric", "klein_metric",
     "method_instance", "optimizing_parameter", "optimising_parameter", "wulff",
     "phasefile", "diffusion", "pressure", "squared_curvature",
     "square_curvature", "mean_curvature_integral", "gauss_curvature",
@@ -481,6 +481,11 @@ static int h_dimension(df *d, const hdr_kw *k) {
   return TDS_OK;
 }
 
+static int h_metric(df *d, const hdr_kw *k) {
+  (void)k;
+  return df_metric(d, d->p);
+}
+
 static int h_string(df *d, const hdr_kw *k) {
   (void)k;
   d->string_model = 1;
@@ -590,6 +595,7 @@ static const hdr_kw header_kw[] = {
     {"gap_constant", h_value, AT(gap_constant), ANY},
     {"symmetric_content", h_symmetric, 0, 0},
     {"string", h_string, 0, 0},
+    {"metric", h_metric, 0, 0},
     {"constraint_tolerance", h_value, AT(constraint_tol), POSITIVE},
     {"space_dimension", h_dimension, 0, 0},
     {"surface_dimension", h_dimension, 0, 0},

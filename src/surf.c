@@ -49,6 +49,7 @@ void tds_surf_free(tds_surf *s) {
     tds_free(&a, s->quant[i].inst);
   }
   tds_free(&a, s->quant);
+  free_exprs(s->metric, 9);
   tds_free(&a, s->read_text);
   tds_free(&a, s->orig_start);
   tds_free(&a, s->orig_facets);

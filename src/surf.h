@@ -86,6 +86,10 @@ typedef struct tds_surf {
   int view_transforms;    /* VIEW_TRANSFORMS count of the datafile (display
                              only: the matrices are not kept) */
   double gap_constant;    /* spring constant for convex constraints */
+  tds_expr *metric[9];    /* Riemannian metric G[i][j] = metric[3i+j] (NULL
+                             entries 0), string model only; metric_on says
+                             whether one was declared (METRIC) */
+  int metric_on;
   double constraint_tol;  /* level-set projection tolerance */
 
   /* iteration settings and state */
