@@ -9,7 +9,8 @@
 --   honeycomb_fe(nx, ny, jitter, seed): nx x ny hexagons of side 1 (odd
 --     rows shifted), the vertices where fewer than three cells meet fixed,
 --     the others moved by up to jitter in x and y; every cell a body with
---     the regular hexagon's area held.
+--     the regular hexagon's area held (but the last: the fixed outline
+--     decides it).
 local M = {}
 
 -- x' = (a x + c) mod 2^31, as floats in [0, 1): exact in doubles.
@@ -157,6 +158,7 @@ function M.honeycomb_fe(nx, ny, jitter, seed)
     local dx, dy = (rnd() - 0.5) * 2 * jitter, (rnd() - 0.5) * 2 * jitter
     if count[i] == 3 then v[1], v[2] = v[1] + dx, v[2] + dy end
   end
+  m.closed = true
   return m.text(function(i) return count[i] < 3 end), #m.cells
 end
 
