@@ -7,6 +7,7 @@
 
 #include "attr.h"
 #include "gather.h"
+#include "method.h"
 #include "geom.h"
 #include "motion.h"
 #include "torus.h"
@@ -232,6 +233,13 @@ static const tds_attr vertex_rows[] = {
 static int e_length(GETTER_ARGS) {
   UNUSED(ctx);
   UNUSED(a);
+  if (s->metric_on) { /* METRIC: the length in the metric */
+    tds_corners C;
+    tds_gather_edge(&s->m, TDS_OREF(id, 0), &C);
+    tds_mlocal L = {.x = {C.x[0], C.x[1]}, .ig = s->metric, .param = s->parval,
+                    .G = s->gravity_on ? s->gravity : 0};
+    return one(v, n, tds_methods[TDS_M_METRIC_LENGTH].eval(&L, NULL, NULL));
+  }
   double d[3];
   tds_edge_vec(&s->m, TDS_OREF(id, 0), d);
   return one(v, n, v3_norm(d));

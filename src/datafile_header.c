@@ -20,7 +20,7 @@
 /* Evolver keywords whose features the core does not have yet. */
 static const char *const unsupported[] = {
     "quadratic", "lagrange", "lagrange_order", "simplex_representation",
-    "symmetry_group", "metric", "conformal_metric", "klein_metric",
+    "symmetry_group", "conformal_metric", "klein_metric",
     "method_instance", "optimizing_parameter", "optimising_parameter", "wulff",
     "phasefile", "diffusion", "pressure", "squared_curvature",
     "square_curvature", "mean_curvature_integral", "gauss_curvature",
@@ -505,6 +505,11 @@ static int h_dimension(df *d, const hdr_kw *k) {
   return TDS_OK;
 }
 
+static int h_metric(df *d, const hdr_kw *k) {
+  (void)k;
+  return df_metric(d, d->p);
+}
+
 static int h_string(df *d, const hdr_kw *k) {
   (void)k;
   if (d->app) return df_err(d, NULL, TDS_ESYNTAX, "addload of a string-model datafile is not supported yet");
@@ -684,6 +689,7 @@ static const hdr_kw header_kw[] = {
     {"connected", h_display_mode, 0, 0},
     {"connected_cells", h_display_mode, 0, 0},
     {"raw_cells", h_display_mode, 0, 0},
+    {"metric", h_metric, 0, 0},
     {"constraint_tolerance", h_value, AT(constraint_tol), POSITIVE},
     {"space_dimension", h_dimension, 0, 0},
     {"surface_dimension", h_dimension, 0, 0},

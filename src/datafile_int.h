@@ -166,6 +166,9 @@ int df_string_body(df *d, tds_id id, int n, const int32_t *faces);
 /* When the elements start: refuse what the string model does not have yet
 ** (messages at the current line). */
 int df_string_model(df *d);
+/* METRIC (the cursor after the keyword at `at`): the string model's
+** Riemannian metric into s->metric. */
+int df_metric(df *d, const char *at);
 /* At the end: check the cells. */
 int df_string_finish(df *d);
 

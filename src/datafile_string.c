@@ -3,6 +3,7 @@
 ** cells (contracts in datafile_int.h). */
 #include "datafile_int.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -108,4 +109,28 @@ int df_string_model(df *d) {
 int df_string_finish(df *d) {
   int rc = tds_strings_check(d->ctx, d->s);
   return rc ? df_core(d, 0, rc, NULL) : TDS_OK;
+}
+
+/* METRIC g11 g12 ... (N x N expressions, N the space dimension, any line
+** layout): the Riemannian metric of the string model. */
+int df_metric(df *d, const char *at) {
+  if (!d->string_model)
+    return df_err(d, at, TDS_ESYNTAX,
+                  "METRIC is supported only in the string model: give STRING (and "
+                  "SPACE_DIMENSION) before METRIC");
+  if (d->s->metric_on) return df_err(d, at, TDS_ESYNTAX, "METRIC given twice");
+  int n = d->space_dim ? d->space_dim : 3;
+  tds_expr *e[9] = {NULL};
+  for (int k = 0; k < n * n; k++) {
+    char what[48];
+    snprintf(what, sizeof what, "METRIC component %d,%d", k / n + 1, k % n + 1);
+    int rc = df_header_expr(d, 0, &e[3 * (k / n) + k % n], what);
+    if (rc) {
+      for (int j = 0; j < 9; j++) tds_expr_free(e[j]);
+      return rc;
+    }
+  }
+  memcpy(d->s->metric, e, sizeof e);
+  d->s->metric_on = 1;
+  return TDS_OK;
 }

@@ -213,6 +213,18 @@ static void header(out *o, const tds_surf *s) {
   }
   if (s->str)
     fprintf(f, "STRING\nSPACE_DIMENSION %d\n\n", s->str->space_dim);
+  if (s->str && s->metric_on) { /* METRIC: N rows of N components */
+    int n = s->str->space_dim;
+    fputs("METRIC\n", f);
+    for (int i = 0; i < n; i++) {
+      for (int j = 0; j < n; j++) {
+        fputs(j ? "  " : "", f);
+        text(o, s->metric[3 * i + j]);
+      }
+      fputc('\n', f);
+    }
+    fputc('\n', f);
+  }
   if (s->npar) fputc('\n', f);
   if (s->m.torus) {
     /* the period formulas as given (parameters stay live), one row a line */

@@ -477,7 +477,10 @@ static int edge_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
   int rc = TDS_OK;
   int anyten = 0;
   for (tds_id e = 0; e < s->m.ne && !anyten; e++) anyten = s->m.eten[e] != 0;
-  if (anyten) rc = energy_term(ctx, s, out, make(s, TDS_M_EDGE_LENGTH, s_edge_tension, NULL, 0));
+  if (anyten && s->metric_on) /* METRIC: lengths in the metric */
+    rc = energy_term(ctx, s, out, make(s, TDS_M_METRIC_LENGTH, s_edge_tension, s->metric, 0));
+  else if (anyten)
+    rc = energy_term(ctx, s, out, make(s, TDS_M_EDGE_LENGTH, s_edge_tension, NULL, 0));
   if (s->str) return rc == TDS_OK ? string_terms(ctx, s, out) : rc;
   for (int c = 0; c < TDS_MAX_CON && rc == TDS_OK; c++) {
     const tds_constraint *con = &s->con[c];

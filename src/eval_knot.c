@@ -106,30 +106,23 @@ static int epair(tds_ctx *ctx, acc *A, const tds_method *row, double pw, int wan
 }
 
 /* Vertices with exactly two live edges: corners (far end of the first,
-** v, far end of the second), the edges taken in id order. */
+** v, far end of the second), the edges taken in id order. Reads the
+** mesh's vertex-edge adjacency (current during g: no allocation there). */
 static int vstar(tds_ctx *ctx, acc *A, const tds_method *row, int wantg, int wanth) {
-  const tds_mesh *m = &A->s->m;
-  int32_t *cnt = tds_calloc(&ctx->alloc, (size_t)m->nv + 1, 3 * sizeof *cnt);
-  if (!cnt) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
-  for (tds_id e = 0; e < m->ne; e++) {
-    if (!live_e(m, e)) continue;
-    for (int k = 0; k < 2; k++) {
-      int32_t *c = &cnt[3 * m->ev[e][k]];
-      if (c[0] < 2) c[1 + c[0]] = m->ev[e][!k];
-      c[0]++;
-    }
-  }
+  tds_mesh *m = &A->s->m;
+  if (tds_mesh_adjacency(m) != TDS_OK) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   tds_mlocal L = {.param = A->s->parval};
   double g[3][3], h[9][9];
   for (tds_id v = 0; v < m->nv; v++) {
-    const int32_t *c = &cnt[3 * v];
-    if (!live_v(m, v) || c[0] != 2) continue;
-    tds_id vs[3] = {c[1], v, c[2]};
+    int32_t a = m->ve_start[v];
+    if (!live_v(m, v) || m->ve_start[v + 1] - a != 2) continue;
+    int32_t e0 = m->ve[a], e1 = m->ve[a + 1];
+    if (TDS_OID(e1) < TDS_OID(e0)) e0 = m->ve[a + 1], e1 = m->ve[a];
+    tds_id vs[3] = {tds_oe_head(m, e0), v, tds_oe_head(m, e1)};
     for (int k = 0; k < 3; k++) L.x[k] = m->x[vs[k]];
     double val = row->eval(&L, wantg ? g : NULL, wanth ? h : NULL);
     put(A, vs, 3, A->w, val, wantg ? g : NULL, wanth ? h : NULL);
   }
-  tds_free(&ctx->alloc, cnt);
   return TDS_OK;
 }
 

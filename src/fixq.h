@@ -13,6 +13,11 @@
 
 #include "surf.h"
 
+/* Above this many constrained quantities the Gram matrix is assembled
+** sparse and factored by the sparse LDL^T (la.h), not dense: a 2-D foam of 10,000 cells would otherwise take 800 MB and
+** a cubic-time solve. */
+#define TDS_FIXQ_DENSE_MAX 400
+
 typedef struct tds_fixq {
   int32_t nq;           /* number of constrained quantities */
   int32_t *qbody;       /* q -> body index, or TDS_NONE */
@@ -21,7 +26,8 @@ typedef struct tds_fixq {
   double *value;        /* current values */
   double *target;
   double *mult;         /* scratch: multipliers of the last solve */
-  double *gram;         /* nq*nq, scratch */
+  double *gram;         /* nq*nq, scratch; NULL when nq > TDS_FIXQ_DENSE_MAX
+                           (then the Gram matrix is sparse: fixq.c) */
   int32_t nv;           /* vertex slots covered by the pattern */
   int32_t *start;       /* per-vertex entry range, nv + 1 */
   int32_t *eq;          /* entry -> q */

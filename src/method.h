@@ -52,8 +52,10 @@ enum {                     /* row flags */
   TDS_MF_SINGULAR = 128,   /* infinite where two corners meet (knot energies) */
   TDS_MF_DISJOINT = 256,   /* TDS_IT_EPAIR: only pairs of edges without a
                               common vertex */
-  TDS_MF_SYMPAIR = 512     /* TDS_IT_EPAIR: the kernel is symmetric in its
+  TDS_MF_SYMPAIR = 512,    /* TDS_IT_EPAIR: the kernel is symmetric in its
                               two edges (each unordered pair once, doubled) */
+  TDS_MF_METRIC = 1024     /* reads a metric tensor ig[0..8] (ig NULL: the
+                              identity) */
 };
 
 /* Rows. The first TDS_M_COUNT are the named quantity methods, in the
@@ -75,6 +77,8 @@ enum {
   TDS_M_VERTEX_TAIL,                /* ... and at the tail */
   TDS_M_FACET_FLUX,                 /* torus: (N . e_k) / 2, k the row
                                        constant (method_torus.c) */
+  TDS_M_METRIC_LENGTH,              /* string model: edge length in a
+                                       Riemannian metric ig[0..8] */
   TDS_M_NROWS
 };
 
@@ -131,6 +135,7 @@ double tds_mk_vertex_head(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_vertex_tail(const tds_mlocal *L, double g[3][3], double h[9][9]);
 /* The torus model's row (method_torus.c). */
 double tds_mk_facet_flux(const tds_mlocal *L, double g[3][3], double h[9][9]);
+double tds_mk_metric_length(const tds_mlocal *L, double g[3][3], double h[9][9]);
 
 /* Knot, curvature and Hooke rows (method_knot.c). */
 double tds_mk_knot(const tds_mlocal *L, double g[3][3], double h[9][9]);

@@ -17,6 +17,7 @@
 */
 #include "method.h"
 
+#include <math.h>
 #include <string.h>
 
 double tds_mk_edge_area(const tds_mlocal *L, double g[3][3], double h[9][9]) {
@@ -86,4 +87,82 @@ double tds_mk_vertex_head(const tds_mlocal *L, double g[3][3], double h[9][9]) {
 
 double tds_mk_vertex_tail(const tds_mlocal *L, double g[3][3], double h[9][9]) {
   return at_corner(L, 0, g, h);
+}
+
+/* ---- edge length in a Riemannian metric (METRIC) ----
+** L = sum over Evolver's 2-point Gauss rule (measured: its edge length
+** equals this rule to 1e-16 on metric.fe's metric) of w sqrt(d^T G(x) d),
+** d = x1 - x0, x = x0 + t d; G[i][j] = ig[3i+j] (NULL: 0; ig NULL: the
+** identity, Euclidean length). The Hessian is
+** a central difference of the exact gradient. */
+
+static double metric_len(const tds_mlocal *L, const double *x0, const double *x1,
+                         double g[3][3]) {
+  static const double T[2] = {0.21132486540518711775, 0.78867513459481288225};
+  double d[3] = {x1[0] - x0[0], x1[1] - x0[1], x1[2] - x0[2]}, len = 0;
+  if (g) memset(g, 0, sizeof(double[3][3]));
+  for (int q = 0; q < 2; q++) {
+    double vars[TDS_NVARS] = {x0[0] + T[q] * d[0], x0[1] + T[q] * d[1],
+                              x0[2] + T[q] * d[2], 0, 0, L->G};
+    double G[3][3], dG[3][3][3] = {{{0}}}; /* dG[k][i][j] = dG_ij/dx_k */
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) {
+        const tds_expr *e = L->ig ? L->ig[3 * i + j] : NULL;
+        if (!e) { /* no metric: the identity (a test's Euclidean case) */
+          G[i][j] = L->ig ? 0 : i == j;
+          continue;
+        }
+        if (g) {
+          double gr[TDS_NDIFF];
+          G[i][j] = tds_expr_eval_grad(e, L->param, vars, gr);
+          for (int k = 0; k < 3; k++) dG[k][i][j] = gr[k];
+        } else {
+          G[i][j] = tds_expr_eval(e, L->param, vars);
+        }
+      }
+    double Gd[3], S = 0;
+    for (int i = 0; i < 3; i++) {
+      Gd[i] = 0;
+      for (int j = 0; j < 3; j++) Gd[i] += 0.5 * (G[i][j] + G[j][i]) * d[j];
+      S += d[i] * Gd[i];
+    }
+    double r = S > 0 ? sqrt(S) : 0;
+    len += 0.5 * r;
+    if (!g || !(r > 0)) continue;
+    for (int k = 0; k < 3; k++) {
+      double dd = 0; /* d^T dG/dx_k d */
+      for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) dd += d[i] * dG[k][i][j] * d[j];
+      double c = 0.5 / (2 * r); /* w / (2 sqrt S) */
+      g[0][k] += c * (-2 * Gd[k] + (1 - T[q]) * dd);
+      g[1][k] += c * (2 * Gd[k] + T[q] * dd);
+    }
+  }
+  return len;
+}
+
+double tds_mk_metric_length(const tds_mlocal *L, double g[3][3], double h[9][9]) {
+  double v = metric_len(L, L->x[0], L->x[1], g);
+  if (!h) return v;
+  memset(h, 0, sizeof(double[9][9]));
+  double d[3] = {L->x[1][0] - L->x[0][0], L->x[1][1] - L->x[0][1], L->x[1][2] - L->x[0][2]};
+  double step = 1e-5 * sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (!(step > 0)) return v;
+  double xs[2][3];
+  memcpy(xs[0], L->x[0], sizeof xs[0]);
+  memcpy(xs[1], L->x[1], sizeof xs[1]);
+  for (int c = 0; c < 2; c++)
+    for (int i = 0; i < 3; i++) {
+      double gp[3][3], gm[3][3], keep = xs[c][i];
+      xs[c][i] = keep + step;
+      metric_len(L, xs[0], xs[1], gp);
+      xs[c][i] = keep - step;
+      metric_len(L, xs[0], xs[1], gm);
+      xs[c][i] = keep;
+      for (int e = 0; e < 2; e++)
+        for (int j = 0; j < 3; j++) h[3 * e + j][3 * c + i] = (gp[e][j] - gm[e][j]) / (2 * step);
+    }
+  for (int k = 0; k < 6; k++)
+    for (int j = 0; j < k; j++) h[k][j] = h[j][k] = (h[k][j] + h[j][k]) / 2;
+  return v;
 }

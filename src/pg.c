@@ -129,6 +129,12 @@ int pg_work_init(tds_ctx *ctx, tds_surf *s, pgw *w, int depth) {
     return rc;
   }
   int32_t nq = w->fq.nq;
+  if (nq && !w->fq.gram) { /* its Gram matrices are dense (fixq.h) */
+    pg_work_free(w);
+    return tds_seterr(ctx, TDS_ERANGE,
+                      "pg: more than %d constrained volumes and quantities is not supported "
+                      "yet (g handles them)", TDS_FIXQ_DENSE_MAX);
+  }
   w->an = tds_calloc(&w->al, (size_t)w->fq.nent + 1, sizeof *w->an);
   w->gram = tds_calloc(&w->al, (size_t)nq * (size_t)nq + 1, sizeof *w->gram);
   w->rhs = tds_calloc(&w->al, (size_t)nq + 1, sizeof *w->rhs);

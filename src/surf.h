@@ -93,6 +93,10 @@ typedef struct tds_surf {
   double (*vgen)[16];
   uint8_t *vgen_swap;
   double gap_constant;    /* spring constant for convex constraints */
+  tds_expr *metric[9];    /* Riemannian metric G[i][j] = metric[3i+j] (NULL
+                             entries 0), string model only; metric_on says
+                             whether one was declared (METRIC) */
+  int metric_on;
   double constraint_tol;  /* level-set projection tolerance */
 
   /* iteration settings and state */

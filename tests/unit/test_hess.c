@@ -262,6 +262,8 @@ static void hess_example_cube(void) { example_fd(EX "cube.fe", 2, 10); }
 static void hess_example_mound(void) { example_fd(EX "mound.fe", 2, 10); }
 /* the string model: edge tension, body area, string gravity, content */
 static void hess_example_slidestr(void) { example_fd(EX "slidestr.fe", 2, 10); }
+/* the string model in a Riemannian metric (METRIC) */
+static void hess_example_metric(void) { example_fd(EX "metric.fe", 2, 10); }
 static void hess_example_catbody(void) { example_fd(EX "catbody.fe", 2, 10); }
 static void hess_example_column(void) { example_fd(EX "column.fe", 2, 10); }
 /* the torus model: wrapped facets and the volumes' lattice translations
@@ -618,6 +620,7 @@ int main(void) {
   RUN(hess_example_cube);
   RUN(hess_example_mound);
   RUN(hess_example_slidestr);
+  RUN(hess_example_metric);
   RUN(hess_example_catbody);
   RUN(hess_example_column);
   RUN(hess_example_twointor);

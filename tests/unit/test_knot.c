@@ -16,6 +16,7 @@
 #include "eval.h"
 #include "hess.h"
 #include "method.h"
+#include "model.h"
 
 #define TOL_G 1e-8
 #define TOL_H 1e-7
@@ -244,7 +245,46 @@ static void assembly_fd(void) {
   }
 }
 
+/* The metric edge length (METRIC) with a full, position-dependent tensor
+** in space: gradient and Hessian (a difference of the gradient itself)
+** against central differences; a constant tensor gives sqrt(d^T G d)
+** exactly (the 2-point rule integrates a constant exactly). */
+static void metric_fd(void) {
+  tds_ctx ctx;
+  tds_surf s;
+  h_setup(&ctx, &s);
+  static const char *const comp[9] = {"1 + x^2", "0.3*y", "0.1",  "0.3*y", "2 + sin(z)",
+                                      "0.2*x",   "0.1",   "0.2*x", "1.5 + y^2"};
+  tds_expr *G[9];
+  for (int k = 0; k < 9; k++) REQUIRE_OK(&ctx, tds_model_compile(&ctx, &s, comp[k], 0, &G[k]));
+  const tds_method *row = &tds_methods[TDS_M_METRIC_LENGTH];
+  uint64_t st = 5;
+  double eg = 0, eh = 0;
+  for (int t = 0; t < 30; t++) {
+    double xs[3][3], d[3];
+    do {
+      rpoint(&st, xs[0], 0);
+      rpoint(&st, xs[1], 0);
+      v3_sub(d, xs[1], xs[0]);
+    } while (v3_norm(d) < 0.3);
+    tds_mlocal L = {.x = {xs[0], xs[1]}, .ig = G, .param = s.parval};
+    fd3(row, &L, xs, 2, &eg, &eh);
+  }
+  if (!(eg < TOL_G && eh < 1e-6)) printf("  metric: value/grad %.2g, grad/hess %.2g\n", eg, eh);
+  CHECK(eg < TOL_G);
+  CHECK(eh < 1e-6);
+  tds_expr *C[9] = {NULL};
+  REQUIRE_OK(&ctx, tds_model_compile(&ctx, &s, "4", 0, &C[0]));
+  REQUIRE_OK(&ctx, tds_model_compile(&ctx, &s, "9", 0, &C[4]));
+  double a[3] = {0.5, 1, 0}, b[3] = {1.5, 3, 0};
+  tds_mlocal L = {.x = {a, b}, .ig = C, .param = s.parval};
+  CHECK_NEAR(row->eval(&L, NULL, NULL), sqrt(4 * 1 + 9 * 4), 1e-14);
+  for (int k = 0; k < 9; k++) tds_expr_free(G[k]), tds_expr_free(C[k]);
+  tds_surf_free(&s);
+}
+
 int main(void) {
+  RUN(metric_fd);
   RUN(knot_kernels_fd);
   RUN(pairs_fd);
   RUN(closed_forms);

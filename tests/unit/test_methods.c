@@ -174,7 +174,8 @@ static void rows_fd(void) {
       }
       for (int t = 0; t < 20; t++) {
         double xs[3][3];
-        tds_mlocal L = {.x = {xs[0], xs[1], xs[2]}, .ig = ig,
+        /* a metric row gets no tensor: the identity (test_knot.c has one) */
+        tds_mlocal L = {.x = {xs[0], xs[1], xs[2]}, .ig = row->flags & TDS_MF_METRIC ? NULL : ig,
                         .npts = sets ? sets[si].npts : 0, .k = 2.5,
                         .param = E.s.parval, .G = 9.8};
         if (row->kind == TDS_EL_EDGE && L.npts > 2) L.npts = 2;
@@ -299,7 +300,8 @@ static void rows_degenerate(void) {
     tds_expr *ig[3] = {NULL, NULL, NULL};
     if (is) REQUIRE_OK(&E.ctx, compile_set(&E, is, ig) ? TDS_OK : TDS_ESYNTAX);
     for (int c = 0; c < 3; c++) {
-      tds_mlocal L = {.x = {cases[c][0], cases[c][1], cases[c][2]}, .ig = ig,
+      tds_mlocal L = {.x = {cases[c][0], cases[c][1], cases[c][2]},
+                      .ig = row->flags & TDS_MF_METRIC ? NULL : ig,
                       .npts = row->kind == TDS_EL_EDGE ? 2 : 12, .k = 1,
                       .param = E.s.parval, .G = 9.8};
       double g[3][3], h[9][9];

@@ -571,6 +571,18 @@ static void sweep_all(char op, int refine, int steps) {
   }
 }
 
+/* The string model's knot, curvature and Hooke rows (eval_knot.c) and
+** its Riemannian metric: load, g, dump. */
+static void oom_strings(void) {
+  const char *files[] = {"tests/evolver/knot/knots.fe", EX "metric.fe"};
+  const char ops[] = {'L', 'g', 'd'};
+  for (size_t i = 0; i < 2 && !check_failed_; i++)
+    for (size_t k = 0; k < 3 && !check_failed_; k++) {
+      opcase c = {files[i], 0, 0, ops[k]};
+      sweep(&c);
+    }
+}
+
 static void oom_load(void) { sweep_all('L', 0, 0); }
 static void oom_refine(void) { sweep_all('r', 0, 0); }
 static void oom_iterate(void) { sweep_all('g', 1, 0); }
@@ -655,6 +667,7 @@ int main(void) {
   }
   RUN(oom_inputs);
   RUN(oom_load);
+  RUN(oom_strings);
   RUN(oom_refine);
   RUN(oom_iterate);
   RUN(oom_equiangulate);
