@@ -213,6 +213,11 @@ function E.defattr(kind, name, ty, dims)
     table.insert(d, 1, 3)
     kind, name = "facet", FEPRE .. name
   end
+  for _, n in ipairs(d) do
+    -- Evolver scripts free an attribute's storage by redefining it with a
+    -- size 0 (multiplicate.cmd); tds keeps it as it is
+    if n == 0 and userattr(kind, name) then USER = nil; return end
+  end
   local ok, err = pcall(tds.define_attribute, kind, name, ty, d)
   USER = nil
   if not ok then fail(tostring(err):gsub("^.-:%d+: ", "")) end
@@ -351,6 +356,16 @@ local function fe_set(o, name, v)
   if not ok then fail_fe(err) end
 end
 
+-- Element attributes of Evolver (elements.htm) tds does not have: reading
+-- one is an error naming it as such.
+local EV_ATTRS = {}
+for w in ([[dihedral orientation vertex_normal sqcurve square_mean_curvature v_force
+  v_velocity raw_velocity v_oldx v_constraint_list e_constraint_list f_constraint_list
+  v_boundary e_boundary v_method_list e_method_list f_method_list on_quantity
+  on_method_instance mid_edge mid_facet axial_point triple_point tetra_point midv wrap
+  wrap_list no_transform phase f_next_vertex p_force p_velocity constraint_normal
+  gauss_curvature node_charge]]):gmatch("%S+") do EV_ATTRS[w] = true end
+
 function E.attr(o, name)
   if type(o) == "table" and o.__quantity then return E.qattr(o, name) end
   if not isel(o) then fail(("'.%s' needs an element, got %s"):format(name, type(o))) end
@@ -364,6 +379,7 @@ function E.attr(o, name)
   end
   local f = ATTR[name]
   if f then return f(h, rev) end
+  if EV_ATTRS[name] then fail(("%s %d: attribute %s is not supported yet"):format(kindof(h), h.id, name)) end
   local ok, v = pcall(function() return h[name] end)
   if not ok then fail(v) end
   if v == nil then
@@ -379,6 +395,7 @@ function E.pred(h, what, n)
   if not isel(h) then fail(what .. " needs an element") end
   h = unwrap(h)
   n = math.floor(num(n))
+  if what == "value_of_constraint" then fail("value_of_constraint: not supported yet") end
   if what == "on_constraint" or what == "hit_constraint" then
     local cs = h.constraints or {}
     for _, c in ipairs(cs) do if c == n then return true end end
@@ -424,6 +441,17 @@ function E.setattr(h, name, v, fromset)
   end
 end
 
+-- `fix qname` / `unfix qname`: a named quantity becomes FIXED (its target
+-- as declared or last set) or INFO_ONLY; parameters cannot be optimized.
+function E.fixname(low, raw, on)
+  if tds.quantity_info(low) == nil then
+    fail(("%s %s: fixing parameters (optimizing_parameter) is not supported yet")
+      :format(on and "fix" or "unfix", raw))
+  end
+  local ok, msg = tds.quantity_set(low, "fixed", on and 1 or 0)
+  if not ok then fail(msg) end
+end
+
 function E.unsetattr(h, name, v)
   if isfe(h) then return fe_set(h, name, 0) end
   h = unwrap(h)
@@ -435,6 +463,12 @@ function E.unsetattr(h, name, v)
     local n = v and math.floor(num(v))
     for _, c in ipairs(cs) do if n and c ~= n then out[#out + 1] = c end end
     h.constraints = out
+  elseif name == "boundary" and (k == "vertex" or k == "edge") then
+    -- `unset vertices boundary 1`: off that boundary (any without a number)
+    if h.boundary ~= nil and (v == nil or h.boundary == math.floor(num(v))) then
+      local ok, err = pcall(function() h.boundary = nil end)
+      if not ok then fail(tostring(err):gsub("^.-:%d+: ", "")) end
+    end
   elseif (name == "target" or name == "volume") and k == "body" then h.target = nil
   elseif name == "pressure" and k == "body" then h.pressure = nil
   elseif userattr(k, name) then h[name] = nil
@@ -497,6 +531,24 @@ function E.histogram(log, list, f)
   end
 end
 
+
+-- sizeof(name) of an extra attribute: its number of values per element
+-- (a facetedge attribute's per side); an array variable of that name wins.
+function E.attrsize(name)
+  local v = rawget(_G, name)
+  if type(v) == "table" then return #v + 0.0 end
+  for _, k in ipairs { "vertex", "edge", "facet", "body" } do
+    for _, n in ipairs { name, k == "facet" and FEPRE .. name or nil } do
+      local u = userattr(k, n)
+      if u then
+        local size = 1
+        for i, d in ipairs(u.dims or {}) do if not (n ~= name and i == 1) then size = size * d end end
+        return size + 0.0
+      end
+    end
+  end
+  fail(("sizeof: '%s' is not an array or an extra attribute"):format(name))
+end
 
 function E.has_extra(h, name)
   if isfe(h) then return userattr("facet", FEPRE .. name) ~= nil end

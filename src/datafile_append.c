@@ -30,8 +30,11 @@ struct df_app {
   tds_boundary *bdry0;
   tds_quantity *quant0;
   uint8_t *bdry_rep, *quant_rep;
+  double (*view)[16], (*vgen)[16]; /* copies of the view transforms */
+  uint8_t *view_swap, *vgen_swap;
+  int nview, nvgen;
   double gravity, gap, tol, scale, scale_limit;
-  int gravity_on, symmetric, view_transforms, fixed_scale;
+  int gravity_on, symmetric, fixed_scale;
   uint64_t param_gen;
 };
 
@@ -48,6 +51,10 @@ static void free_app(const tds_alloc *al, struct df_app *a) {
   tds_free(al, a->quant0);
   tds_free(al, a->bdry_rep);
   tds_free(al, a->quant_rep);
+  tds_free(al, a->view);
+  tds_free(al, a->vgen);
+  tds_free(al, a->view_swap);
+  tds_free(al, a->vgen_swap);
   tds_free(al, a);
 }
 
@@ -70,7 +77,14 @@ int df_app_begin(df *d) {
   a->nquant0 = s->nquant;
   a->quant0 = dup_n(al, s->quant, (size_t)s->nquant * sizeof *s->quant);
   a->quant_rep = tds_calloc(al, (size_t)s->nquant + 1, 1);
-  if (!a->parval0 || !a->bdry0 || !a->bdry_rep || !a->quant0 || !a->quant_rep) {
+  a->nview = s->view_transforms;
+  a->view = dup_n(al, s->view, (size_t)(s->view ? s->view_transforms : 0) * sizeof *s->view);
+  a->view_swap = dup_n(al, s->view_swap, (size_t)(s->view_swap ? s->view_transforms : 0));
+  a->nvgen = s->nvgen;
+  a->vgen = dup_n(al, s->vgen, (size_t)(s->vgen ? s->nvgen : 0) * sizeof *s->vgen);
+  a->vgen_swap = dup_n(al, s->vgen_swap, (size_t)(s->vgen_swap ? s->nvgen : 0));
+  if (!a->parval0 || !a->bdry0 || !a->bdry_rep || !a->quant0 || !a->quant_rep || !a->view ||
+      !a->vgen || !a->view_swap || !a->vgen_swap) {
     free_app(al, a);
     return tds_seterr(d->ctx, TDS_ENOMEM, "out of memory");
   }
@@ -82,7 +96,6 @@ int df_app_begin(df *d) {
   a->scale_limit = s->scale_limit;
   a->fixed_scale = s->fixed_scale;
   a->symmetric = s->symmetric_content;
-  a->view_transforms = s->view_transforms;
   a->param_gen = s->param_gen;
   d->app = a;
   /* new elements after every existing slot (Evolver renumbers them) */
@@ -188,7 +201,18 @@ void df_app_end(df *d, int ok) {
   s->scale_limit = a->scale_limit;
   s->fixed_scale = a->fixed_scale;
   s->symmetric_content = a->symmetric;
-  s->view_transforms = a->view_transforms;
+  tds_free(al, s->view); /* the copies come back */
+  tds_free(al, s->vgen);
+  tds_free(al, s->view_swap);
+  tds_free(al, s->vgen_swap);
+  s->view_transforms = a->nview;
+  s->view = a->nview ? a->view : NULL;
+  s->view_swap = a->nview ? a->view_swap : NULL;
+  if (a->nview) a->view = NULL, a->view_swap = NULL;
+  s->nvgen = a->nvgen;
+  s->vgen = a->nvgen ? a->vgen : NULL;
+  s->vgen_swap = a->nvgen ? a->vgen_swap : NULL;
+  if (a->nvgen) a->vgen = NULL, a->vgen_swap = NULL;
   tds_snap_restore(s, &a->snap); /* mesh, scale, quantity values, ... */
   s->scale = a->scale;
   free_app(al, a);

@@ -540,32 +540,64 @@ static int h_slice(df *d, const hdr_kw *k) {
   return TDS_OK;
 }
 
-/* VIEW_TRANSFORMS n, then n matrices each optionally preceded by COLOR c
-** or SWAP_COLORS; display only. */
-static int h_view_transforms(df *d, const hdr_kw *k) {
-  (void)k;
+/* VIEW_TRANSFORMS n or VIEW_TRANSFORM_GENERATORS n, then n matrices (4x4,
+** row-major) each optionally preceded by COLOR c or SWAP_COLORS (display
+** only, skipped). The view transforms are kept after the identity, as
+** Evolver lists them; generators are for transform_expr. */
+static int read_matrices(df *d, int gen) {
+  const char *what = gen ? "VIEW_TRANSFORM_GENERATORS" : "VIEW_TRANSFORMS";
   int64_t n;
-  int rc = df_header_int(d, 0, "VIEW_TRANSFORMS", &n);
+  int rc = df_header_int(d, 0, what, &n);
   if (rc) return rc;
-  if (n > 100000)
-    return df_err(d, NULL, TDS_ESYNTAX, "VIEW_TRANSFORMS: too many (%lld)", (long long)n);
-  d->s->view_transforms = (int)n;
-  for (int64_t t = 0; t < n; t++) {
+  if (n > TDS_MAX_VIEW - 1)
+    return df_err(d, NULL, TDS_ESYNTAX, "%s: too many (%lld)", what, (long long)n);
+  int line = df_line_of(d, NULL);
+  int first = gen ? 0 : 1, total = (int)n + first;
+  double (*m)[16] = tds_calloc(&d->ctx->alloc, (size_t)total + 1, sizeof *m);
+  uint8_t *sw = tds_calloc(&d->ctx->alloc, (size_t)total + 1, 1);
+  if (!m || !sw) {
+    tds_free(&d->ctx->alloc, m);
+    tds_free(&d->ctx->alloc, sw);
+    return df_err(d, NULL, TDS_ENOMEM, "out of memory");
+  }
+  if (!gen)
+    for (int k = 0; k < 4; k++) m[0][5 * k] = 1;
+  for (int64_t t = 0; t < n && !rc; t++) {
     int have;
     for (;;) {
-      if ((rc = df_more(d, &have))) return rc;
-      if (have && df_accept(d, "swap_colors")) continue;
+      if ((rc = df_more(d, &have))) break;
+      if (have && df_accept(d, "swap_colors")) {
+        sw[first + t] = 1;
+        continue;
+      }
       if (have && df_accept(d, "color")) {
         int16_t c;
-        if ((rc = df_more(d, &have)) || (rc = df_read_color(d, &c, "VIEW_TRANSFORMS")))
-          return rc;
+        if ((rc = df_more(d, &have)) || (rc = df_read_color(d, &c, what))) break;
         continue;
       }
       break;
     }
-    if ((rc = skip_values(d, 16, "VIEW_TRANSFORMS"))) return rc;
+    d->split = 1;
+    for (int k = 0; k < 16 && !rc; k++) rc = df_header_value(d, &m[first + t][k], what);
+    d->split = 0;
   }
-  return TDS_OK;
+  if (!rc) {
+    rc = tds_surf_set_view(d->ctx, d->s, gen, n || gen ? total : 0, (const double (*)[16])m, sw);
+    if (rc) rc = df_core(d, line, rc, what);
+  }
+  tds_free(&d->ctx->alloc, m);
+  tds_free(&d->ctx->alloc, sw);
+  return rc;
+}
+
+static int h_view_transforms(df *d, const hdr_kw *k) {
+  (void)k;
+  return read_matrices(d, 0);
+}
+
+static int h_view_generators(df *d, const hdr_kw *k) {
+  (void)k;
+  return read_matrices(d, 1);
 }
 
 /* TORUS, TORUS_FILLED, PERIODS (datafile_torus.c) */
@@ -591,20 +623,6 @@ static int h_display_mode(df *d, const hdr_kw *k) {
   (void)d;
   (void)k;
   return TDS_OK;
-}
-
-/* VIEW_TRANSFORM_GENERATORS n, then n 4x4 matrices: display only (the
-** copies of a torus cell Evolver draws; phelanc.fe). */
-static int h_view_generators(df *d, const hdr_kw *k) {
-  (void)k;
-  int64_t n;
-  int rc = df_header_int(d, 0, "VIEW_TRANSFORM_GENERATORS", &n);
-  if (rc) return rc;
-  if (n > 100000)
-    return df_err(d, NULL, TDS_ESYNTAX, "VIEW_TRANSFORM_GENERATORS: too many (%lld)",
-                  (long long)n);
-  for (int64_t t = 0; t < n && !rc; t++) rc = skip_values(d, 16, "VIEW_TRANSFORM_GENERATORS");
-  return rc;
 }
 
 /* A keyword asking for what tds does anyway. */

@@ -38,6 +38,33 @@ static void num(out *o, double v, const char *what, int id) {
   fprintf(o->f, " %.17g", v);
 }
 
+/* VIEW_TRANSFORM_GENERATORS, or else the datafile's VIEW_TRANSFORMS after
+** the identity, as Evolver's dump writes them (it leaves out transforms
+** made by transform_expr from generators). */
+static void matrices(out *o, const char *kw, int n, const double (*m)[16],
+                     const uint8_t *swap) {
+  fprintf(o->f, "%s %d\n", kw, n);
+  for (int t = 0; t < n; t++) {
+    if (swap && swap[t]) fputs("swap_colors\n", o->f);
+    for (int i = 0; i < 4; i++) {
+      for (int j = 0; j < 4; j++) num(o, m[t][4 * i + j], kw, t + 1);
+      fputc('\n', o->f);
+    }
+  }
+}
+
+static void view_matrices(out *o, const tds_surf *s) {
+  if (s->nvgen) {
+    matrices(o, "VIEW_TRANSFORM_GENERATORS", s->nvgen, (const double (*)[16])s->vgen,
+             s->vgen_swap);
+    return;
+  }
+  static const double id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  if (s->view_transforms > 1 && !memcmp(s->view[0], id, sizeof id))
+    matrices(o, "VIEW_TRANSFORMS", s->view_transforms - 1, (const double (*)[16])(s->view + 1),
+             s->view_swap ? s->view_swap + 1 : NULL);
+}
+
 /* Write expression text cleaned for the datafile (see the top). */
 static void text(out *o, const tds_expr *e) {
   if (!e) {
@@ -227,6 +254,7 @@ static void header(out *o, const tds_surf *s) {
     fputs(" FIXED\n", f);
   }
   if (s->symmetric_content) fputs("SYMMETRIC_CONTENT\n", f);
+  view_matrices(o, s);
   fputc('\n', f);
 
   /* constraints in order of their numbers */
