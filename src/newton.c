@@ -226,10 +226,13 @@ static int factor(tds_ctx *ctx, const tds_nsys *n, double eps, double c, tds_la 
 /* A singular system (motions that do not change the energy to second
 ** order, as translations with hessian_normal off) is solved with its
 ** null directions left out, when it is consistent: the residual of the
-** solution below 1e-8 of |b| + |K| |x| (the second term is rounding,
-** which dominates when the step is tiny), or when |b| is itself at the
-** rounding floor (1e-11 |K|: converged), so the step is
-** the Newton step up to those directions. Otherwise it is refused. */
+** solution below 1e-6 of |b| + |K| |x| (the second term is rounding,
+** which dominates when the step is tiny, amplified by the nearly null
+** directions: 1.2e-8 measured on knotty.fe's free knot, whose six rigid
+** motions are null; an inconsistent system leaves a residual of the
+** order of |b|), or when |b| is itself at the rounding floor (1e-11 |K|:
+** converged), so the step is the Newton step up to those directions.
+** Otherwise it is refused. */
 static int singular_solve(tds_ctx *ctx, const tds_nsys *n, tds_la *f, double *b, int32_t zero) {
   int32_t N = n->m + n->nq;
   double *b0 = tds_malloc(&ctx->alloc, ((size_t)N + 1) * sizeof *b0), *r = tds_malloc(&ctx->alloc, ((size_t)N + 1) * sizeof *r);
@@ -251,7 +254,7 @@ static int singular_solve(tds_ctx *ctx, const tds_nsys *n, tds_la *f, double *b,
     for (int64_t e = 0; e < K.colptr[N]; e++) nk = fmax(nk, fabs(K.val[e]));
     /* rounding in K x is a few ulps of |K| |x| per entry; a right-hand
     ** side at the rounding floor of the gradient (converged) is consistent */
-    if (!(res <= 1e-8 * (nb + nk * nx) || nb <= 1e-11 * nk))
+    if (!(res <= 1e-6 * (nb + nk * nx) || nb <= 1e-11 * nk))
       rc = tds_seterr(ctx, TDS_ENUM, "hessian: the Hessian is singular (%d zero eigenvalues) and "
                       "the step has no solution; try hessian_normal on, or fix the free "
                       "directions", (int)zero);
