@@ -548,7 +548,7 @@ tds.props.vertex.gauss_curvature = function(h) return tds.vertex_gauss_curvature
 function hessian() return tds.hessian() end
 function hessian_seek(maxscale) return tds.hessian_seek(maxscale) end
 function saddle(maxscale) return tds.saddle(maxscale) end
-function eigenprobe(c) return tds.eigenprobe(c or 0) end
+function eigenprobe(c, n) return tds.eigenprobe(c or 0, n) end
 function ritz(shift, n) return tds.ritz(shift or 0, n or 5) end
 function lanczos(shift, n) return tds.ritz(shift or 0, n or 15) end
 function move(t) return tds.move(t) end
@@ -563,6 +563,7 @@ end
 hessian_normal = newton_toggle("hessian_normal", "hessian_normal %s. (was %s)")
 linear_metric = newton_toggle("linear_metric", "Linear interpolation metric with Hessian %s.(was %s)")
 hessian_diff = newton_toggle("hessian_diff", "hessian_diff %s. (was %s)")
+hessian_special_normal = newton_toggle("hessian_special_normal", "hessian_special_normal %s. (was %s)")
 
 -- Evolver's command language: the runtime (tds.E, evolver [[...]]), read
 -- sections run at load, and the prompt's Lua/Evolver rule.

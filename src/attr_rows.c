@@ -9,6 +9,7 @@
 #include "gather.h"
 #include "geom.h"
 #include "motion.h"
+#include "torus.h"
 #include "vec3.h"
 
 #define UNUSED(x) (void)(x)
@@ -108,6 +109,20 @@ static int get_bdry(GETTER_ARGS) {
   return TDS_OK;
 }
 
+/* Evolver's `unset vertices boundary 1`: an element can leave its
+** boundary (a vertex keeps its position, now free); putting one on a
+** boundary needs its parameters, which only the datafile gives. */
+static int set_bdry(SETTER_ARGS) {
+  UNUSED(v);
+  if (n) return tds_seterr(ctx, TDS_ERANGE,
+                           "%s %d: boundary can only be unset (boundaries are given in the "
+                           "datafile)", tds_kind_name[a->kind], id + 1);
+  if (a->kind == TDS_VERTEX) s->m.vbdry[id] = TDS_NONE;
+  else s->m.ebdry[id] = TDS_NONE;
+  s->m.coord_gen++;
+  return TDS_OK;
+}
+
 /* ---- vertices ---- */
 
 static int vx_get(GETTER_ARGS) {
@@ -202,7 +217,7 @@ static const tds_attr vertex_rows[] = {
     ROW(.name = "p2", .kind = TDS_VERTEX, .type = TDS_AT_REAL, .size = 1, .get = vp_get,
         .set = vp_set),
     ROW(.name = "boundary", .kind = TDS_VERTEX, .type = TDS_AT_BDRY, .size = 1, .io = FE_DECL,
-        .get = get_bdry),
+        .get = get_bdry, .set = set_bdry),
     ROW(.name = "constraints", .alias = "constraint", .fe_alias = "constraint",
         .kind = TDS_VERTEX, .type = TDS_AT_CONS, .size = TDS_MAX_CON, .io = FE_DECL,
         .get = get_cons, .set = vcon_set),
@@ -251,6 +266,24 @@ static int econ_set(SETTER_ARGS) {
   return TDS_OK;
 }
 
+/* wrap (torus model, torus.h): Evolver's wrap code. Dumps write wraps as
+** * + - signs after the vertices; the word only for counts beyond 1. */
+static int e_wrap_get(GETTER_ARGS) {
+  UNUSED(ctx);
+  UNUSED(a);
+  return one(v, n, tds_torus_wrap_code(s->m.ewrap[id]));
+}
+static int e_wrap_set(SETTER_ARGS) {
+  UNUSED(a);
+  if (!n) return tds_seterr(ctx, TDS_ERANGE, "edge %d: wrap cannot be unset", id + 1);
+  return tds_torus_set_wrap(ctx, s, id, v[0]);
+}
+static int e_wrap_dumped(const tds_surf *s, tds_id id) {
+  int k[3];
+  tds_wrap_unpack(s->m.ewrap[id], k);
+  return k[0] * k[0] > 1 || k[1] * k[1] > 1 || k[2] * k[2] > 1;
+}
+
 static const tds_attr edge_rows[] = {
     RO(TDS_EDGE, "length", TDS_AT_REAL, 1, e_length),
     ORIGINAL(TDS_EDGE),
@@ -262,7 +295,7 @@ static const tds_attr edge_rows[] = {
         .type = TDS_AT_CONS, .size = TDS_MAX_CON, .io = FE_DECL, .get = get_cons,
         .set = econ_set),
     ROW(.name = "boundary", .kind = TDS_EDGE, .type = TDS_AT_BDRY, .size = 1, .io = FE_DECL,
-        .get = get_bdry),
+        .get = get_bdry, .set = set_bdry),
     FLAGROW(TDS_EDGE, "fixed", NULL, NULL, TDS_FIXED, FE_DECL),
     FLAGROW(TDS_EDGE, "no_refine", NULL, "norefine", TDS_NO_REFINE, FE_DECL),
     FLAGROW(TDS_EDGE, "bare", NULL, NULL, TDS_BARE, FE_DECL),
@@ -273,6 +306,8 @@ static const tds_attr edge_rows[] = {
     ROW(.name = "color", .fe_alias = "colour", .kind = TDS_EDGE, .type = TDS_AT_COLOR,
         .size = 1,
         .io = FE_DECL, .get = get_scol, .set = e_color_set, .off = OFF(ecolor)),
+    ROW(.name = "wrap", .kind = TDS_EDGE, .type = TDS_AT_INT, .size = 1, .io = FE_DECL,
+        .get = e_wrap_get, .set = e_wrap_set, .dumped = e_wrap_dumped),
 };
 
 /* ---- facets ---- */

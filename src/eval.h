@@ -18,8 +18,11 @@
 
 /* Hessian collection (hess.h): when tds_eval_out.hess is not NULL, every
 ** term's element Hessian, times its sink's weight and the weight below,
-** is added as triplets (upper half of the global matrix) to trip. */
-typedef struct tds_hess_acc {
+** is added as triplets (upper half of the global matrix) to trip, or
+** (add not NULL) passed to add instead: the element's corners vs, kind
+** of them, weight w != 0, h its 3kind x 3kind Hessian (both halves). */
+typedef struct tds_hess_acc tds_hess_acc;
+struct tds_hess_acc {
   const int32_t *vidx;  /* vertex slot -> global index of its x (y, z
                            follow), or -1 for a vertex that cannot move */
   double ew;            /* weight of the energy's Hessian */
@@ -28,7 +31,9 @@ typedef struct tds_hess_acc {
   int lower;            /* take the kernels' lower halves (a symmetry
                            check; the matrix stored is the same) */
   int status;           /* TDS_ENOMEM when a triplet could not be added */
-} tds_hess_acc;
+  void (*add)(tds_hess_acc *ha, const tds_id *vs, int kind, double w, double (*h)[9]);
+  void *user;           /* for add */
+};
 
 typedef struct tds_eval_out {
   double energy;        /* total energy */
@@ -52,5 +57,20 @@ int tds_eval(tds_ctx *ctx, tds_surf *s, tds_eval_out *out);
 ** fused pass). Also sets the fixq values and the quantity values.
 ** TDS_OK, TDS_ENUM (energy not finite), TDS_ERANGE. */
 int tds_eval_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int facet_core);
+
+/* Add w * h (a kind-corner element Hessian, kind <= 3) at vertices vs to
+** the accumulator's triplets (its upper or lower half). */
+void tds_eval_scatter_hess(tds_hess_acc *ha, const tds_id *vs, int kind, double w,
+                           double (*h)[9]);
+
+/* One instance of a named quantity's method whose row walks something
+** other than single elements (TDS_IT_* != ELEMENT: vertex pairs, vertex
+** stars, edge pairs, edges with per-edge constants; eval_knot.c): adds
+** w times its value to *total and its gradient to the energy (gq -1) or
+** fixq quantity gq (>= 0, -2 none), with its Hessian when out->hess.
+** TDS_OK, TDS_ENOMEM, TDS_ERANGE (a Hessian the row does not have, a
+** power it does not take). */
+int tds_eval_global_row(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int method, double w,
+                        int32_t gq, double *total);
 
 #endif

@@ -237,8 +237,8 @@ static int l_setting(lua_State *L) {
   case 4:
     lua_pushinteger(L, (lua_Integer)s->iterations);
     break;
-  case 6: /* read-only: the datafile's count */
-    lua_pushinteger(L, s->view_transforms);
+  case 6: /* read-only: Evolver's transform_count - 1 (lua_view.c) */
+    lua_pushinteger(L, s->view_transforms > 1 ? s->view_transforms - 1 : 0);
     break;
   case 7:
     if (set) s->check_increase = lua_toboolean(L, 2);

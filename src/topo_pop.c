@@ -1,5 +1,6 @@
 /* topo_pop.c: o / pop on vertices: a vertex where separate cones of
 ** facets meet (a pinched neck after t) is split into one vertex per cone. */
+#include "torus.h"
 #include "topo_edit.h"
 
 #include <stdlib.h>
@@ -159,6 +160,7 @@ static int pop(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npop) {
 }
 
 int tds_pop_vertices(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  if (s->m.torus) return tds_torus_unsupported(ctx, "pop");
   return tds_snap_run(ctx, s, pop, sel, n);
 }
 
