@@ -143,7 +143,11 @@ static int cell_cycle(const cone *c, int r, int *pt, int cap) {
     if (k < 0) return -1;
     used[k] = 1;
   }
-  return n == na ? n : -1;
+  if (n != na) return -1;
+  for (int i = 0; i < n; i++) /* a simple polygon: no point twice */
+    for (int j = i + 1; j < n; j++)
+      if (pt[i] == pt[j]) return -1;
+  return n;
 }
 
 int tds_pop_cone(tds_surf *s, tds_id v, int *done) {
@@ -175,6 +179,13 @@ int tds_pop_cone(tds_surf *s, tds_id v, int *done) {
     c->ga[i] = TDS_OID(m->fe[f][k]);
     c->gb[i] = TDS_OID(m->fe[f][(k + 2) % 3]);
   }
+  /* two facets on the same two edges at v would give two arcs (and two
+  ** diagonals) between the same points: not a cone we can pop */
+  for (int i = 0; i < c->nf; i++)
+    for (int j = i + 1; j < c->nf; j++)
+      if ((c->ga[i] == c->ga[j] && c->gb[i] == c->gb[j]) ||
+          (c->ga[i] == c->gb[j] && c->gb[i] == c->ga[j]))
+        goto out;
   for (int i = 0; i < 2 * c->nf; i++) c->lab[i] = i;
   for (int i = 0; i < c->ng; i++)
     if (!join_around(m, c, v, c->g[i])) goto out;
@@ -240,6 +251,19 @@ int tds_pop_cone(tds_surf *s, tds_id v, int *done) {
     ncell++;
   }
   if (ncell < 2) goto free3;
+  /* a quadrilateral's diagonal must not be an arc already (two cells
+  ** side by side along it): then leave the vertex */
+  for (int k = 0; k < ncell; k++) {
+    if (k == big || clen[k] != 4) continue;
+    int *pt = cell + k * (c->nf + 1), s0 = 0;
+    for (int q = 1; q < 4; q++)
+      if (pt[q] < pt[s0]) s0 = q;
+    int x = pt[s0], z = pt[(s0 + 2) % 4];
+    for (int i = 0; i < c->nf; i++) {
+      int ia = gindex(c, c->ga[i]), ib = gindex(c, c->gb[i]);
+      if ((ia == x && ib == z) || (ia == z && ib == x)) goto free3;
+    }
+  }
   /* room for everything */
   int nnv = c->ng, nne = 2 * c->nf, nnf = c->nf;
   for (int k = 0; k < ncell; k++) {
