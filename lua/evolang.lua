@@ -774,10 +774,20 @@ function P:statement1()
       if not ok and (type(init) ~= "table" or not init.evo) then error(init, 0) end
       self.i, self.depth = save, saved_depth
     end
-    if (op == ":=" or op == "::=") and self:isop("{") and not self:lookup(w) then
+    -- name := show facet where ... (phelanc.fe): a command without braces
+    local sh = self:peek()
+    local display = sh.t == "name" and (sh.s == "show" or sh.s == "show_expr" or sh.s == "showq")
+      and self:peek(1).t == "name" and KINDS[self:peek(1).s]
+    -- also name := transform_expr "abc", name := transforms off: a
+    -- built-in command (M.is_command, set by the runtime) with an argument
+    -- that cannot continue an expression
+    local a1 = self:peek(1)
+    display = display or (sh.t == "name" and M.is_command and M.is_command(sh.s)
+      and not self:lookup(sh.s) and not self:atend(a1) and a1.t ~= "op")
+    if (op == ":=" or op == "::=") and (self:isop("{") or display) and not self:lookup(w) then
       self.usercmds = self.usercmds or {}
       self.usercmds[w] = true -- a user command of that name is no unsupported command
-      local body = self:funcbody({}, true)
+      local body = self:funcbody({}, not display)
       return "E.defcmd(" .. q(w) .. ", function() " .. body .. " end)"
     end
     local v = asnum(self:expr())

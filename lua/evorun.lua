@@ -859,6 +859,10 @@ B.o = function()
   local ok, err = pcall(tds.pop, nil)
   if not ok then err = tostring(err); fail("o: " .. (err:match("not supported.*") or err)) end
 end
+B.O = function()
+  flush()
+  tds.pop_edges(nil)
+end
 B.j = function(t) flush(); tds.jiggle(t ~= nil and num(t, "j") or nil) end
 B.V = function(n) for _ = 1, times(n, "V") do flush(); tds.vertex_average(nil) end end
 B.vertex_average = B.V
@@ -1044,7 +1048,7 @@ end
 
 -- Evolver commands tds does not have: named in the error.
 local UNSUPPORTED = {}
-for w in ([[O J e A a b f k p Q W y Z z s P D F H h X
+for w in ([[J e A a b f k p Q W y Z z s P D F H h X
   hessian_menu
   dirichlet dirichlet_seek sobolev sobolev_seek
   pop_quad_to_quad t1_edgeswap raw_vertex_average
@@ -1070,6 +1074,8 @@ for w in ([[deturck diffusion hessian_normal_one hessian_normal_perp hessian_spe
   UNSUPPORTED[w] = true
 end
 E.UNSUPPORTED = UNSUPPORTED
+-- name := command args (phelanc.fe: bunch := transform_expr "abc") defines a command.
+evolang.is_command = function(name) return B[name] ~= nil end
 -- The translator takes what follows such a command as its arguments.
 evolang.UNSUPPORTED = setmetatable({}, { __index = function(_, k)
   if UNSUPPORTED[k] and not B[k] then return true end
@@ -1203,7 +1209,7 @@ function E.oncollection(name, kind, list)
     if kind ~= "edge" and kind ~= "facet" then fail("reverse_orientation needs edges or facets") end
     if #list > 0 then tds.reverse_orientation(list) end
   elseif name == "pop" then
-    if kind ~= "vertex" then fail("pop " .. kind .. ": not supported yet (pop vertices)") end
+    if kind ~= "vertex" and kind ~= "edge" then fail("pop works on vertices and edges, not " .. kind) end
     tds.pop(list)
   elseif name == "edgeswap" then
     if kind ~= "edge" then fail("edgeswap needs edges") end

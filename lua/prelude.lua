@@ -286,11 +286,15 @@ function K(angle) return tds.skinny(need(angle, "angle", "K(angle)")) end
 function n(angle) return tds.notch(need(angle, "angle", "n(angle)")) end
 notch = n
 function delete(set) return tds.delete(list_of(set, "delete")) end
+-- o() pops edges then vertices; o(set) pops the set's edges or vertices;
+-- O() pops edges only.
 function o(set)
   if type(set) == "function" then set = list_of(set) end
   return tds.pop(set)
 end
 pop = o
+function O() return tds.pop_edges(nil) end
+pop_edges = O
 function pop_edge_to_tri(set) return tds.pop_edge_to_tri(list_of(set, "pop_edge_to_tri")) end
 function pop_tri_to_edge(set) return tds.pop_tri_to_edge(list_of(set, "pop_tri_to_edge")) end
 function dissolve(set) return tds.dissolve(list_of(set, "dissolve")) end

@@ -51,6 +51,7 @@ static int begin_section(df *d, int sec, const char *at) {
   d->section = sec;
   if (sec == S_VERTICES) {
     d->seen_vertices = 1;
+    if ((rc = df_torus_start(d, at))) return rc;
     /* the model, now that the top section has said which */
     if (d->string_model) {
       rc = tds_strings_enable(d->ctx, d->s, d->space_dim ? d->space_dim : 3);
@@ -181,6 +182,10 @@ static int finish(df *d) {
   char where[300];
   snprintf(where, sizeof where, "%.280s: ", d->name);
   tds_mesh_body_warnings(d->ctx, m, where);
+  if (m->torus) {
+    int rc = df_torus_finish(d);
+    if (rc) return rc;
+  }
   if (d->has_read && !d->app) { /* addload: the new file's read section is not run */
     const char *r = d->lx.src + d->read_at;
     size_t n = d->lx.n - d->read_at;
@@ -262,6 +267,9 @@ int tds_datafile_addload_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
   if (!name) name = "(datafile)";
   if (s->str)
     return tds_seterr(ctx, TDS_ESYNTAX, "%s: addload in the string model is not supported yet",
+                      name);
+  if (s->m.torus)
+    return tds_seterr(ctx, TDS_ESYNTAX, "%s: addload in the torus model is not supported yet",
                       name);
   return read_text(ctx, s, name, text, len, 1);
 }

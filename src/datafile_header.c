@@ -19,7 +19,6 @@
 
 /* Evolver keywords whose features the core does not have yet. */
 static const char *const unsupported[] = {
-    "torus", "torus_filled", "periods", "display_periods", "display_origin",
     "quadratic", "lagrange", "lagrange_order", "simplex_representation",
     "symmetry_group", "metric", "conformal_metric", "klein_metric",
     "method_instance", "optimizing_parameter", "optimising_parameter", "wulff",
@@ -36,7 +35,7 @@ static const char *const unsupported[] = {
     "function", "procedure",
     "gradient_mode", "parameter_file", "ideal_gas", "knot_energy",
     "conserved", "on_assign_call", "nonwall", "content_rank", "axial_point",
-    "wrap", "phase", "actual_volume", "form_integrand", "k_form_order",
+    "phase", "actual_volume", "form_integrand", "k_form_order",
     "parameter_1", "element_modulus", "clip_coeff", NULL};
 
 int df_unsupported(const char *w) {
@@ -581,6 +580,33 @@ static int h_view_generators(df *d, const hdr_kw *k) {
   return read_matrices(d, 1);
 }
 
+/* TORUS, TORUS_FILLED, PERIODS (datafile_torus.c) */
+static int h_torus(df *d, const hdr_kw *k) {
+  if (d->app) return df_err(d, NULL, TDS_ESYNTAX, "addload of a torus datafile is not supported yet");
+  return df_torus(d, k->name[5] == '_');
+}
+static int h_periods(df *d, const hdr_kw *k) {
+  (void)k;
+  if (d->app) return df_err(d, NULL, TDS_ESYNTAX, "addload of a torus datafile is not supported yet");
+  return df_periods(d);
+}
+/* DISPLAY_PERIODS (3 rows of 3) and DISPLAY_ORIGIN (3): display only. */
+static int h_display_periods(df *d, const hdr_kw *k) {
+  (void)k;
+  return skip_values(d, 9, "DISPLAY_PERIODS");
+}
+static int h_display_origin(df *d, const hdr_kw *k) {
+  (void)k;
+  return skip_values(d, 3, "DISPLAY_ORIGIN");
+}
+/* CLIPPED, CONNECTED, RAW_CELLS: how a torus surface is shown (Evolver's
+** toggles; exports write facets unwrapped, see doc/torus.md). */
+static int h_display_mode(df *d, const hdr_kw *k) {
+  (void)d;
+  (void)k;
+  return TDS_OK;
+}
+
 /* A keyword asking for what tds does anyway. */
 static int h_nothing(df *d, const hdr_kw *k) {
   (void)d;
@@ -628,6 +654,17 @@ static const hdr_kw header_kw[] = {
     {"gap_constant", h_value, AT(gap_constant), ANY},
     {"symmetric_content", h_symmetric, 0, 0},
     {"string", h_string, 0, 0},
+    {"torus", h_torus, 0, 0},
+    {"torus_filled", h_torus, 0, 0},
+    {"periods", h_periods, 0, 0},
+    {"torus_periods", h_periods, 0, 0},
+    {"display_periods", h_display_periods, 0, 0},
+    {"display_origin", h_display_origin, 0, 0},
+    {"clipped", h_display_mode, 0, 0},
+    {"clipped_cells", h_display_mode, 0, 0},
+    {"connected", h_display_mode, 0, 0},
+    {"connected_cells", h_display_mode, 0, 0},
+    {"raw_cells", h_display_mode, 0, 0},
     {"constraint_tolerance", h_value, AT(constraint_tol), POSITIVE},
     {"space_dimension", h_dimension, 0, 0},
     {"surface_dimension", h_dimension, 0, 0},

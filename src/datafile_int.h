@@ -127,6 +127,8 @@ typedef struct df {
   int split;           /* several values in a row: element lines, matrices */
   int space_dim;       /* SPACE_DIMENSION given (0: not given) */
   int string_model;    /* STRING or SURFACE_DIMENSION 1 given */
+  int torus_line;      /* line of TORUS / TORUS_FILLED (0: none) */
+  int periods_line;    /* line of PERIODS (0: none) */
   /* Element ids: as Evolver, elements are numbered 1, 2, ... in the order
   ** the file gives them (the file's ids become `original`), unless the
   ** top section says KEEP_ORIGINALS (slot = the file's id - 1). */
@@ -166,6 +168,21 @@ int df_string_body(df *d, tds_id id, int n, const int32_t *faces);
 int df_string_model(df *d);
 /* At the end: check the cells. */
 int df_string_finish(df *d);
+
+/* ---- the torus model (datafile_torus.c) ---- */
+
+/* TORUS (filled 0) or TORUS_FILLED (1): the cursor is after the word. */
+int df_torus(df *d, int filled);
+/* PERIODS: three rows of three expressions, each row on one line. */
+int df_periods(df *d);
+/* When the VERTICES section starts: PERIODS needs TORUS. */
+int df_torus_start(df *d, const char *at);
+/* The wrap signs after an edge's vertices (none: *wrap = 0): three of
+** * + -; an error without TORUS. */
+int df_edge_wrap(df *d, const char *what, int32_t *wrap);
+/* After the elements: facets close in the torus, volumes settled to whole
+** cells (torus.h), a warning for bodies that wrap round the torus. */
+int df_torus_finish(df *d);
 
 /* ---- messages (datafile_read.c) ---- */
 

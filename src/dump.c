@@ -21,6 +21,7 @@
 #include "model.h"
 #include "string_model.h"
 #include "wfile.h"
+#include "wrap.h"
 
 typedef struct out {
   FILE *f;
@@ -213,6 +214,23 @@ static void header(out *o, const tds_surf *s) {
   if (s->str)
     fprintf(f, "STRING\nSPACE_DIMENSION %d\n\n", s->str->space_dim);
   if (s->npar) fputc('\n', f);
+  if (s->m.torus) {
+    /* the period formulas as given (parameters stay live), one row a line */
+    fputs(s->m.torus == 2 ? "TORUS_FILLED\nPERIODS\n" : "TORUS\nPERIODS\n", f);
+    for (int i = 0; i < 3; i++) {
+      for (int j = 0; j < 3; j++) {
+        if (s->period_expr[i][j]) {
+          fputs(j ? " (" : "(", f);
+          text(o, s->period_expr[i][j]);
+          fputc(')', f);
+        } else {
+          num(o, s->m.period[i][j], "period", i + 1);
+        }
+      }
+      fputc('\n', f);
+    }
+    fputc('\n', f);
+  }
   defines(o, s);
   gravity(o, s);
   if (s->gap_constant != 1) {
@@ -384,6 +402,12 @@ static void elements(out *o, tds_surf *s) {
   for (tds_id e = 0; e < m->ne; e++) {
     if (!tds_alive(m->eflags, e)) continue;
     fprintf(f, "%d %d %d", e + 1, m->ev[e][0] + 1, m->ev[e][1] + 1);
+    if (m->torus) { /* Evolver's signs; larger counts by the wrap word */
+      int k[3];
+      tds_wrap_unpack(m->ewrap[e], k);
+      if (k[0] * k[0] <= 1 && k[1] * k[1] <= 1 && k[2] * k[2] <= 1)
+        for (int i = 0; i < 3; i++) fputs(k[i] > 0 ? " +" : k[i] < 0 ? " -" : " *", f);
+    }
     attrs(o, s, TDS_EDGE, e);
     fputc('\n', f);
   }

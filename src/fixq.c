@@ -2,6 +2,7 @@
 #include "fixq.h"
 
 #include "string_model.h"
+#include "torus.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -34,8 +35,9 @@ int tds_fixq_build(tds_ctx *ctx, tds_surf *s, tds_fixq *fq) {
   tds_fixq_free(fq);
   fq->alloc = ctx->alloc;
   int32_t nq = 0, nglobal = 0;
+  tds_id dropped = tds_torus_dropped_body(m); /* TORUS_FILLED */
   for (tds_id b = 0; b < m->nb; b++)
-    if (tds_alive(m->bflags, b) && (m->bflags[b] & TDS_TARGET)) nq++;
+    if (tds_alive(m->bflags, b) && (m->bflags[b] & TDS_TARGET) && b != dropped) nq++;
   for (int i = 0; i < s->nquant; i++)
     if (s->quant[i].kind == TDS_Q_FIXED) nglobal++;
   nq += nglobal;
@@ -55,7 +57,7 @@ int tds_fixq_build(tds_ctx *ctx, tds_surf *s, tds_fixq *fq) {
   int32_t q = 0;
   for (tds_id b = 0; b < m->nb; b++) {
     fq->bq[b] = -1;
-    if (tds_alive(m->bflags, b) && (m->bflags[b] & TDS_TARGET)) {
+    if (tds_alive(m->bflags, b) && (m->bflags[b] & TDS_TARGET) && b != dropped) {
       fq->qbody[q] = b;
       fq->qquant[q] = -1;
       fq->target[q] = m->btarget[b];

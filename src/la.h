@@ -31,6 +31,11 @@ typedef struct tds_inertia {
 ** (an entry not finite, or the factorisation failed). */
 int tds_la_factor(tds_ctx *ctx, const tds_spmat *A, tds_la **out);
 
+/* Factor the n x n general (unsymmetric) matrix A (CSC, not upper): LU
+** with pivoting. Solves as above; its inertia means nothing but `zero`
+** (null pivots). Same status codes. */
+int tds_la_factor_lu(tds_ctx *ctx, const tds_spmat *A, tds_la **out);
+
 /* Inertia of the factored matrix. */
 tds_inertia tds_la_inertia(const tds_la *f);
 

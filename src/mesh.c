@@ -24,6 +24,7 @@ static const column ecols[] = {
     COL(econ, sizeof(tds_cmask)), COL(ebdry, sizeof(int32_t)),
     COL(eten, sizeof(double)),    COL(ecolor, sizeof(int16_t)),
     COL(eside, sizeof(int32_t)), COL(efile, sizeof(int32_t)),
+    COL(ewrap, sizeof(int32_t)),
 };
 static const column fcols[] = {
     COL(fv, sizeof(tds_id[3])),   COL(fe, sizeof(int32_t[3])),
@@ -147,6 +148,7 @@ static void set_defaults(tds_mesh *m, int kind, tds_id i) {
     m->ecolor[i] = 0;
     m->eside[i] = TDS_NONE;
     m->efile[i] = 0;
+    m->ewrap[i] = 0;
     break;
   case TDS_FACET:
     for (int k = 0; k < 3; k++) {
@@ -374,6 +376,8 @@ int tds_mesh_copy(tds_mesh *dst, const tds_mesh *src) {
              (size_t)cap * (size_t)src->ucol[k][c].size * sizeof(double));
     FIELD(dst, kinds[k].n_off, int32_t) = CFIELD(src, kinds[k].n_off, int32_t);
   }
+  dst->torus = src->torus;
+  memcpy(dst->period, src->period, sizeof dst->period);
   dst->topo_gen = src->topo_gen + 1;
   dst->coord_gen = src->coord_gen;
   dst->adj_gen = 0;

@@ -51,6 +51,8 @@ enum {
   TDS_M_STRING_GRAVITY,             /* string model: -int y^2/2 dx */
   TDS_M_VERTEX_HEAD,                /* string model: scalar ig[0] at the head */
   TDS_M_VERTEX_TAIL,                /* ... and at the tail */
+  TDS_M_FACET_FLUX,                 /* torus: (N . e_k) / 2, k the row
+                                       constant (method_torus.c) */
   TDS_M_NROWS
 };
 
@@ -97,6 +99,8 @@ double tds_mk_edge_area(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_string_gravity(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_vertex_head(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_vertex_tail(const tds_mlocal *L, double g[3][3], double h[9][9]);
+/* The torus model's row (method_torus.c). */
+double tds_mk_facet_flux(const tds_mlocal *L, double g[3][3], double h[9][9]);
 
 /* Derivatives of a facet's normal N = (x1-x0) x (x2-x0):
 ** u[c][i] = dN/dx[c][i] = E_i x (x[c+1] - x[c+2]) (indices mod 3). */

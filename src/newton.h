@@ -52,6 +52,10 @@ typedef struct tds_newton_opts {
   int linear_metric;    /* M as above instead of the identity */
   double metric_mix;    /* linear_metric_mix, 0 .. 1 */
   int diff;             /* hessian_diff: H by central differences */
+  int general;          /* assemble through the xyz Hessian (hess.h) and
+                           triplets, as hessian_diff does, instead of
+                           straight into the unknowns (a check: the
+                           same matrix, slower) */
 } tds_newton_opts;
 
 /* One Newton step (Evolver's hessian): solve K [w; y] = [-grad; target -

@@ -313,6 +313,13 @@ static int directions_multipliers(tds_ctx *ctx, const tds_surf *s, pgw *w) {
     direction(s, w, v);
     if (!nq) continue;
     const double *d = w->d[v];
+    if (w->frozen) {
+      for (int32_t e = fq->start[v]; e < fq->start[v + 1]; e++) {
+        w->an[e] = v3_dot(fq->g[e], d);
+        to_motion(w, v, fq->g[e]);
+      }
+      continue;
+    }
     double gd = v3_dot(w->acc[v].ga, d) + v3_dot(w->grad[v], d);
     int32_t e0 = fq->start[v], e1 = fq->start[v + 1];
     for (int32_t e = e0; e < e1; e++) {
@@ -328,7 +335,7 @@ static int directions_multipliers(tds_ctx *ctx, const tds_surf *s, pgw *w) {
         gr[ij] += v3_dot(fq->g[e], fq->g[e2]);
       }
   }
-  if (!nq) return TDS_OK;
+  if (!nq || w->frozen) return TDS_OK;
   for (int32_t q = 0; q < nq; q++)
     if (!(w->gram[q * nq + q] > 0)) w->gram[q * nq + q] = 1; /* no movable vertex */
   if (tds_dense_solve(nq, w->gram, w->rhs) != 0)

@@ -50,6 +50,8 @@ void tds_surf_free(tds_surf *s) {
     tds_free(&a, s->quant[i].inst);
   }
   tds_free(&a, s->quant);
+  for (int i = 0; i < 3; i++) free_exprs(s->period_expr[i], 3);
+  tds_free(&a, s->tlift);
   tds_free(&a, s->read_text);
   tds_free(&a, s->orig_start);
   tds_free(&a, s->orig_facets);

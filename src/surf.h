@@ -116,6 +116,15 @@ typedef struct tds_surf {
   struct tds_strings *str; /* the string model's cells (string_model.h),
                               NULL in the soapfilm model */
 
+  /* the torus model (torus.h; the periods and wraps are in the mesh) */
+  struct tds_expr *period_expr[3][3]; /* PERIODS as given, re-evaluated by
+                                         recalc; NULL: a constant */
+  int32_t *tlift;         /* per facet side 2f+j (j 0 front body, 1 back):
+                             the packed lattice translation that makes the
+                             body's facets one closed surface */
+  int32_t tlift_cap;
+  uint64_t tlift_gen;     /* topo_gen tlift was built for (0: never) */
+
   /* derived: facets of each declared face (CSR by forig), for bodies */
   int32_t *orig_start, *orig_facets;
   uint64_t orig_gen;      /* topo_gen the index was built for */

@@ -75,6 +75,27 @@ int tds_edgeswap(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
 ** before. *n: vertices split. */
 int tds_pop_vertices(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
 
+/* O / pop on edges (sel over edges, NULL: all; topo_popedge.c): each
+** selected live edge with more than three facets, not fixed, on no
+** constraint (beyond global ones) or boundary, is split into two chains
+** as Evolver splits it: the two neighbouring facets with the smallest
+** angle between them (the wedge) are pulled 1% of an edge length apart
+** from the others along the whole run of such edges (through free
+** vertices where only facets fin between the two edges of the run), and
+** new triangles join the two runs; a run with no vertex inside is first
+** split at its midpoint. Edges are visited in id order; *n gets the
+** number of vertices pulled apart (Evolver's "Edges popped"). */
+int tds_pop_edges(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
+
+/* Pop one edge (no snapshot, no energy update): *npulled as above, 0 when
+** the edge is not poppable. TDS_OK, or TDS_ENOMEM/TDS_ETOPO (the surface
+** is then half changed: callers run under a snapshot). */
+int tds_pop_one_edge(tds_surf *s, tds_id e, int32_t *npulled);
+
+/* o: pop every edge (tds_pop_edges), then every vertex (tds_pop_vertices),
+** all or nothing; the two counts in *nedges, *nverts. */
+int tds_pop(tds_ctx *ctx, tds_surf *s, int32_t *nedges, int32_t *nverts);
+
 
 /* pop_edge_to_tri (sel over edges): each edge of valence 3 between two
 ** free tetrahedral points (four triple edges each, all other edges of

@@ -1,5 +1,6 @@
 /* topo_pop.c: o / pop on vertices: a vertex where separate cones of
 ** facets meet (a pinched neck after t) is split into one vertex per cone. */
+#include "torus.h"
 #include "topo_edit.h"
 
 #include <stdlib.h>
@@ -131,5 +132,28 @@ static int pop(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npop) {
 }
 
 int tds_pop_vertices(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  if (s->m.torus) return tds_torus_unsupported(ctx, "pop");
   return tds_snap_run(ctx, s, pop, sel, n);
+}
+
+int tds_pop(tds_ctx *ctx, tds_surf *s, int32_t *nedges, int32_t *nverts) {
+  *nedges = *nverts = 0;
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
+  if (rc != TDS_OK) return rc;
+  int32_t ne0 = s->m.ne, ne = 0, nv = 0;
+  for (tds_id e = 0; e < ne0 && rc == TDS_OK; e++) {
+    int32_t k = 0;
+    rc = tds_pop_one_edge(s, e, &k);
+    if (rc == TDS_ENOMEM) rc = tds_seterr(ctx, rc, "out of memory while popping edges");
+    else if (rc != TDS_OK) rc = tds_seterr(ctx, rc, "o: edge %d: the chain changed while popping", e + 1);
+    ne += k;
+  }
+  if (rc == TDS_OK) rc = pop(ctx, s, NULL, &nv);
+  rc = tds_snap_end(ctx, s, &sn, rc);
+  if (rc == TDS_OK) {
+    *nedges = ne;
+    *nverts = nv;
+  }
+  return rc;
 }

@@ -40,6 +40,7 @@
 #include "newton.h"
 #include "pg.h"
 #include "topo.h"
+#include "topo_edit.h"
 
 #define EX "/usr/share/doc/evolver/examples/"
 #define DENSE 600   /* every allocation up to this one is failed */
@@ -296,7 +297,7 @@ typedef struct opcase {
   const char *file;  /* datafile loaded by the set-up (or by the op) */
   int refine, steps; /* set-up after the load: r's, then g steps */
   char op;           /* 'L' load, 'r', 'g', 'u', 'V', 'd' dump, 'p' pg,
-                        'h' Hessian (assembly, KKT, reduction), 'x' export,
+                        'h' Hessian (assembly, KKT, reduction), 'x' export, 'O' pop edges,
                         'q' and 'c' run-time define of a quantity and of a
                         global constraint with an energy integrand, 'n' a
                         Newton step (hessian), 's' hessian_seek, 'e'
@@ -390,6 +391,7 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
   case 'g': return tds_iterate(ctx, s, 2);
   case 'u': return tds_equiangulate(ctx, s, NULL, &n);
   case 'V': return tds_vertex_average(ctx, s, NULL, &n);
+  case 'O': return tds_pop_edges(ctx, s, NULL, &n);
   default: return tds_datafile_dump(ctx, s, dump_path);
   }
 }
@@ -568,6 +570,14 @@ static void oom_newton(void) {
   sweep_all('e', 1, 5);
   sweep_all('S', 1, 5);
 }
+/* O on octa.fe (six runs of one edge: split, then pulled) and refined
+** once (runs of two edges). */
+static void oom_pop_edges(void) {
+  for (int r = 0; r < 2 && !check_failed_; r++) {
+    opcase c = {EX "octa.fe", r, 0, 'O'};
+    sweep(&c);
+  }
+}
 static void oom_addload(void) {
   sweep_all('A', 1, 0);
   sweep_all('R', 0, 1);
@@ -620,6 +630,7 @@ int main(void) {
   RUN(oom_hessian);
   RUN(oom_export);
   RUN(oom_define);
+  RUN(oom_pop_edges);
   RUN(oom_addload);
   RUN(oom_newton);
   unlink(bubble_path);
