@@ -103,7 +103,9 @@ for exp in $EXPS; do
     for mode in gloop relax; do
       key=
       if [ -n "$CACHE" ]; then
-        key=$CACHE/paper-$( (cat "$d/in.fe" "$d/$mode.cmd"; echo "$EVOLVER") | md5sum | cut -d' ' -f1)
+        # (not the header line naming the input's temporary path)
+        key=$CACHE/paper-$( (grep -v '^// .*written by tds' "$d/in.fe"; cat "$d/$mode.cmd"
+                             echo "$EVOLVER") | md5sum | cut -d' ' -f1)
       fi
       if [ -n "$key" ] && [ -f "$key" ] && [ -f "$key.secs" ]; then
         cp "$key" "$d/$mode.out"

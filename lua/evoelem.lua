@@ -443,6 +443,17 @@ function E.setattr(h, name, v, fromset)
   end
 end
 
+-- `fix qname` / `unfix qname`: a named quantity becomes FIXED (its target
+-- as declared or last set) or INFO_ONLY; parameters cannot be optimized.
+function E.fixname(low, raw, on)
+  if tds.quantity_info(low) == nil then
+    fail(("%s %s: fixing parameters (optimizing_parameter) is not supported yet")
+      :format(on and "fix" or "unfix", raw))
+  end
+  local ok, msg = tds.quantity_set(low, "fixed", on and 1 or 0)
+  if not ok then fail(msg) end
+end
+
 function E.unsetattr(h, name, v)
   if isfe(h) then return fe_set(h, name, 0) end
   h = unwrap(h)
@@ -454,6 +465,12 @@ function E.unsetattr(h, name, v)
     local n = v and math.floor(num(v))
     for _, c in ipairs(cs) do if n and c ~= n then out[#out + 1] = c end end
     h.constraints = out
+  elseif name == "boundary" and (k == "vertex" or k == "edge") then
+    -- `unset vertices boundary 1`: off that boundary (any without a number)
+    if h.boundary ~= nil and (v == nil or h.boundary == math.floor(num(v))) then
+      local ok, err = pcall(function() h.boundary = nil end)
+      if not ok then fail(tostring(err):gsub("^.-:%d+: ", "")) end
+    end
   elseif (name == "target" or name == "volume") and k == "body" then h.target = nil
   elseif name == "pressure" and k == "body" then h.pressure = nil
   elseif userattr(k, name) then h[name] = nil

@@ -774,21 +774,30 @@ function P:statement1()
       if not ok and (type(init) ~= "table" or not init.evo) then error(init, 0) end
       self.i, self.depth = save, saved_depth
     end
-    -- name := show facet where ... (phelanc.fe): a command without braces
-    local sh = self:peek()
-    local display = sh.t == "name" and (sh.s == "show" or sh.s == "show_expr" or sh.s == "showq")
-      and self:peek(1).t == "name" and KINDS[self:peek(1).s]
-    -- also name := transform_expr "abc", name := transforms off: a
-    -- built-in command (M.is_command, set by the runtime) with an argument
-    -- that cannot continue an expression
-    local a1 = self:peek(1)
-    display = display or (sh.t == "name" and M.is_command and M.is_command(sh.s)
-      and not self:lookup(sh.s) and not self:atend(a1) and a1.t ~= "op")
-    if (op == ":=" or op == "::=") and (self:isop("{") or display) and not self:lookup(w) then
+    if (op == ":=" or op == "::=") and self:isop("{") and not self:lookup(w) then
       self.usercmds = self.usercmds or {}
       self.usercmds[w] = true -- a user command of that name is no unsupported command
-      local body = self:funcbody({}, not display)
+      local body = self:funcbody({}, true)
       return "E.defcmd(" .. q(w) .. ", function() " .. body .. " end)"
+    end
+    -- name := command (no braces), as Evolver: `gg := g 5`, `few :=
+    -- transforms off`, `all := show facet`, `rr := r`. The right side is
+    -- a command when it starts with a name and does not read as a whole
+    -- expression, or is a lone command word.
+    local c = self:peek()
+    if (op == ":=" or op == "::=") and c.t == "name" and not self:lookup(w) then
+      local save, saved_depth = self.i, self.depth
+      local ok = pcall(self.expr, self)
+      local whole = ok and self:atend()
+      local lone = self.i == save + 1 and not self:lookup(c.s) and
+        (#c.raw == 1 and LETTERS[c.raw] or STMT[c.s] or type(rawget(_G, c.s)) == "function")
+        and c.s ~= "new_body" -- Evolver's value without parentheses: bd := new_body
+      self.i, self.depth = save, saved_depth
+      if not whole or lone then
+        self.usercmds = self.usercmds or {}
+        self.usercmds[w] = true
+        return "E.defcmd(" .. q(w) .. ", function() " .. self:funcbody({}, false) .. " end)"
+      end
     end
     local v = asnum(self:expr())
     local b = self:lookup(w)
@@ -1184,7 +1193,9 @@ local function fixer(on)
     local w = self:next()
     local t = self:peek()
     if t.t == "name" and not KINDS[t.s] and not (self:lookup(t.s) or {}).kind then
-      self:err(w.s .. " " .. t.raw .. ": fixing parameters (optimizing_parameter) is not supported yet", t)
+      -- a named quantity (known only when the command runs) or a parameter
+      self:next()
+      return "E.fixname(" .. q(t.s) .. ", " .. q(t.raw) .. ", " .. tostring(on) .. ")"
     end
     local g = self:generator()
     return genloop(g, "E.setattr(" .. g.var .. ", 'fixed', " .. tostring(on) .. ", true)")

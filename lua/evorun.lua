@@ -370,11 +370,12 @@ local INTERNAL = {
   facetedge_count = function() return 3.0 * tds.count(tds.facet) end,
   scale = function() return (tds.scale()) end,
   scale_limit = function() return tds.setting("scale_limit") end,
+  autochop_length = function() return tds.setting("autochop_length") end,
   iteration_counter = function() return tds.setting("iterations") + 0.0 end,
   gravity_constant = function() return (tds.gravity()) end,
   G = function() local g, on = tds.gravity(); return on and g or 0.0 end,
-  space_dimension = function() return 3.0 end,
-  surface_dimension = function() return 2.0 end,
+  space_dimension = function() local _, d = tds.dimensions(); return d + 0.0 end,
+  surface_dimension = function() local d = tds.dimensions(); return d + 0.0 end,
   torus = function() return 0.0 end,
   symmetry_group = function() return 0.0 end,
   simplex_representation = function() return 0.0 end,
@@ -397,6 +398,7 @@ local INTERNAL = {
   linear_metric = function() return tds.hessian_setting("linear_metric") and 1.0 or 0.0 end,
   linear_metric_mix = function() return tds.hessian_setting("linear_metric_mix") end,
   last_eigenvalue = function() return tds.hessian_setting("last_eigenvalue") end,
+  hessian_epsilon = function() return tds.hessian_setting("hessian_epsilon") end,
   total_length = function()
     local s = 0.0
     for _, e in ipairs(E.all("edge")) do s = s + e.length end
@@ -404,6 +406,13 @@ local INTERNAL = {
   end,
 }
 E.INTERNAL = INTERNAL
+-- Evolver's read-write variables of the knot and Hooke methods: surface
+-- parameters (the method rows read them there), with Evolver's defaults.
+local METHOD_VARS = { knot_power = 2, hooke_length = 0, hooke_power = 2, hooke2_power = 2,
+                      curvature_power = 2 }
+for name, dflt in pairs(METHOD_VARS) do
+  INTERNAL[name] = function() local p = tds.param(name); if p == nil then return dflt end return p end
+end
 -- Colour names are integers (syntax.htm#colors).
 for i, c in ipairs { "black", "blue", "green", "cyan", "red", "magenta", "brown", "lightgray",
                      "darkgray", "lightblue", "lightgreen", "lightcyan", "lightred",
@@ -417,12 +426,19 @@ INTERNAL.transparent = INTERNAL.clear
 
 -- Variables that may be assigned with their effect.
 local SETTABLE = {
+  knot_power = function(v) tds.param("knot_power", num(v)) end,
+  hooke_length = function(v) tds.param("hooke_length", num(v)) end,
+  hooke_power = function(v) tds.param("hooke_power", num(v)) end,
+  hooke2_power = function(v) tds.param("hooke2_power", num(v)) end,
+  curvature_power = function(v) tds.param("curvature_power", num(v)) end,
   scale = function(v) tds.scale(num(v)) end,
   gravity_constant = function(v) local _, on = tds.gravity(); tds.gravity(num(v), on) end,
   constraint_tolerance = function(v) tds.setting("constraint_tolerance", num(v)) end,
   scale_limit = function(v) tds.setting("scale_limit", num(v)) end,
+  autochop_length = function(v) tds.setting("autochop_length", num(v)) end,
   random_seed = function(v) E.random_seed = math.floor(num(v)); math.randomseed(E.random_seed) end,
   linear_metric_mix = function(v) tds.hessian_setting("linear_metric_mix", num(v)) end,
+  hessian_epsilon = function(v) tds.hessian_setting("hessian_epsilon", num(v)) end,
 }
 
 -- Evolver's internal variables tds does not have (syntax.htm): reading
@@ -432,7 +448,7 @@ for w in ([[ambient_pressure_value background breakflag body_dissolve_count brig
   check_count delete_count detorus_epsilon dissolve_count edge_delete_count
   edge_dissolve_count edge_refine_count edge_pop_count edgeswap_count eigenneg eigenpos
   eigenvalues eigenzero equi_count estimated_change facet_delete_count
-  facet_dissolve_count fix_count graphics_title hessian_epsilon hessian_slant_cutoff
+  facet_dissolve_count fix_count graphics_title hessian_slant_cutoff
   high_boundary high_constraint inverse_periods integral_order integral_order_1d
   integral_order_2d jiggle_temperature last_error last_hessian_scale memory_arena
   memory_used notch_count pickvnum pickenum pickfnum pop_count pop_edge_to_tri_count
@@ -440,7 +456,7 @@ for w in ([[ambient_pressure_value background breakflag body_dissolve_count brig
   rotation_order scale_scale scrollbuffersize self_sim_coeff string_curve_tolerance
   t1_edgeswap_count target_tolerance temperature thickness torus_periods total_time
   unfix_count vertex_dissolve_count vertex_pop_count view_transforms_unique_point
-  where_count window_aspect_ratio autochop_length console_title usr1 usr2 usr3 usr4 usr5
+  where_count window_aspect_ratio console_title usr1 usr2 usr3 usr4 usr5
   usr6 usr7 usr8 usr9 x4 x5 x6 x7 x8 x9]]):gmatch("%S+") do
   EVOLVER_VARS[w] = true
 end
@@ -701,11 +717,15 @@ local TOGGLE_MSG = {
   quiet = "Quiet %s. (was %s)",
   gravity = "Gravity %s. (was %s)",
   check_increase = "Increase check %s. (was %s)",
+  autopop = "Autopopping %s.\n (was %s)",
+  immediate_autopop = "Immediate autopop mode %s.\n (was %s)",
+  autochop = "Autochopping %s. (was %s)",
   little_endian = "little_endian %s. (was %s)",
   big_endian = "big_endian %s. (was %s)",
   hessian_normal = "hessian_normal %s. (was %s)",
   linear_metric = "Linear interpolation metric with Hessian %s.(was %s)",
   hessian_diff = "hessian_diff %s. (was %s)",
+  hessian_special_normal = "hessian_special_normal %s. (was %s)",
   transforms = "Transform showing %s. (was %s)", -- display only: no graphics in tds
 }
 local show_transforms = true
@@ -719,10 +739,12 @@ local function toggle_get(name)
   if name == "quiet" then return tds.quiet() end
   if name == "gravity" then local _, on = tds.gravity(); return on end
   if name == "check_increase" then return tds.setting("check_increase") end
+  if name == "autopop" or name == "immediate_autopop" or name == "autochop" then return tds.setting(name) end
   if name == "little_endian" then return endian == "<" end
   if name == "big_endian" then return endian == ">" end
   if name == "transforms" then return show_transforms end
-  if name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff" then
+  if name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff"
+      or name == "hessian_special_normal" then
     return tds.hessian_setting(name)
   end
 end
@@ -732,10 +754,12 @@ local function toggle_set(name, on)
   elseif name == "quiet" then tds.quiet(on)
   elseif name == "gravity" then local g = tds.gravity(); tds.gravity(g, on)
   elseif name == "check_increase" then tds.setting("check_increase", on)
+  elseif name == "autopop" or name == "immediate_autopop" or name == "autochop" then tds.setting(name, on)
   elseif name == "little_endian" then endian = on and "<" or ">"
   elseif name == "big_endian" then endian = on and ">" or "<"
   elseif name == "transforms" then show_transforms = on
-  elseif name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff" then
+  elseif name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff"
+      or name == "hessian_special_normal" then
     tds.hessian_setting(name, on)
   end
 end
@@ -856,12 +880,16 @@ B.n = cutcmd("n", "cutoff angle", tds.notch)
 B.notch = cutcmd("notch", "cutoff angle", tds.notch)
 B.o = function()
   flush()
+  if tds.dimensions() == 1 then tds.string_pop(); return end -- the string model's o
   local ok, err = pcall(tds.pop, nil)
   if not ok then err = tostring(err); fail("o: " .. (err:match("not supported.*") or err)) end
 end
+B.renumber_all = function() flush(); tds.renumber_all() end
+B.rebody = function() flush(); tds.rebody() end
+-- O: pops edges; in the string model the same as o (Evolver pops vertices there).
 B.O = function()
   flush()
-  tds.pop_edges(nil)
+  if tds.dimensions() == 1 then tds.string_pop() else tds.pop_edges(nil) end
 end
 B.j = function(t) flush(); tds.jiggle(t ~= nil and num(t, "j") or nil) end
 B.V = function(n) for _ = 1, times(n, "V") do flush(); tds.vertex_average(nil) end end
@@ -1031,9 +1059,9 @@ B.hessian = function() need_surface("hessian"); tds.hessian() end
 B.hessian_seek = function(s) need_surface("hessian_seek"); tds.hessian_seek(s ~= nil and num(s, "hessian_seek") or nil) end
 B.saddle = function(s) need_surface("saddle"); tds.saddle(s ~= nil and num(s, "saddle") or nil) end
 B.eigenprobe = function(c, iters)
-  if iters ~= nil then fail("eigenprobe(value, iterations): the inverse iteration form is not supported yet (use ritz(value, 1))") end
   need_surface("eigenprobe")
-  tds.eigenprobe(c ~= nil and num(c, "eigenprobe") or 0)
+  if iters ~= nil then iters = times(iters, "eigenprobe") end
+  tds.eigenprobe(c ~= nil and num(c, "eigenprobe") or 0, iters)
 end
 B.ritz = function(c, n)
   need_surface("ritz")
@@ -1052,13 +1080,13 @@ for w in ([[J e A a b f k p Q W y Z z s P D F H h X
   hessian_menu
   dirichlet dirichlet_seek sobolev sobolev_seek
   pop_quad_to_quad t1_edgeswap raw_vertex_average
-  rawest_vertex_average rawv rawestv vertex_merge
-  edge_merge facet_merge facet_crosscut rebody zoom detorus wrap_vertex 
+  rawest_vertex_average rawv rawestv
+  edge_merge facet_merge facet_crosscut zoom detorus wrap_vertex 
   logfile keylogfile history pause subcommand breakpoint whereami flush_counts
   reset_counts metis kmetis body_metis ometis
   exprint show show_expr showq close_show
   display_text delete_text postscript binary_off_file off_file geomview
-  homothety autopop autochop ribiere
+  homothety ribiere
   quietgo quietload verbose approximate_curvature runge_kutta
   post_project volgrads_every area_normalization effective_area normal_motion
   ysmp bunch_kaufman sparse_constraints augmented_hessian
@@ -1074,8 +1102,6 @@ for w in ([[deturck diffusion hessian_normal_one hessian_normal_perp hessian_spe
   UNSUPPORTED[w] = true
 end
 E.UNSUPPORTED = UNSUPPORTED
--- name := command args (phelanc.fe: bunch := transform_expr "abc") defines a command.
-evolang.is_command = function(name) return B[name] ~= nil end
 -- The translator takes what follows such a command as its arguments.
 evolang.UNSUPPORTED = setmetatable({}, { __index = function(_, k)
   if UNSUPPORTED[k] and not B[k] then return true end
@@ -1208,6 +1234,9 @@ function E.oncollection(name, kind, list)
   elseif name == "reverse_orientation" then
     if kind ~= "edge" and kind ~= "facet" then fail("reverse_orientation needs edges or facets") end
     if #list > 0 then tds.reverse_orientation(list) end
+  elseif name == "pop" and tds.dimensions() == 1 then -- the string model: Evolver's o on them
+    if kind ~= "vertex" then fail("pop " .. kind .. ": the string model pops vertices only (as Evolver)") end
+    if #list > 0 then tds.string_pop(list, true) end
   elseif name == "pop" then
     if kind ~= "vertex" and kind ~= "edge" then fail("pop works on vertices and edges, not " .. kind) end
     tds.pop(list)

@@ -109,6 +109,20 @@ static int get_bdry(GETTER_ARGS) {
   return TDS_OK;
 }
 
+/* Evolver's `unset vertices boundary 1`: an element can leave its
+** boundary (a vertex keeps its position, now free); putting one on a
+** boundary needs its parameters, which only the datafile gives. */
+static int set_bdry(SETTER_ARGS) {
+  UNUSED(v);
+  if (n) return tds_seterr(ctx, TDS_ERANGE,
+                           "%s %d: boundary can only be unset (boundaries are given in the "
+                           "datafile)", tds_kind_name[a->kind], id + 1);
+  if (a->kind == TDS_VERTEX) s->m.vbdry[id] = TDS_NONE;
+  else s->m.ebdry[id] = TDS_NONE;
+  s->m.coord_gen++;
+  return TDS_OK;
+}
+
 /* ---- vertices ---- */
 
 static int vx_get(GETTER_ARGS) {
@@ -203,7 +217,7 @@ static const tds_attr vertex_rows[] = {
     ROW(.name = "p2", .kind = TDS_VERTEX, .type = TDS_AT_REAL, .size = 1, .get = vp_get,
         .set = vp_set),
     ROW(.name = "boundary", .kind = TDS_VERTEX, .type = TDS_AT_BDRY, .size = 1, .io = FE_DECL,
-        .get = get_bdry),
+        .get = get_bdry, .set = set_bdry),
     ROW(.name = "constraints", .alias = "constraint", .fe_alias = "constraint",
         .kind = TDS_VERTEX, .type = TDS_AT_CONS, .size = TDS_MAX_CON, .io = FE_DECL,
         .get = get_cons, .set = vcon_set),
@@ -281,7 +295,7 @@ static const tds_attr edge_rows[] = {
         .type = TDS_AT_CONS, .size = TDS_MAX_CON, .io = FE_DECL, .get = get_cons,
         .set = econ_set),
     ROW(.name = "boundary", .kind = TDS_EDGE, .type = TDS_AT_BDRY, .size = 1, .io = FE_DECL,
-        .get = get_bdry),
+        .get = get_bdry, .set = set_bdry),
     FLAGROW(TDS_EDGE, "fixed", NULL, NULL, TDS_FIXED, FE_DECL),
     FLAGROW(TDS_EDGE, "no_refine", NULL, "norefine", TDS_NO_REFINE, FE_DECL),
     FLAGROW(TDS_EDGE, "bare", NULL, NULL, TDS_BARE, FE_DECL),

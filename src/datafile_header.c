@@ -30,7 +30,7 @@ static const char *const unsupported[] = {
     "integral_order_2d", "runge_kutta", "homothety", "autopop", "autochop",
     "area_normalization", "approximate_curvature", "effective_area", "jiggle",
     "temperature", "length_method_name", "area_method_name",
-    "volume_method_name", "hessian_special_normal_vector", "fixed_area",
+    "volume_method_name", "fixed_area",
     "area_fixed", "load_library", "interp_bdry_param",
     "function", "procedure",
     "gradient_mode", "parameter_file", "ideal_gas", "knot_energy",
@@ -266,6 +266,26 @@ static int h_boundary(df *d, const hdr_kw *k) {
   int line = df_line_of(d, NULL);
   rc = tds_model_boundary(d->ctx, d->s, (int)n, (int)np, flags, x, en, ct);
   return rc ? df_core(d, line, rc, NULL) : TDS_OK;
+}
+
+/* HESSIAN_SPECIAL_NORMAL_VECTOR with C1: C2: C3: (functions of the
+** coordinates and parameters). */
+static int h_special_normal(df *d, const hdr_kw *k) {
+  (void)k;
+  const char *what = "HESSIAN_SPECIAL_NORMAL_VECTOR";
+  tds_expr *c[3] = {0};
+  int rc = df_components(d, 'c', 0, c, what);
+  if (!rc && (!c[0] || !c[1] || !c[2]))
+    rc = df_err(d, d->p, TDS_ESYNTAX, "%s: needs C1, C2 and C3", what);
+  if (rc) {
+    df_free3(c);
+    return rc;
+  }
+  for (int i = 0; i < 3; i++) {
+    tds_expr_free(d->s->special_normal[i]);
+    d->s->special_normal[i] = c[i];
+  }
+  return TDS_OK;
 }
 
 /* ---- named quantities ---- */
@@ -648,6 +668,7 @@ static const hdr_kw header_kw[] = {
     {"define", h_define, 0, 0},
     {"constraint", h_constraint, 0, 0},
     {"boundary", h_boundary, 0, 0},
+    {"hessian_special_normal_vector", h_special_normal, 0, 0},
     {"quantity", h_quantity, 0, 0},
     {"gravity_constant", h_value, AT(gravity), ANY},
     {"spring_constant", h_value, AT(gap_constant), ANY},

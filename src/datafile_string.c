@@ -96,7 +96,8 @@ int df_string_model(df *d) {
                     s->bdry[b].number);
   for (int q = 0; q < s->nquant; q++)
     for (int j = 0; j < s->quant[q].ninst; j++)
-      if (tds_methods[s->quant[q].inst[j].method].kind == TDS_EL_FACET)
+      if (tds_methods[s->quant[q].inst[j].method].kind == TDS_EL_FACET &&
+          tds_methods[s->quant[q].inst[j].method].iter == TDS_IT_ELEMENT)
         return df_err(d, NULL, TDS_ESYNTAX,
                       "quantity %s: method %s on facets in the string model is not "
                       "supported yet", s->quant[q].name,

@@ -296,6 +296,15 @@ static void header(out *o, const tds_surf *s) {
     components(o, "CONTENT", 'C', b->content, s->str ? 1 : 3);
     fputc('\n', f);
   }
+  if (s->special_normal[0]) {
+    fputs("HESSIAN_SPECIAL_NORMAL_VECTOR\n", f);
+    for (int k = 0; k < 3; k++) {
+      fprintf(f, "C%d: ", k + 1);
+      text(o, s->special_normal[k]);
+      fputc('\n', f);
+    }
+    fputc('\n', f);
+  }
   for (int i = 0; i < s->nquant; i++) {
     const tds_quantity *q = &s->quant[i];
     fprintf(f, "QUANTITY %s ", q->name);

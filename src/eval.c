@@ -60,8 +60,8 @@ struct term {
 
 /* Add w * h (the element Hessian) to the upper half of the global one
 ** (hess.h's index map; rows of vertices that cannot move are left out). */
-static void scatter_hess(tds_hess_acc *ha, const tds_id *vs, int kind, double w,
-                         double (*h)[9]) {
+void tds_eval_scatter_hess(tds_hess_acc *ha, const tds_id *vs, int kind, double w,
+                           double (*h)[9]) {
   if (w == 0) return;
   if (ha->add) {
     ha->add(ha, vs, kind, w, h);
@@ -105,7 +105,7 @@ scatter(tds_surf *s, tds_eval_out *out, term *t, const tds_id *vs, int kind,
     if (out->hess) {
       tds_hess_acc *ha = out->hess;
       double hw = q == -1 ? ha->ew : q >= 0 && ha->qw ? ha->qw[q] : 0;
-      scatter_hess(ha, vs, kind, w * hw, h);
+      tds_eval_scatter_hess(ha, vs, kind, w * hw, h);
     }
   }
 }
@@ -516,6 +516,14 @@ static int quantity_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
     for (int j = 0; j < Q->ninst; j++) {
       const tds_method_inst *mi = &Q->inst[j];
       if (mi->modulus == 0 || Q->modulus == 0) continue;
+      if (tds_methods[mi->method].iter != TDS_IT_ELEMENT) {
+        double tot = 0;
+        int rc = tds_eval_global_row(ctx, s, out, mi->method, Q->modulus * mi->modulus, gq,
+                                     &tot);
+        if (rc != TDS_OK) return rc;
+        v += tot;
+        continue;
+      }
       int dens = tds_methods[mi->method].flags & TDS_MF_DENSITY;
       term t = make(s, mi->method, dens ? s_quantity_density : s_quantity, mi->integrand,
                     mi->npts);

@@ -58,4 +58,19 @@ int tds_eval(tds_ctx *ctx, tds_surf *s, tds_eval_out *out);
 ** TDS_OK, TDS_ENUM (energy not finite), TDS_ERANGE. */
 int tds_eval_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int facet_core);
 
+/* Add w * h (a kind-corner element Hessian, kind <= 3) at vertices vs to
+** the accumulator's triplets (its upper or lower half). */
+void tds_eval_scatter_hess(tds_hess_acc *ha, const tds_id *vs, int kind, double w,
+                           double (*h)[9]);
+
+/* One instance of a named quantity's method whose row walks something
+** other than single elements (TDS_IT_* != ELEMENT: vertex pairs, vertex
+** stars, edge pairs, edges with per-edge constants; eval_knot.c): adds
+** w times its value to *total and its gradient to the energy (gq -1) or
+** fixq quantity gq (>= 0, -2 none), with its Hessian when out->hess.
+** TDS_OK, TDS_ENOMEM, TDS_ERANGE (a Hessian the row does not have, a
+** power it does not take). */
+int tds_eval_global_row(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int method, double w,
+                        int32_t gq, double *total);
+
 #endif

@@ -46,8 +46,9 @@ static void quiet(DMUMPS_STRUC_C *id) {
   id->icntl[3] = 0;
 }
 
-/* sym: MUMPS's SYM (2: symmetric upper, 0: general, unsymmetric LU). */
-static int factor(tds_ctx *ctx, const tds_spmat *A, int sym, tds_la **out) {
+/* sym: MUMPS's SYM (2: symmetric upper, 0: general, unsymmetric LU);
+** eps: the relative zero-pivot size (la.h). */
+static int factor(tds_ctx *ctx, const tds_spmat *A, int sym, double eps, tds_la **out) {
   *out = NULL;
   int32_t n = A->nrow;
   int64_t nnz = A->colptr[n];
@@ -107,7 +108,8 @@ static int factor(tds_ctx *ctx, const tds_spmat *A, int sym, tds_la **out) {
     id->icntl[47] = 0; /* ICNTL(48): no tree parallelism (fixed order) */
   }
   id->icntl[23] = 1;   /* ICNTL(24): detect null pivots */
-  id->cntl[2] = -1e-10 * (amax > 0 ? amax : 1); /* CNTL(3) < 0: absolute threshold */
+  if (!(eps > 0)) eps = 1e-10;
+  id->cntl[2] = -eps * (amax > 0 ? amax : 1); /* CNTL(3) < 0: absolute threshold */
   for (int tries = 0;; tries++) {
     id->job = 4; /* analyse and factor */
     dmumps_c(id);
@@ -129,18 +131,18 @@ static int factor(tds_ctx *ctx, const tds_spmat *A, int sym, tds_la **out) {
   return TDS_OK;
 }
 
-int tds_la_factor(tds_ctx *ctx, const tds_spmat *A, tds_la **out) {
+int tds_la_factor(tds_ctx *ctx, const tds_spmat *A, double eps, tds_la **out) {
   *out = NULL;
   if (A->nrow != A->ncol || !A->upper)
     return tds_seterr(ctx, TDS_ERANGE, "la: the matrix must be square and symmetric (upper)");
-  return factor(ctx, A, 2, out);
+  return factor(ctx, A, 2, eps, out);
 }
 
 int tds_la_factor_lu(tds_ctx *ctx, const tds_spmat *A, tds_la **out) {
   *out = NULL;
   if (A->nrow != A->ncol || A->upper)
     return tds_seterr(ctx, TDS_ERANGE, "la: the matrix must be square and general (not upper)");
-  return factor(ctx, A, 0, out);
+  return factor(ctx, A, 0, 0, out);
 }
 
 tds_inertia tds_la_inertia(const tds_la *f) { return f->in; }

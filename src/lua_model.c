@@ -307,8 +307,13 @@ static int l_quantity_set(lua_State *L) {
     q->modulus = v;
   } else if (!strcmp(attr, "volconst")) {
     q->volconst = v;
+  } else if (!strcmp(attr, "fixed")) { /* Evolver's fix / unfix qname */
+    if (q->kind == TDS_Q_ENERGY)
+      return tds_lua_nilmsg(L, "quantity %s: an ENERGY quantity cannot be fixed or unfixed",
+                            name);
+    q->kind = v != 0 ? TDS_Q_FIXED : TDS_Q_INFO;
   } else {
-    return tds_lua_nilmsg(L, "quantity %s: '%s' cannot be set (target, modulus, volconst can)",
+    return tds_lua_nilmsg(L, "quantity %s: '%s' cannot be set (target, modulus, volconst, fixed can)",
                           name, attr);
   }
   lua_pushboolean(L, 1);

@@ -1,11 +1,16 @@
 /* lua_string.c: Lua bindings of the string model's own commands
 ** (string_model.h):
-**   tds.string_pop() -> n   Evolver's o for strings: split vertices where
-**                           four or more edges meet; prints "Vertices
-**                           popped: n" as Evolver does.
+**   tds.string_pop([vertices [, quiet_none]]) -> n   Evolver's o (and pop
+**                           vertex ...) for strings: split the vertices
+**                           (all if none) where four or more edges meet;
+**                           prints "Vertices popped: n" as Evolver does
+**                           (with quiet_none, only when n > 0: its pop).
 **   tds.string_t1([edges]) -> n   Evolver's t1_edgeswap: the 2-D foam T1 on
 **                           the given edges (all if none).
-**   tds.facet_crosscut(f, t, h) -> edge id   Evolver's facet_crosscut. */
+**   tds.facet_crosscut(f, t, h) -> edge id   Evolver's facet_crosscut.
+**   tds.dimensions() -> surface, space   1 and 2 or 3 in the string model,
+**                           2 and 3 otherwise (Evolver's surface_dimension
+**                           and space_dimension). */
 #include <stdlib.h>
 
 #include "lua_tds.h"
@@ -13,10 +18,12 @@
 
 static int l_string_pop(lua_State *L) {
   tds_state *st = TDS_STATE(L);
+  uint8_t *sel = tds_lua_selection(L, st, 1, TDS_VERTEX);
   int32_t n = 0;
-  int rc = tds_strings_pop(&st->ctx, &st->s, &n);
+  int rc = tds_strings_pop(&st->ctx, &st->s, sel, &n);
+  free(sel);
   if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
-  tds_printf(&st->ctx, "Vertices popped: %d\n", n);
+  if (n > 0 || !lua_toboolean(L, 2)) tds_printf(&st->ctx, "Vertices popped: %d\n", n);
   lua_pushinteger(L, n);
   return 1;
 }
@@ -53,10 +60,18 @@ static int l_facet_crosscut(lua_State *L) {
   return 1;
 }
 
+static int l_dimensions(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  lua_pushinteger(L, st->s.str ? 1 : 2);
+  lua_pushinteger(L, st->s.str ? st->s.str->space_dim : 3);
+  return 2;
+}
+
 void tds_open_string(lua_State *L, tds_state *st) {
   static const luaL_Reg fns[] = {{"string_pop", l_string_pop},
                                  {"string_t1", l_string_t1},
                                  {"facet_crosscut", l_facet_crosscut},
+                                 {"dimensions", l_dimensions},
                                  {NULL, NULL}};
   tds_lua_register(L, st, fns);
 }

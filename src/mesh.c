@@ -396,3 +396,24 @@ size_t tds_mesh_bytes(const tds_mesh *m) {
   for (int k = 0; k < 4; k++) b += sizeof(int32_t) * (size_t)m->adj_cap[k];
   return b;
 }
+
+void tds_mesh_move_slot(tds_mesh *m, int kind, tds_id dst, tds_id src) {
+  TDS_ASSERT(kind >= 0 && kind < TDS_NKINDS);
+  if (dst == src) return;
+  for (int c = 0; c < kinds[kind].ncols; c++) {
+    const column *col = &kinds[kind].cols[c];
+    char *p = FIELD(m, col->off, char *);
+    memmove(p + (size_t)dst * col->size, p + (size_t)src * col->size, col->size);
+  }
+  for (int c = 0; c < m->nucol[kind]; c++) {
+    tds_ucol *u = &m->ucol[kind][c];
+    memmove(u->v + (size_t)dst * (size_t)u->size, u->v + (size_t)src * (size_t)u->size,
+            (size_t)u->size * sizeof *u->v);
+  }
+}
+
+void tds_mesh_truncate(tds_mesh *m, int kind, int32_t n) {
+  TDS_ASSERT(kind >= 0 && kind < TDS_NKINDS);
+  FIELD(m, kinds[kind].n_off, int32_t) = n;
+  m->topo_gen++;
+}

@@ -204,6 +204,12 @@ static inline int32_t *tds_mesh_file_ids(const tds_mesh *m, int kind) {
 ** them, as in Evolver. */
 void tds_mesh_inherit(tds_mesh *m, int kind, tds_id dst, tds_id src);
 
+/* Copy every column (and user attribute) of slot src of `kind` over slot
+** dst, references unchanged (renumber_all compacts with it). */
+void tds_mesh_move_slot(tds_mesh *m, int kind, tds_id dst, tds_id src);
+/* Shrink the slot range of `kind` to n (slots beyond are forgotten). */
+void tds_mesh_truncate(tds_mesh *m, int kind, int32_t n);
+
 /* Bytes of storage held by the mesh per live facet (for the benchmark). */
 size_t tds_mesh_bytes(const tds_mesh *m);
 

@@ -179,6 +179,27 @@ const tds_method tds_methods[TDS_M_NROWS] = {
                        k_zmoment},
     [TDS_M_FULL_GRAVITY] = {"full_gravity_method", TDS_EL_FACET,
                             TDS_MF_USER | TDS_MF_DENSITY | TDS_MF_TIMES_G, k_zmoment},
+    /* Knot energies, string curvature and Hooke springs (method_knot.c),
+    ** formulas measured against evolver-nox-d (doc/string.md). */
+    [TDS_M_KNOT] = {"knot_energy", TDS_EL_EDGE, TDS_MF_USER | TDS_MF_SINGULAR, tds_mk_knot,
+                    TDS_IT_VPAIR, NULL},
+    [TDS_M_EDGE_KNOT] = {"edge_knot_energy", TDS_EL_EPAIR,
+                         TDS_MF_USER | TDS_MF_SINGULAR | TDS_MF_SYMPAIR, NULL, TDS_IT_EPAIR,
+                         tds_mk_edge_knot},
+    [TDS_M_BUCK_KNOT] = {"buck_knot_energy", TDS_EL_EPAIR,
+                         TDS_MF_USER | TDS_MF_SINGULAR | TDS_MF_DISJOINT | TDS_MF_SYMPAIR,
+                         NULL, TDS_IT_EPAIR, tds_mk_buck_knot},
+    [TDS_M_PROJ_KNOT] = {"proj_knot_energy", TDS_EL_EPAIR, TDS_MF_USER | TDS_MF_SINGULAR,
+                         NULL, TDS_IT_EPAIR, tds_mk_proj_knot},
+    [TDS_M_CIRCLE_KNOT] = {"circle_knot_energy", TDS_EL_EPAIR,
+                           TDS_MF_USER | TDS_MF_SINGULAR | TDS_MF_SYMPAIR, NULL,
+                           TDS_IT_EPAIR, tds_mk_circle_knot},
+    [TDS_M_SQCURVE_STRING] = {"sqcurve_string", TDS_EL_FACET, TDS_MF_USER | TDS_MF_HESS_FD,
+                              tds_mk_sqcurve, TDS_IT_VSTAR, NULL},
+    [TDS_M_HOOKE] = {"hooke_energy", TDS_EL_EDGE, TDS_MF_USER, tds_mk_hooke, TDS_IT_EDGE_K,
+                     NULL},
+    [TDS_M_HOOKE2] = {"hooke2_energy", TDS_EL_EDGE, TDS_MF_USER, tds_mk_hooke, TDS_IT_EDGE_K,
+                      NULL},
     [TDS_M_FACET_VOLUME] = {"facet_volume", TDS_EL_FACET, 0, tds_mk_volume},
     [TDS_M_FACET_VOLUME_SYM] = {"facet_volume_symmetric", TDS_EL_FACET, 0, tds_mk_volume_sym},
     [TDS_M_EDGE_GAP] = {"edge_gap", TDS_EL_EDGE, TDS_MF_FORMULA | TDS_MF_HESS_FD,
@@ -196,5 +217,6 @@ int tds_method_by_name(const char *name) {
       return i;
   if (!strcasecmp(name, "facet_tension")) return TDS_M_FACET_AREA;
   if (!strcasecmp(name, "edge_tension")) return TDS_M_EDGE_LENGTH;
+  if (!strcasecmp(name, "edge_edge_knot_energy")) return TDS_M_EDGE_KNOT;
   return -1;
 }

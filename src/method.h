@@ -20,7 +20,22 @@
 #include "geom.h"
 
 /* Element kinds; the value is the number of corners a kernel sees. */
-enum { TDS_EL_EDGE = 2, TDS_EL_FACET = 3 };
+enum { TDS_EL_EDGE = 2, TDS_EL_FACET = 3, TDS_EL_EPAIR = 4 };
+
+/* How the assembly walks a row's elements (tds_method.iter). Rows other
+** than TDS_IT_ELEMENT are assembled by eval_knot.c:
+**   TDS_IT_ELEMENT  every live element of the row's kind
+**   TDS_IT_VPAIR    every pair of live vertices (2 corners, counted in
+**                   both orders, as Evolver's knot energies)
+**   TDS_IT_VSTAR    every vertex with exactly two edges: corners the far
+**                   end of the first edge, the vertex, the far end of the
+**                   second (3 corners)
+**   TDS_IT_EPAIR    every ordered pair of distinct live edges (4
+**                   corners: tail, head of the first, tail, head of the
+**                   second); a 4-corner kernel, gradient only
+**   TDS_IT_EDGE_K   every live edge, with L.k and L.pw read per edge
+**                   from parameters or an edge attribute (the Hooke rows) */
+enum { TDS_IT_ELEMENT = 0, TDS_IT_VPAIR, TDS_IT_VSTAR, TDS_IT_EPAIR, TDS_IT_EDGE_K };
 
 enum {                     /* row flags */
   TDS_MF_VECTOR = 1,       /* reads a vector integrand ig[0..2] (NULL = 0) */
@@ -33,7 +48,12 @@ enum {                     /* row flags */
   TDS_MF_DENSITY = 32,     /* as a quantity method, weighted per facet by
                               the density of its front body minus its
                               back body's */
-  TDS_MF_TIMES_G = 64      /* ... and by G when gravity is on (0 if off) */
+  TDS_MF_TIMES_G = 64,     /* ... and by G when gravity is on (0 if off) */
+  TDS_MF_SINGULAR = 128,   /* infinite where two corners meet (knot energies) */
+  TDS_MF_DISJOINT = 256,   /* TDS_IT_EPAIR: only pairs of edges without a
+                              common vertex */
+  TDS_MF_SYMPAIR = 512     /* TDS_IT_EPAIR: the kernel is symmetric in its
+                              two edges (each unordered pair once, doubled) */
 };
 
 /* Rows. The first TDS_M_COUNT are the named quantity methods, in the
@@ -43,6 +63,8 @@ enum {
   TDS_M_FACET_AREA = 0, TDS_M_EDGE_LENGTH, TDS_M_FACET_VECTOR_INTEGRAL,
   TDS_M_EDGE_VECTOR_INTEGRAL, TDS_M_FACET_SCALAR_INTEGRAL,
   TDS_M_EDGE_SCALAR_INTEGRAL, TDS_M_GRAVITY, TDS_M_FULL_GRAVITY,
+  TDS_M_KNOT, TDS_M_EDGE_KNOT, TDS_M_BUCK_KNOT, TDS_M_PROJ_KNOT,
+  TDS_M_CIRCLE_KNOT, TDS_M_SQCURVE_STRING, TDS_M_HOOKE, TDS_M_HOOKE2,
   TDS_M_COUNT,
   TDS_M_FACET_VOLUME = TDS_M_COUNT, /* body content int z dx dy */
   TDS_M_FACET_VOLUME_SYM,           /* symmetric content (x,y,z)/3 . dS */
@@ -63,7 +85,9 @@ typedef struct tds_mlocal {
                               the gatherer's scratch */
   tds_expr *const *ig;     /* integrand(s), as the row's flags say */
   int npts;                /* quadrature points (tds_edge_rule/facet_rule) */
-  double k;                /* row constant: TDS_M_EDGE_GAP's gap constant */
+  double k;                /* row constant: TDS_M_EDGE_GAP's gap constant,
+                              the Hooke rows' equilibrium length */
+  double pw;               /* row power: knot_power, hooke_power ... */
   const double *param;     /* parameter values the expressions read */
   double G;                /* the expressions' G (gravity constant) */
 } tds_mlocal;
@@ -75,11 +99,17 @@ typedef struct tds_mlocal {
 ** state, safe from several threads. */
 typedef double (*tds_mkernel)(const tds_mlocal *L, double g[3][3], double h[9][9]);
 
+/* A 4-corner kernel (TDS_EL_EPAIR): corners y[0..3], power pw; with g not
+** NULL also the gradient g[c][i]. No Hessian. Pure. */
+typedef double (*tds_mkernel4)(const double *const y[4], double pw, double g[4][3]);
+
 typedef struct tds_method {
   const char *name;        /* Evolver's name where it has one */
   int kind;                /* TDS_EL_* */
   int flags;               /* TDS_MF_* */
-  tds_mkernel eval;
+  tds_mkernel eval;        /* NULL for TDS_EL_EPAIR rows */
+  int iter;                /* TDS_IT_* */
+  tds_mkernel4 eval4;      /* TDS_EL_EPAIR rows only */
 } tds_method;
 
 extern const tds_method tds_methods[TDS_M_NROWS];
@@ -101,6 +131,15 @@ double tds_mk_vertex_head(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_vertex_tail(const tds_mlocal *L, double g[3][3], double h[9][9]);
 /* The torus model's row (method_torus.c). */
 double tds_mk_facet_flux(const tds_mlocal *L, double g[3][3], double h[9][9]);
+
+/* Knot, curvature and Hooke rows (method_knot.c). */
+double tds_mk_knot(const tds_mlocal *L, double g[3][3], double h[9][9]);
+double tds_mk_sqcurve(const tds_mlocal *L, double g[3][3], double h[9][9]);
+double tds_mk_hooke(const tds_mlocal *L, double g[3][3], double h[9][9]);
+double tds_mk_edge_knot(const double *const y[4], double pw, double g[4][3]);
+double tds_mk_buck_knot(const double *const y[4], double pw, double g[4][3]);
+double tds_mk_proj_knot(const double *const y[4], double pw, double g[4][3]);
+double tds_mk_circle_knot(const double *const y[4], double pw, double g[4][3]);
 
 /* Derivatives of a facet's normal N = (x1-x0) x (x2-x0):
 ** u[c][i] = dN/dx[c][i] = E_i x (x[c+1] - x[c+2]) (indices mod 3). */

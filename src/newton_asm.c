@@ -210,6 +210,8 @@ int tds_nsys_assemble(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_n
   ustart = tds_malloc(al, ((size_t)nvm + 2) * sizeof *ustart);
   if (!W || !D || !ustart) goto nomem;
   if (tds_vertex_normals(al, m, vn) != TDS_OK) goto nomem;
+  if (o->normal && o->special_normal && (rc = tds_special_normals(ctx, s, vn)) != TDS_OK)
+    goto fail;
   ustart[0] = 0;
   for (int32_t k = 0; k < nvm; k++) {
     static const double zero[3] = {0, 0, 0};

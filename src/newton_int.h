@@ -34,13 +34,19 @@ typedef struct tds_nsys {
 ** points across the sheet, as Evolver's hessian normal does. */
 typedef struct vnorm {
   double an[3];
-  double P[3][3];       /* sum area n n^T */
+  double P[3][3];       /* sum area n n^T (only where the normals spread) */
   double td[3];
   int nt, nf, bent;     /* bent: two triple edges not along one line */
 } vnorm;
 
 /* vn: m->nv slots. TDS_OK or TDS_ENOMEM (then vn is incomplete). */
 int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn);
+
+/* hessian_special_normal: the normal of every vertex off triple
+** junctions becomes the datafile's HESSIAN_SPECIAL_NORMAL_VECTOR there
+** (a function of the coordinates and parameters). TDS_OK, TDS_ERANGE
+** (no such vector), TDS_ENUM (not finite). */
+int tds_special_normals(tds_ctx *ctx, const tds_surf *s, vnorm *vn);
 
 /* Columns W (d x c) of the unknowns of a vertex with motion basis B
 ** (3 x d, dx = B u): the normal space's directions pulled back into u

@@ -3,7 +3,9 @@
 #include <math.h>
 #include <string.h>
 
+#include "expr.h"
 #include "fixq.h"
+#include "motion.h"
 #include "newton_int.h"
 #include "vec3.h"
 
@@ -25,14 +27,10 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
     if (m->fflags[f] & TDS_DEAD) continue;
     double c[3];
     facet_vec(m, f, c);
-    double A = v3_norm(c);
     for (int k = 0; k < 3; k++) {
       vnorm *w = &vn[m->fv[f][k]];
       v3_add(w->an, w->an, c);
       w->nf++;
-      if (A > 0)
-        for (int i = 0; i < 3; i++)
-          for (int j = 0; j < 3; j++) w->P[i][j] += c[i] * c[j] / A;
     }
   }
   /* Where every facet's normal is within 30 degrees of the plain sum's,
@@ -67,9 +65,21 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
       if (!bad[v] && !(v3_dot(c, ref[v]) >= lim)) bad[v] = 1;
     }
   }
+  for (tds_id v = 0; v < m->nv; v++) nbad += bad[v];
+  for (tds_id f = 0; f < m->nf && nbad; f++) { /* sum area n n^T where needed */
+    if (m->fflags[f] & TDS_DEAD) continue;
+    double c[3];
+    facet_vec(m, f, c);
+    double A = v3_norm(c);
+    for (int k = 0; k < 3; k++) {
+      vnorm *w = &vn[m->fv[f][k]];
+      if (bad[m->fv[f][k]] && A > 0)
+        for (int i = 0; i < 3; i++)
+          for (int j = 0; j < 3; j++) w->P[i][j] += c[i] * c[j] / A;
+    }
+  }
   for (tds_id v = 0; v < m->nv; v++) {
     if (!bad[v]) continue;
-    nbad++;
     vnorm *w = &vn[v];
     double r[3];
     v3_copy(r, w->an);
@@ -196,4 +206,24 @@ int tds_normal_columns(const vnorm *vn, const double B[3][3], int d, int full,
   }
   if (c == 0) return tds_normal_columns(vn, B, d, 1, W);
   return c;
+}
+
+int tds_special_normals(tds_ctx *ctx, const tds_surf *s, vnorm *vn) {
+  const tds_mesh *m = &s->m;
+  if (!s->special_normal[0])
+    return tds_seterr(ctx, TDS_ERANGE, "hessian_special_normal is on but the datafile has no "
+                      "HESSIAN_SPECIAL_NORMAL_VECTOR");
+  for (tds_id v = 0; v < m->nv; v++) {
+    if ((m->vflags[v] & TDS_DEAD) || vn[v].nt || !vn[v].nf) continue;
+    double vars[TDS_NVARS];
+    tds_motion_vars(s, m->x[v], m->vp[v], vars);
+    for (int i = 0; i < 3; i++) {
+      double c = tds_expr_eval(s->special_normal[i], s->parval, vars);
+      if (!isfinite(c))
+        return tds_seterr(ctx, TDS_ENUM, "HESSIAN_SPECIAL_NORMAL_VECTOR: c%d is not finite at "
+                          "vertex %d", i + 1, (int)v + 1);
+      vn[v].an[i] = c;
+    }
+  }
+  return TDS_OK;
 }

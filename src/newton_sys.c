@@ -113,6 +113,8 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
   rk = tds_malloc(&ctx->alloc, ((size_t)r.m + 1) * sizeof *rk);
   if (!vn || !W || !ustart || !rk) goto nomem;
   if (tds_vertex_normals(&ctx->alloc, m, vn) != TDS_OK) goto nomem;
+  if (o->normal && o->special_normal && (rc = tds_special_normals(ctx, s, vn)) != TDS_OK)
+    goto fail;
   ustart[0] = 0;
   for (int32_t k = 0; k < nvm; k++) {
     int d = r.start[k + 1] - r.start[k];

@@ -322,9 +322,10 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   ** map's Jacobian is measured and factored, and the mixing works on the
   ** preconditioned map; measured again when r has not halved for
   ** nt_patience iterations, dropped after a flip (the map changed) or when
-  ** r grows a hundredfold. Not with the rigid-motion gauge (a drop free to
-  ** slide on a table): there the preconditioned steps ran away; nor on a
-  ** surface without a fixed vertex (rigid motions: a singular Jacobian). */
+  ** r grows a hundredfold. Not on a surface without a fixed vertex and
+  ** without the rigid-motion gauge (a free closed surface: its rigid
+  ** motions make the Jacobian singular); with the gauge (a drop free to
+  ** slide on a table) the motions it removes are a border of the system. */
   pg_newton nt;
   memset(&nt, 0, sizeof nt);
   int anchored = 0; /* a fixed vertex with facets, or a boundary vertex:
@@ -334,7 +335,7 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
     if ((w.kind[v] == VK_FIXED && m->vf_start[v + 1] > m->vf_start[v] &&
          !(m->vflags[v] & TDS_DEAD)) || w.kind[v] == VK_BDRY)
       anchored = 1;
-  int use_nt = accel && o->newton && w.nmov > 0 && !w.nrig && anchored;
+  int use_nt = accel && o->newton && w.nmov > 0 && (w.nrig || anchored);
   if (use_nt && pg_newton_init(&nt, &w.al, &w) != TDS_OK) {
     pg_work_free(&w);
     return tds_snap_end(ctx, s, &sn, tds_seterr(ctx, TDS_ENOMEM, "out of memory"));

@@ -98,8 +98,11 @@ typedef struct pg_newton {
 typedef struct pgw {
   int32_t nv, ne, nf, nmov;
   int rigid;              /* no fixed vertex: rigid gauge (pg_step.c) */
-  int frozen;             /* pg_step keeps the multipliers and restoring
-                             coefficients of its last unfrozen call */
+  int frozen;             /* pg_step keeps the multipliers, restoring
+                             coefficients and gauge motion of its last
+                             unfrozen call */
+  double gxc[3], gT[3], gR[3]; /* the gauge's last rigid motion (centre,
+                             translation, rotation) */
   int nrig;               /* rigid motions in the gauge (<= 6) */
   int rig[6];             /* their indices: 0-2 translations, 3-5 rotations */
   uint8_t *kind;          /* per vertex slot: VK_* */

@@ -65,7 +65,7 @@ int pg_newton_init(pg_newton *nt, const tds_alloc *al, const pgw *w) {
   nt->al = *al;
   size_t nv = (size_t)(w->nv > 0 ? w->nv : 1), nm = (size_t)(w->nmov > 0 ? w->nmov : 1);
   size_t nq = (size_t)w->fq.nq, nu = nq <= PG_NT_NQ ? nq : 0;
-  size_t N = 3 * nm + 2 * nq + 1;
+  size_t N = 3 * nm + 2 * nq + 7;
   nt->inv = tds_calloc(al, nv, sizeof *nt->inv);
   nt->nbp = tds_calloc(al, nm + 1, sizeof *nt->nbp);
   nt->color = tds_calloc(al, nm, sizeof *nt->color);
@@ -233,7 +233,10 @@ int pg_newton_build(tds_ctx *ctx, tds_surf *s, pgw *w, pg_newton *nt, const doub
   if (pg_newton_sliver(s, w)) return TDS_OK; /* not now */
   int32_t nm = w->nmov, N = 3 * nm, nq = w->fq.nq;
   int32_t nu = nq <= PG_NT_NQ ? nq : 0; /* multipliers in the border */
-  int32_t nb = N + nq + nu;
+  int32_t nr = w->nrig; /* rigid motions the constraints allow: their
+                           directions are exact null vectors of J (the
+                           map moves with the surface), fixed by a border */
+  int32_t nb = N + nq + nu + nr;
   int rc = neighbours(s, w, nt);
   if (rc != TDS_OK) return tds_seterr(ctx, rc, "out of memory");
   colour(w, nt);
@@ -357,6 +360,44 @@ int pg_newton_build(tds_ctx *ctx, tds_surf *s, pgw *w, pg_newton *nt, const doub
         }
       }
     }
+  for (int32_t j = 0; j < nm && nr; j++) {
+    /* The gauge keeps contact-line vertices in place along the line: the
+    ** map never moves them that way, so J has a zero row there; the
+    ** Newton step keeps them too (-t t^T, t along the line). */
+    tds_id v = w->mov[j];
+    if (w->bnb[v][0] < 0) continue;
+    double tl[3];
+    v3_sub(tl, m->x[w->bnb[v][1]], m->x[w->bnb[v][0]]);
+    double tn = v3_norm(tl);
+    if (!(tn > 0)) continue;
+    v3_scale(tl, 1 / tn);
+    for (int a = 0; a < 3; a++)
+      for (int b = 0; b < 3; b++)
+        if (tl[a] * tl[b] != 0 && tds_sptrip_add(&t, 3 * j + a, 3 * j + b, -tl[a] * tl[b]))
+          goto nomem;
+  }
+  if (nr) { /* [J R; R^T 0]: the step has no rigid component */
+    double xc[3] = {0, 0, 0};
+    for (int32_t j = 0; j < nm; j++) v3_add(xc, xc, m->x[w->mov[j]]);
+    v3_scale(xc, 1.0 / nm);
+    for (int32_t k = 0; k < nr; k++) {
+      int rk = w->rig[k];
+      for (int32_t j = 0; j < nm; j++) {
+        double e[3] = {0, 0, 0}, md[3], rel[3];
+        e[rk % 3] = 1;
+        if (rk < 3) {
+          v3_copy(md, e);
+        } else {
+          v3_sub(rel, m->x[w->mov[j]], xc);
+          v3_cross(md, e, rel);
+        }
+        for (int c = 0; c < 3; c++)
+          if (md[c] != 0 && (tds_sptrip_add(&t, 3 * j + c, N + nq + nu + k, md[c]) ||
+                             tds_sptrip_add(&t, N + nq + nu + k, 3 * j + c, md[c])))
+            goto nomem;
+      }
+    }
+  }
   for (int32_t i = 0; i < nb; i++) /* the pattern's diagonal */
     if (tds_sptrip_add(&t, i, i, 0)) goto nomem;
   if (tds_spmat_from_trip(&t, 0, &A)) goto nomem;
@@ -384,7 +425,7 @@ int pg_newton_apply(tds_ctx *ctx, pg_newton *nt, const pgw *w, const double *X, 
   int32_t N = 3 * w->nmov, nq = w->fq.nq;
   int32_t nu = nq <= PG_NT_NQ ? nq : 0;
   for (int32_t i = 0; i < N; i++) nt->b[i] = X[i] - G[i];
-  for (int32_t q = 0; q < nq + nu; q++) nt->b[N + q] = 0;
+  for (int32_t q = 0; q < nq + nu + w->nrig; q++) nt->b[N + q] = 0;
   int rc = tds_la_solve(ctx, nt->lu, nt->b, 0);
   if (rc != TDS_OK) return rc;
   for (int32_t i = 0; i < N; i++) G[i] = X[i] + nt->b[i];

@@ -65,6 +65,17 @@ int32_t tds_surf_count(const tds_surf *s, int kind);
 ** into the loops. TDS_OK or TDS_ENOMEM (then nothing changed). */
 int tds_strings_split(tds_strings *st, const tds_id *split, int32_t ne);
 
+/* Edge deletion (Evolver's t and delete edge in the string model; the
+** mesh side is topo_collapse.c's): drop every reference to edge e from the
+** loops (its ends have merged, so the loops still chain), or make every
+** reference to edge `from` one to `to` (two edges merged; flip: they ran
+** opposite ways). In place, no allocation. */
+void tds_strings_drop_edge(tds_strings *st, const tds_mesh *m, tds_id e);
+void tds_strings_rename_edge(tds_strings *st, tds_id from, tds_id to, int flip);
+/* After merges: cells whose loop is empty or only runs edges out and back
+** (zero area) die, as Evolver's do. Their bodies stay. */
+void tds_strings_prune(tds_strings *st);
+
 /* Bring the per-edge body weights up to date. TDS_OK or TDS_ENOMEM. */
 int tds_strings_index(tds_ctx *ctx, tds_surf *s);
 
@@ -89,12 +100,13 @@ int tds_strings_check(tds_ctx *ctx, const tds_surf *s);
 ** junctions or ends stay.) */
 int tds_strings_vavg(const tds_surf *s, tds_id v, double out[3]);
 
-/* Evolver's o (pop) for strings (string_topo.c): every vertex with four or
+/* Evolver's o (pop) for strings (string_topo.c): every vertex (sel NULL) or
+** selected vertex (sel[v] != 0) with four or
 ** more edges, not fixed and on no constraint or boundary, is split until
 ** three edges meet at each of its pieces. *npopped: splits made. All or
 ** nothing. TDS_OK, TDS_ERANGE (not the string model), TDS_ENOMEM,
 ** TDS_ENUM. */
-int tds_strings_pop(tds_ctx *ctx, tds_surf *s, int32_t *npopped);
+int tds_strings_pop(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npopped);
 
 /* Evolver's t1_edgeswap (string_topo.c), in 2-D space: every selected edge
 ** (sel[e] != 0; sel NULL: all) joining two triple points, not fixed and

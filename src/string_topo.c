@@ -138,11 +138,11 @@ static int pop_once(tds_surf *s, tds_id v) {
   return 1;
 }
 
-static int pop_all(tds_ctx *ctx, tds_surf *s, int32_t *npopped) {
+static int pop_all(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npopped) {
   tds_mesh *m = &s->m;
   int32_t count = 0, nv = m->nv;
   for (tds_id v = 0; v < nv; v++) {
-    if (!tds_alive(m->vflags, v) || (m->vflags[v] & TDS_FIXED) || m->vcon[v] ||
+    if ((sel && !sel[v]) || !tds_alive(m->vflags, v) || (m->vflags[v] & TDS_FIXED) || m->vcon[v] ||
         m->vbdry[v] != TDS_NONE)
       continue;
     for (;;) {
@@ -157,13 +157,13 @@ static int pop_all(tds_ctx *ctx, tds_surf *s, int32_t *npopped) {
   return tds_surf_update(ctx, s);
 }
 
-int tds_strings_pop(tds_ctx *ctx, tds_surf *s, int32_t *npopped) {
+int tds_strings_pop(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npopped) {
   if (npopped) *npopped = 0;
   if (!s->str) return tds_seterr(ctx, TDS_ERANGE, "works in the string model only (STRING)");
   tds_snap sn;
   int rc = tds_snap_take(ctx, s, &sn);
   if (rc != TDS_OK) return rc;
-  return tds_snap_end(ctx, s, &sn, pop_all(ctx, s, npopped));
+  return tds_snap_end(ctx, s, &sn, pop_all(ctx, s, sel, npopped));
 }
 
 /* ---- T1 (Evolver's t1_edgeswap for strings, 2-D space) ----
@@ -356,4 +356,62 @@ int tds_strings_crosscut(tds_ctx *ctx, tds_surf *s, tds_id f, tds_id tv, tds_id 
   int rc = tds_snap_take(ctx, s, &sn);
   if (rc != TDS_OK) return rc;
   return tds_snap_end(ctx, s, &sn, crosscut(ctx, s, f, tv, hv, newedge));
+}
+
+/* ---- edge deletion (t, delete edge: topo_collapse.c) ---- */
+
+void tds_strings_drop_edge(tds_strings *st, const tds_mesh *m, tds_id e) {
+  int32_t k = 0;
+  for (tds_id f = 0; f < st->nf; f++) {
+    int32_t a = st->start[f], b = st->start[f + 1];
+    /* a closed loop that loses its first edge starts at its last one, as
+    ** Evolver's does (measured: its cell's first edge becomes the one
+    ** before the deleted edge) */
+    int rot = b - a > 1 && TDS_OID(st->oe[a]) == e && TDS_OID(st->oe[b - 1]) != e &&
+              tds_oe_head(m, st->oe[b - 1]) == tds_oe_tail(m, st->oe[a]);
+    st->start[f] = k;
+    if (rot) st->oe[k++] = st->oe[b - 1]; /* over oe[a] at the latest: edge e */
+    for (int32_t i = a + rot; i < b - rot; i++)
+      if (TDS_OID(st->oe[i]) != e) st->oe[k++] = st->oe[i];
+  }
+  st->start[st->nf] = k;
+  st->noe = k;
+  st->gen++;
+}
+
+void tds_strings_rename_edge(tds_strings *st, tds_id from, tds_id to, int flip) {
+  for (int32_t i = 0; i < st->noe; i++)
+    if (TDS_OID(st->oe[i]) == from) {
+      int r = TDS_OREV(st->oe[i]);
+      st->oe[i] = TDS_OREF(to, flip ? !r : r);
+    }
+  st->gen++;
+}
+
+void tds_strings_prune(tds_strings *st) {
+  for (tds_id f = 0; f < st->nf; f++) {
+    if (st->flags[f] & TDS_DEAD) continue;
+    int32_t a = st->start[f], b = st->start[f + 1];
+    int empty = 1;
+    for (int32_t i = a; i < b && empty; i++) {
+      int paired = 0;
+      for (int32_t j = a; j < b && !paired; j++)
+        paired = st->oe[j] == (st->oe[i] ^ 1); /* the same edge the other way */
+      empty = paired;
+    }
+    if (!empty) continue;
+    st->flags[f] |= TDS_DEAD;
+    for (int32_t i = a; i < b; i++) st->oe[i] = -1;
+  }
+  /* compact away the dead cells' entries */
+  int32_t k = 0;
+  for (tds_id f = 0; f < st->nf; f++) {
+    int32_t a = st->start[f], b = st->start[f + 1];
+    st->start[f] = k;
+    for (int32_t i = a; i < b; i++)
+      if (st->oe[i] >= 0) st->oe[k++] = st->oe[i];
+  }
+  st->start[st->nf] = k;
+  st->noe = k;
+  st->gen++;
 }

@@ -43,6 +43,7 @@ void tds_surf_free(tds_surf *s) {
     free_exprs(s->bdry[i].content, 3);
   }
   tds_free(&a, s->bdry);
+  free_exprs(s->special_normal, 3);
   for (int i = 0; i < s->nquant; i++) {
     tds_free(&a, s->quant[i].name);
     for (int j = 0; j < s->quant[i].ninst; j++)

@@ -109,9 +109,16 @@ typedef struct tds_surf {
   int32_t stall_facet;    /* facet slot + 1 of g's last stall warning; 0 none */
   int check_increase;     /* undo a g step that raises the energy, stop g */
   int evolver_ls;         /* g's line search: Evolver's bracketing (iterate.c) */
+  int autopop;            /* g deletes edges and facets about to vanish, pops */
+  int immediate_autopop;  /* ... each as soon as it is found (autopop.h) */
+  int autochop;           /* g bisects edges about to grow past autochop_length */
+  double autochop_length;
   uint64_t rng;           /* state of the jiggle's random numbers (jiggle.h) */
 
   char *read_text;        /* a datafile's read section, kept verbatim */
+  struct tds_expr *special_normal[3]; /* HESSIAN_SPECIAL_NORMAL_VECTOR c1..c3
+                              (Newton steps' normals with
+                              hessian_special_normal), or NULL */
 
   struct tds_strings *str; /* the string model's cells (string_model.h),
                               NULL in the soapfilm model */

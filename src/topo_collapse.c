@@ -10,6 +10,7 @@
 #include "geom.h"
 #include "motion.h"
 #include "snap.h"
+#include "string_model.h"
 #include "vec3.h"
 
 /* Is end v of edge e pinned: fixed, or on other constraints or another
@@ -119,6 +120,7 @@ int tds_collapse_edge(tds_surf *s, tds_id e) {
   }
   /* The facets on e go; their other edges merge below. */
   while (m->eside[e] != TDS_NONE) tds_mesh_kill(m, TDS_FACET, m->eside[e] / 3);
+  if (s->str) tds_strings_drop_edge(s->str, m, e); /* the string model's cells */
   tds_mesh_kill(m, TDS_EDGE, e);
   tds_mesh_kill(m, TDS_VERTEX, gone);
   for (tds_id f = 0; f < m->nf; f++) {
@@ -142,7 +144,9 @@ int tds_collapse_edge(tds_surf *s, tds_id e) {
       if (oq != od) continue;
       int rd = rank(m, d), rq = rank(m, q);
       tds_id win = rd != rq ? (rd > rq ? d : q) : ((info[j] & 1) && !(info[i] & 1) ? q : d);
+      if (s->str && rd == rq) win = d > q ? d : q; /* strings: the higher id (Evolver) */
       tds_id lose = win == d ? q : d;
+      if (s->str) tds_strings_rename_edge(s->str, lose, win, m->ev[lose][0] != m->ev[win][0]);
       move_sides(m, lose, win);
       m->eflags[win] |= m->eflags[lose] & TDS_FIXED;
       info[win == d ? i : j] |= info[win == d ? j : i] & 2;
@@ -150,6 +154,7 @@ int tds_collapse_edge(tds_surf *s, tds_id e) {
       if (lose == d) break;
     }
   }
+  if (s->str) tds_strings_prune(s->str);
   /* Facets that now share all three edges enclose nothing: both go. */
   for (tds_id f = 0; f < m->nf; f++) {
     if (!tds_alive(m->fflags, f)) continue;
@@ -271,3 +276,5 @@ int tds_areaweed(tds_ctx *ctx, tds_surf *s, double area, int32_t *n) {
   if (s->m.torus) return tds_torus_unsupported(ctx, "w (areaweed)");
   return run(ctx, s, 1, BY_AREA, NULL, area, n);
 }
+
+int tds_delete_facet_raw(tds_surf *s, tds_id f) { return delete_facet(s, f); }

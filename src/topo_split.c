@@ -312,3 +312,9 @@ int tds_edgeswap(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
   if (s->m.torus) return tds_torus_unsupported(ctx, "edgeswap");
   return tds_snap_run(ctx, s, edgeswap, sel, n);
 }
+
+int tds_split_edge_raw(tds_surf *s, tds_id e) {
+  if (room_for_split(&s->m, tds_edge_valence(&s->m, e)) != TDS_OK) return TDS_ENOMEM;
+  split_one(s, e);
+  return TDS_OK;
+}

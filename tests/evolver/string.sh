@@ -35,8 +35,7 @@ same('string/$f/refine-area', vol(), $b1, 1e-12)
 done
 
 # Files that need features tds does not have: a clear message, exit 1.
-for spec in "knotty:21: method SQCURVE_STRING is not supported yet" \
-            "metric:14: METRIC is not supported yet" \
+for spec in "metric:14: METRIC is not supported yet" \
             "100grain:10: TORUS is not supported yet"; do
   f=${spec%%:*}
   want="$EXAMPLES/$f.fe:${spec#*:}"

@@ -576,12 +576,44 @@ static void hess_bad_input(void) {
   tds_surf_free(&s);
 }
 
+/* (a), (b) Knot energy, string curvature and Hooke springs (the rows with
+** Hessians, eval_knot.c) on a seeded random closed polygon in space, with
+** its total length held: energy and Lagrangian against differences of the
+** assembled gradient. */
+static void hess_knot_fd(void) {
+  static const char text[] =
+      "string\nparameter hooke_length = 0.6\nparameter knot_power = 3\n"
+      "quantity k ENERGY modulus 0.5 method knot_energy global\n"
+      "quantity c ENERGY modulus 0.3 method sqcurve_string global\n"
+      "quantity h ENERGY modulus 2 method hooke_energy global\n"
+      "define edge attribute hooke_size real\n"
+      "quantity h2 ENERGY modulus 1.5 method hooke2_energy global\n"
+      "quantity len FIXED = 7 method edge_tension global\n"
+      "vertices\n1 1 0 0\n2 0.6 0.8 0.1\n3 -0.3 0.9 -0.1\n4 -1 0.1 0.2\n"
+      "5 -0.6 -0.8 0\n6 0.3 -0.9 -0.2\n7 1.4 0.2 0.3 fixed\n"
+      "edges\n1 1 2 hooke_size 0.7\n2 2 3 hooke_size 0.9\n3 3 4 hooke_size 0.5\n"
+      "4 4 5 hooke_size 1.1\n5 5 6 hooke_size 0.8\n6 6 1 hooke_size 0.6\n"
+      "7 1 7 hooke_size 0.4\n";
+  tds_ctx ctx;
+  tds_surf s;
+  h_setup(&ctx, &s);
+  REQUIRE_OK(&ctx, tds_datafile_load_buffer(&ctx, &s, "knot.fe", text, strlen(text)));
+  for (tds_id e = 0; e < s.m.ne; e++) s.m.eten[e] = 0;
+  jitter(&s.m, 0.1, 31);
+  REQUIRE_OK(&ctx, tds_pressures(&ctx, &s));
+  CHECK(fabs(s.quant[4].pressure) > 0.01);
+  CHECK_FD(&ctx, &s, &ENERGY);
+  CHECK_FD(&ctx, &s, &LAGR);
+  tds_surf_free(&s);
+}
+
 int main(void) {
   RUN(hess_flat_square);
   RUN(hess_tetra_fd);
   RUN(hess_triple_fd);
   RUN(hess_cube_fd);
   RUN(hess_quantity_fd);
+  RUN(hess_knot_fd);
   RUN(hess_kkt_layout);
   RUN(hess_example_cube);
   RUN(hess_example_mound);

@@ -297,11 +297,12 @@ typedef struct opcase {
   const char *file;  /* datafile loaded by the set-up (or by the op) */
   int refine, steps; /* set-up after the load: r's, then g steps */
   char op;           /* 'L' load, 'r', 'g', 'u', 'V', 'd' dump, 'p' pg,
-                        'h' Hessian (assembly, KKT, reduction), 'x' export, 'O' pop edges,
+                        'h' Hessian (assembly, KKT, reduction), 'x' export, 'O' pop edges, 'o' pop edges and vertices, 'N' renumber_all, 'B' rebody,
                         'q' and 'c' run-time define of a quantity and of a
                         global constraint with an energy integrand, 'n' a
                         Newton step (hessian), 's' hessian_seek, 'e'
-                        eigenvalues (ritz: 3 lowest), 'S' saddle, 'A'
+                        eigenvalues (ritz: 3 lowest), 'S' saddle, 'i'
+                        inverse iteration (eigenprobe(0.5, 20)), 'A'
                         addload of the same file, 'R' replace_load, 'T'
                         replacing the view transforms */
 } opcase;
@@ -360,6 +361,13 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
     tds_inertia in;
     return tds_newton_ritz(ctx, s, &no, NAN, 3, vals, &got, &in, NULL, &iters, NULL);
   }
+  case 'i': {
+    tds_newton_opts no = {.normal = 1, .linear_metric = 1, .metric_mix = 0.5};
+    double val;
+    int iters;
+    tds_inertia in;
+    return tds_newton_invit(ctx, s, &no, 0.5, 20, &val, &in, NULL, &iters);
+  }
   case 'S': {
     tds_newton_opts no = {.normal = 1, .metric_mix = 0.5};
     double lowest;
@@ -392,6 +400,12 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
   case 'u': return tds_equiangulate(ctx, s, NULL, &n);
   case 'V': return tds_vertex_average(ctx, s, NULL, &n);
   case 'O': return tds_pop_edges(ctx, s, NULL, &n);
+  case 'N': return tds_renumber_all(ctx, s, &n);
+  case 'B': return tds_rebody(ctx, s, &n);
+  case 'o': {
+    int32_t nv;
+    return tds_pop(ctx, s, &n, &nv);
+  }
   default: return tds_datafile_dump(ctx, s, dump_path);
   }
 }
@@ -569,6 +583,7 @@ static void oom_newton(void) {
   sweep_all('s', 1, 5);
   sweep_all('e', 1, 5);
   sweep_all('S', 1, 5);
+  sweep_all('i', 1, 5);
 }
 /* O on octa.fe (six runs of one edge: split, then pulled) and refined
 ** once (runs of two edges). */
@@ -576,7 +591,14 @@ static void oom_pop_edges(void) {
   for (int r = 0; r < 2 && !check_failed_; r++) {
     opcase c = {EX "octa.fe", r, 0, 'O'};
     sweep(&c);
+    opcase c2 = {EX "octa.fe", r, 0, 'o'}; /* and the sphere at the centre */
+    sweep(&c2);
   }
+  /* renumber_all and rebody on a double bubble (two bodies, ids dense) */
+  opcase c3 = {bubble_path, 1, 0, 'N'};
+  sweep(&c3);
+  opcase c4 = {bubble_path, 1, 0, 'B'};
+  sweep(&c4);
 }
 static void oom_addload(void) {
   sweep_all('A', 1, 0);
