@@ -379,8 +379,10 @@ function E.attr(o, name)
   end
   local f = ATTR[name]
   if f then return f(h, rev) end
-  if EV_ATTRS[name] then fail(("%s %d: attribute %s is not supported yet"):format(kindof(h), h.id, name)) end
   local ok, v = pcall(function() return h[name] end)
+  if not ok or v == nil then -- one of Evolver's that tds does not have is named as such
+    if EV_ATTRS[name] then fail(("%s %d: attribute %s is not supported yet"):format(kindof(h), h.id, name)) end
+  end
   if not ok then fail(v) end
   if v == nil then
     if name == "pressure" or name == "volume" or name == "density" or name == "tension" then return 0.0 end

@@ -791,6 +791,7 @@ function P:statement1()
       local whole = ok and self:atend()
       local lone = self.i == save + 1 and not self:lookup(c.s) and
         (#c.raw == 1 and LETTERS[c.raw] or STMT[c.s] or type(rawget(_G, c.s)) == "function")
+        and c.s ~= "new_body" -- Evolver's value without parentheses: bd := new_body
       self.i, self.depth = save, saved_depth
       if not whole or lone then
         self.usercmds = self.usercmds or {}

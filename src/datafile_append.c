@@ -220,9 +220,9 @@ void df_app_end(df *d, int ok) {
 
 int tds_datafile_replace_load(tds_ctx *ctx, tds_surf *s, const char *path) {
   TDS_REQUIRE(ctx, s && path);
-  if (s->str)
-    return tds_seterr(ctx, TDS_ESYNTAX, "%s: replace_load in the string model is not supported yet",
-                      path);
+  if (s->str || s->m.torus)
+    return tds_seterr(ctx, TDS_ESYNTAX, "%s: replace_load in the %s model is not supported yet",
+                      path, s->str ? "string" : "torus");
   tds_snap sn;
   int rc = tds_snap_take(ctx, s, &sn);
   if (rc) return rc;

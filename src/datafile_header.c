@@ -607,10 +607,12 @@ static int h_view_generators(df *d, const hdr_kw *k) {
 
 /* TORUS, TORUS_FILLED, PERIODS (datafile_torus.c) */
 static int h_torus(df *d, const hdr_kw *k) {
+  if (d->app) return df_err(d, NULL, TDS_ESYNTAX, "addload of a torus datafile is not supported yet");
   return df_torus(d, k->name[5] == '_');
 }
 static int h_periods(df *d, const hdr_kw *k) {
   (void)k;
+  if (d->app) return df_err(d, NULL, TDS_ESYNTAX, "addload of a torus datafile is not supported yet");
   return df_periods(d);
 }
 /* DISPLAY_PERIODS (3 rows of 3) and DISPLAY_ORIGIN (3): display only. */

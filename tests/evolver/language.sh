@@ -11,7 +11,7 @@
 . "$(dirname "$0")/lib.sh"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-for run in flow:cube elements:cube elements:catbody errors:cube histogram:cube define:cube matrix:cube facetedge:cube facetedge:catbody named:cube model:cube feattr:cube feattr:catbody view:views resize:cube defcmd:cube; do
+for run in flow:cube elements:cube elements:catbody errors:cube histogram:cube define:cube matrix:cube facetedge:cube facetedge:catbody named:cube model:cube feattr:cube feattr:catbody view:views resize:cube defcmd:cube phview:phelanc; do
   c=${run%%:*} fe=${run#*:}
   src=$EXAMPLES/$fe.fe
   [ -f "$ROOT/tests/evolver/data/$fe.fe" ] && src=$ROOT/tests/evolver/data/$fe.fe
@@ -33,7 +33,7 @@ for run in flow:cube elements:cube elements:catbody errors:cube histogram:cube d
   pat='^K'
   [ "$c" = histogram ] && pat='^ *[-.0-9e]+ %- +[-.0-9e]+ +%d+$|^No qualifying'
   [ "$c" = model ] && pat='^K|^Changing|^Model already|^Converting'
-  [ "$c" = view ] && pat='^K|^Transform showing|^ +%d+$'
+  [ "$c" = view ] || [ "$c" = phview ] && pat='^K|^Transform showing|^ +%d+$'
   "$TDS" -q -e "
 dofile('$ROOT/tests/evolver/numcmp.lua')
 local function grab(p) local t = {} for l in io.lines(p) do
