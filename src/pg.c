@@ -491,19 +491,20 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
         nt_since = k;
       }
     }
-    if (accel && since_flip >= warm && nt.lu) {
+    if (accel && since_flip >= warm) {
       pg_get_state(s, &w, w.aa.G);
-      rc = pg_newton_apply(ctx, &nt, &w, w.aa.X, w.aa.G);
-      if (rc != TDS_OK) break;
-      pg_accel_mix(&w.aa, lim2);
-      if (pg_set_state(s, &w, w.aa.X)) {
-        rc = tds_seterr(ctx, TDS_ENUM, "projected gradient: a vertex could "
-                                       "not be projected onto its constraints");
-        break;
+      int pre = 0; /* G holds the preconditioned image: set it */
+      if (nt.lu) {
+        if (pg_newton_apply(ctx, &nt, &w, w.aa.X, w.aa.G) == TDS_OK) {
+          pre = 1;
+        } else { /* a failed solve: on without it (G is the plain image) */
+          pg_newton_drop(&nt);
+          nt_next = k + 5 * nt_wait;
+          pg_accel_reset(&w.aa);
+        }
       }
-    } else if (accel && since_flip >= warm) {
-      pg_get_state(s, &w, w.aa.G);
-      if (pg_accel_mix(&w.aa, lim2) && pg_set_state(s, &w, w.aa.X)) {
+      int mixed = pg_accel_mix(&w.aa, lim2);
+      if ((pre || mixed) && pg_set_state(s, &w, w.aa.X)) {
         rc = tds_seterr(ctx, TDS_ENUM, "projected gradient: a vertex could "
                                        "not be projected onto its constraints");
         break;

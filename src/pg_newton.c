@@ -3,25 +3,32 @@
 **
 ** F(X) = G(X) - X is the plain move from the state X (positions of the
 ** movable vertices, parameters of boundary vertices). A vertex's move
-** depends on its own position and its star's other vertices (the normal,
+** depends on its own position and its facets' other vertices (the normal,
 ** the star model, the Voronoi centroid), and, globally, on the bodies'
-** multipliers, the restoring coefficients and (sessile drops) the
-** rigid-motion gauge. Frozen at the base point, those leave a sparse
+** multipliers mu, the restoring coefficients and (drops free to slide)
+** the rigid-motion gauge. Frozen at the base point, those leave a sparse
 ** Jacobian J_loc with a 3x3 block (i, j) for every pair of neighbours;
 ** it is measured by finite differences on a distance-2 colouring of the
 ** movable vertices (vertices of one colour share no neighbour, so one
-** evaluation per colour and coordinate gives their columns: about 20
-** colours, 60 evaluations). The restoring motion's dependence on the
-** volumes is known in closed form (-g Gr^-1 g^T, g the volume gradients
-** in the motion spaces, Gr their Gram matrix) and is added as a border:
+** evaluation per colour and coordinate gives their columns: 13-20
+** colours, 40-60 evaluations). The global parts are a border:
 **
-**   [ J_loc  -g  ] [ dX ]   [ -F ]
-**   [ g^T    -Gr ] [ s  ] = [  0 ]     (J_loc - g Gr^-1 g^T) dX = -F
+**   [ J_loc  -g   U   R ] [ dX  ]   [ -F ]
+**   [ g^T    -Gr  0   0 ] [ s   ]   [  0 ]
+**   [ Dmu^T   0  -I   0 ] [ t   ] = [  0 ]
+**   [ R^T     0   0   0 ] [ tau ]   [  0 ]
 **
-** factored once (LU, la.h) and used for many steps: the driver mixes the
-** preconditioned map X -> X + dX(X) with Anderson's history, which takes
-** care of what the preconditioner leaves out (the multipliers' and the
-** gauge's dependence on X: a correction of low rank). */
+** g: the volume gradients in the motion spaces, Gr their Gram matrix (the
+** restoring motion's dependence on the volumes, exact: -g Gr^-1 g^T);
+** U = dF/dmu (one more evaluation per body) and Dmu the multipliers'
+** gradient, from each vertex's contributions to their least squares in
+** the same colouring (up to PG_NT_NQ constraints); R the rigid motions of
+** the gauge (exact null vectors of J: the step gets no rigid part), and a
+** contact-line vertex, which the gauge keeps in place along the line,
+** gets -t t^T in its block (t along the line). Factored once (LU, la.h)
+** and used for many steps: the driver mixes the preconditioned map
+** X -> X + dX(X) with Anderson's history, which corrects what a stale J
+** leaves. */
 #include <math.h>
 #include <string.h>
 
