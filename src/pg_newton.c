@@ -240,9 +240,12 @@ int pg_newton_build(tds_ctx *ctx, tds_surf *s, pgw *w, pg_newton *nt, const doub
   if (pg_newton_sliver(s, w)) return TDS_OK; /* not now */
   int32_t nm = w->nmov, N = 3 * nm, nq = w->fq.nq;
   int32_t nu = nq <= PG_NT_NQ ? nq : 0; /* multipliers in the border */
-  int32_t nr = w->nrig; /* rigid motions the constraints allow: their
-                           directions are exact null vectors of J (the
-                           map moves with the surface), fixed by a border */
+  /* rigid motions: the gauge's, or all six on a free surface; their
+  ** directions are exact null vectors of J (the map moves with the
+  ** surface), fixed by a border */
+  static const int all6[6] = {0, 1, 2, 3, 4, 5};
+  int32_t nr = nt->free ? 6 : w->nrig;
+  const int *rig = nt->free ? all6 : w->rig;
   int32_t nb = N + nq + nu + nr;
   int rc = neighbours(s, w, nt);
   if (rc != TDS_OK) return tds_seterr(ctx, rc, "out of memory");
@@ -367,7 +370,7 @@ int pg_newton_build(tds_ctx *ctx, tds_surf *s, pgw *w, pg_newton *nt, const doub
         }
       }
     }
-  for (int32_t j = 0; j < nm && nr; j++) {
+  for (int32_t j = 0; j < nm && w->nrig; j++) {
     /* The gauge keeps contact-line vertices in place along the line: the
     ** map never moves them that way, so J has a zero row there; the
     ** Newton step keeps them too (-t t^T, t along the line). */
@@ -388,7 +391,7 @@ int pg_newton_build(tds_ctx *ctx, tds_surf *s, pgw *w, pg_newton *nt, const doub
     for (int32_t j = 0; j < nm; j++) v3_add(xc, xc, m->x[w->mov[j]]);
     v3_scale(xc, 1.0 / nm);
     for (int32_t k = 0; k < nr; k++) {
-      int rk = w->rig[k];
+      int rk = rig[k];
       for (int32_t j = 0; j < nm; j++) {
         double e[3] = {0, 0, 0}, md[3], rel[3];
         e[rk % 3] = 1;
@@ -432,7 +435,7 @@ int pg_newton_apply(tds_ctx *ctx, pg_newton *nt, const pgw *w, const double *X, 
   int32_t N = 3 * w->nmov, nq = w->fq.nq;
   int32_t nu = nq <= PG_NT_NQ ? nq : 0;
   for (int32_t i = 0; i < N; i++) nt->b[i] = X[i] - G[i];
-  for (int32_t q = 0; q < nq + nu + w->nrig; q++) nt->b[N + q] = 0;
+  for (int32_t q = 0; q < nq + nu + (nt->free ? 6 : w->nrig); q++) nt->b[N + q] = 0;
   int rc = tds_la_solve(ctx, nt->lu, nt->b, 0);
   if (rc != TDS_OK) return rc;
   for (int32_t i = 0; i < N; i++) G[i] = X[i] + nt->b[i];
