@@ -780,6 +780,24 @@ function P:statement1()
       local body = self:funcbody({}, true)
       return "E.defcmd(" .. q(w) .. ", function() " .. body .. " end)"
     end
+    -- name := command (no braces), as Evolver: `gg := g 5`, `few :=
+    -- transforms off`, `all := show facet`, `rr := r`. The right side is
+    -- a command when it starts with a name and does not read as a whole
+    -- expression, or is a lone command word.
+    local c = self:peek()
+    if (op == ":=" or op == "::=") and c.t == "name" and not self:lookup(w) then
+      local save, saved_depth = self.i, self.depth
+      local ok = pcall(self.expr, self)
+      local whole = ok and self:atend()
+      local lone = self.i == save + 1 and not self:lookup(c.s) and
+        (#c.raw == 1 and LETTERS[c.raw] or STMT[c.s] or type(rawget(_G, c.s)) == "function")
+      self.i, self.depth = save, saved_depth
+      if not whole or lone then
+        self.usercmds = self.usercmds or {}
+        self.usercmds[w] = true
+        return "E.defcmd(" .. q(w) .. ", function() " .. self:funcbody({}, false) .. " end)"
+      end
+    end
     local v = asnum(self:expr())
     local b = self:lookup(w)
     if b then

@@ -11,7 +11,7 @@
 . "$(dirname "$0")/lib.sh"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-for run in flow:cube elements:cube elements:catbody errors:cube histogram:cube define:cube matrix:cube facetedge:cube facetedge:catbody named:cube model:cube feattr:cube feattr:catbody view:views resize:cube; do
+for run in flow:cube elements:cube elements:catbody errors:cube histogram:cube define:cube matrix:cube facetedge:cube facetedge:catbody named:cube model:cube feattr:cube feattr:catbody view:views resize:cube defcmd:cube; do
   c=${run%%:*} fe=${run#*:}
   src=$EXAMPLES/$fe.fe
   [ -f "$ROOT/tests/evolver/data/$fe.fe" ] && src=$ROOT/tests/evolver/data/$fe.fe
