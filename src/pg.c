@@ -328,24 +328,26 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   ** map's Jacobian is measured and factored, and the mixing works on the
   ** preconditioned map; measured again when r has not halved for
   ** nt_patience iterations, dropped after a flip (the map changed) or when
-  ** r grows a hundredfold. Not on a surface without a fixed vertex and
-  ** without the rigid-motion gauge (a free closed surface: its rigid
-  ** motions make the Jacobian singular); with the gauge (a drop free to
-  ** slide on a table) the motions it removes are a border of the system. */
+  ** r grows a hundredfold. Rigid motions the surface is free to make are
+  ** exact null vectors of the Jacobian and a border of the system: the
+  ** gauge's (a drop free to slide on a table), or all six on a free
+  ** surface (no fixed vertex, boundary or constraint); a surface held only
+  ** by level sets without the gauge gets no preconditioning. */
   pg_newton nt;
   memset(&nt, 0, sizeof nt);
-  int anchored = 0; /* a fixed vertex with facets, or a boundary vertex:
-                       else rigid motions are exact null directions of
-                       the Jacobian (a free closed surface) */
+  int anchored = 0; /* a fixed vertex with facets, or a boundary vertex */
   for (tds_id v = 0; v < m->nv; v++)
     if ((w.kind[v] == VK_FIXED && m->vf_start[v + 1] > m->vf_start[v] &&
          !(m->vflags[v] & TDS_DEAD)) || w.kind[v] == VK_BDRY)
       anchored = 1;
-  int use_nt = accel && o->newton && w.nmov > 0 && (w.nrig || anchored);
+  int level = 0;
+  for (int32_t j = 0; j < w.nmov; j++) level |= w.kind[w.mov[j]] == VK_LEVEL;
+  int use_nt = accel && o->newton && w.nmov > 0 && (w.nrig || anchored || !level);
   if (use_nt && pg_newton_init(&nt, &w.al, &w) != TDS_OK) {
     pg_work_free(&w);
     return tds_snap_end(ctx, s, &sn, tds_seterr(ctx, TDS_ENOMEM, "out of memory"));
   }
+  nt.free = use_nt && !anchored && !w.nrig;
   const int64_t nt_wait = 10, nt_patience = 20, nt_maxb = 50;
   const double nt_start = 1e-3 * hbar;
   int64_t nt_next = 0, nt_since = 0;
@@ -497,19 +499,20 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
         nt_since = k;
       }
     }
-    if (accel && since_flip >= warm && nt.lu) {
+    if (accel && since_flip >= warm) {
       pg_get_state(s, &w, w.aa.G);
-      rc = pg_newton_apply(ctx, &nt, &w, w.aa.X, w.aa.G);
-      if (rc != TDS_OK) break;
-      pg_accel_mix(&w.aa, lim2);
-      if (pg_set_state(s, &w, w.aa.X)) {
-        rc = tds_seterr(ctx, TDS_ENUM, "projected gradient: a vertex could "
-                                       "not be projected onto its constraints");
-        break;
+      int pre = 0; /* G holds the preconditioned image: set it */
+      if (nt.lu) {
+        if (pg_newton_apply(ctx, &nt, &w, w.aa.X, w.aa.G) == TDS_OK) {
+          pre = 1;
+        } else { /* a failed solve: on without it (G is the plain image) */
+          pg_newton_drop(&nt);
+          nt_next = k + 5 * nt_wait;
+          pg_accel_reset(&w.aa);
+        }
       }
-    } else if (accel && since_flip >= warm) {
-      pg_get_state(s, &w, w.aa.G);
-      if (pg_accel_mix(&w.aa, lim2) && pg_set_state(s, &w, w.aa.X)) {
+      int mixed = pg_accel_mix(&w.aa, lim2);
+      if ((pre || mixed) && pg_set_state(s, &w, w.aa.X)) {
         rc = tds_seterr(ctx, TDS_ENUM, "projected gradient: a vertex could "
                                        "not be projected onto its constraints");
         break;

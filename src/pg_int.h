@@ -91,6 +91,8 @@ typedef struct pg_newton {
   double *R0, *Rp, *dR, *S0, *Sp, *dS; /* multipliers' parts (pg_newton.c) */
   tds_la *lu;             /* the factored bordered Jacobian, or NULL */
   int64_t builds;         /* Jacobians measured in this run */
+  int free;               /* a free surface: all six rigid motions are
+                             null vectors of J (set by the driver) */
   tds_alloc al;
 } pg_newton;
 

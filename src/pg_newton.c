@@ -3,25 +3,32 @@
 **
 ** F(X) = G(X) - X is the plain move from the state X (positions of the
 ** movable vertices, parameters of boundary vertices). A vertex's move
-** depends on its own position and its star's other vertices (the normal,
+** depends on its own position and its facets' other vertices (the normal,
 ** the star model, the Voronoi centroid), and, globally, on the bodies'
-** multipliers, the restoring coefficients and (sessile drops) the
-** rigid-motion gauge. Frozen at the base point, those leave a sparse
+** multipliers mu, the restoring coefficients and (drops free to slide)
+** the rigid-motion gauge. Frozen at the base point, those leave a sparse
 ** Jacobian J_loc with a 3x3 block (i, j) for every pair of neighbours;
 ** it is measured by finite differences on a distance-2 colouring of the
 ** movable vertices (vertices of one colour share no neighbour, so one
-** evaluation per colour and coordinate gives their columns: about 20
-** colours, 60 evaluations). The restoring motion's dependence on the
-** volumes is known in closed form (-g Gr^-1 g^T, g the volume gradients
-** in the motion spaces, Gr their Gram matrix) and is added as a border:
+** evaluation per colour and coordinate gives their columns: 13-20
+** colours, 40-60 evaluations). The global parts are a border:
 **
-**   [ J_loc  -g  ] [ dX ]   [ -F ]
-**   [ g^T    -Gr ] [ s  ] = [  0 ]     (J_loc - g Gr^-1 g^T) dX = -F
+**   [ J_loc  -g   U   R ] [ dX  ]   [ -F ]
+**   [ g^T    -Gr  0   0 ] [ s   ]   [  0 ]
+**   [ Dmu^T   0  -I   0 ] [ t   ] = [  0 ]
+**   [ R^T     0   0   0 ] [ tau ]   [  0 ]
 **
-** factored once (LU, la.h) and used for many steps: the driver mixes the
-** preconditioned map X -> X + dX(X) with Anderson's history, which takes
-** care of what the preconditioner leaves out (the multipliers' and the
-** gauge's dependence on X: a correction of low rank). */
+** g: the volume gradients in the motion spaces, Gr their Gram matrix (the
+** restoring motion's dependence on the volumes, exact: -g Gr^-1 g^T);
+** U = dF/dmu (one more evaluation per body) and Dmu the multipliers'
+** gradient, from each vertex's contributions to their least squares in
+** the same colouring (up to PG_NT_NQ constraints); R the rigid motions of
+** the gauge (exact null vectors of J: the step gets no rigid part), and a
+** contact-line vertex, which the gauge keeps in place along the line,
+** gets -t t^T in its block (t along the line). Factored once (LU, la.h)
+** and used for many steps: the driver mixes the preconditioned map
+** X -> X + dX(X) with Anderson's history, which corrects what a stale J
+** leaves. */
 #include <math.h>
 #include <string.h>
 
@@ -233,9 +240,12 @@ int pg_newton_build(tds_ctx *ctx, tds_surf *s, pgw *w, pg_newton *nt, const doub
   if (pg_newton_sliver(s, w)) return TDS_OK; /* not now */
   int32_t nm = w->nmov, N = 3 * nm, nq = w->fq.nq;
   int32_t nu = nq <= PG_NT_NQ ? nq : 0; /* multipliers in the border */
-  int32_t nr = w->nrig; /* rigid motions the constraints allow: their
-                           directions are exact null vectors of J (the
-                           map moves with the surface), fixed by a border */
+  /* rigid motions: the gauge's, or all six on a free surface; their
+  ** directions are exact null vectors of J (the map moves with the
+  ** surface), fixed by a border */
+  static const int all6[6] = {0, 1, 2, 3, 4, 5};
+  int32_t nr = nt->free ? 6 : w->nrig;
+  const int *rig = nt->free ? all6 : w->rig;
   int32_t nb = N + nq + nu + nr;
   int rc = neighbours(s, w, nt);
   if (rc != TDS_OK) return tds_seterr(ctx, rc, "out of memory");
@@ -360,7 +370,7 @@ int pg_newton_build(tds_ctx *ctx, tds_surf *s, pgw *w, pg_newton *nt, const doub
         }
       }
     }
-  for (int32_t j = 0; j < nm && nr; j++) {
+  for (int32_t j = 0; j < nm && w->nrig; j++) {
     /* The gauge keeps contact-line vertices in place along the line: the
     ** map never moves them that way, so J has a zero row there; the
     ** Newton step keeps them too (-t t^T, t along the line). */
@@ -381,7 +391,7 @@ int pg_newton_build(tds_ctx *ctx, tds_surf *s, pgw *w, pg_newton *nt, const doub
     for (int32_t j = 0; j < nm; j++) v3_add(xc, xc, m->x[w->mov[j]]);
     v3_scale(xc, 1.0 / nm);
     for (int32_t k = 0; k < nr; k++) {
-      int rk = w->rig[k];
+      int rk = rig[k];
       for (int32_t j = 0; j < nm; j++) {
         double e[3] = {0, 0, 0}, md[3], rel[3];
         e[rk % 3] = 1;
@@ -425,7 +435,7 @@ int pg_newton_apply(tds_ctx *ctx, pg_newton *nt, const pgw *w, const double *X, 
   int32_t N = 3 * w->nmov, nq = w->fq.nq;
   int32_t nu = nq <= PG_NT_NQ ? nq : 0;
   for (int32_t i = 0; i < N; i++) nt->b[i] = X[i] - G[i];
-  for (int32_t q = 0; q < nq + nu + w->nrig; q++) nt->b[N + q] = 0;
+  for (int32_t q = 0; q < nq + nu + (nt->free ? 6 : w->nrig); q++) nt->b[N + q] = 0;
   int rc = tds_la_solve(ctx, nt->lu, nt->b, 0);
   if (rc != TDS_OK) return rc;
   for (int32_t i = 0; i < N; i++) G[i] = X[i] + nt->b[i];
