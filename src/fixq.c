@@ -191,7 +191,7 @@ static int solve_sparse(tds_ctx *ctx, tds_fixq *fq, double *rhs) {
   if (rc == TDS_OK && tds_spmat_from_trip(&t, 1, &G))
     rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   tds_sptrip_free(&t);
-  if (rc == TDS_OK) rc = tds_la_factor(ctx, &G, &f);
+  if (rc == TDS_OK) rc = tds_la_factor(ctx, &G, 0, &f); /* 0: the default zero-pivot size */
   if (rc == TDS_OK) rc = tds_la_solve(ctx, f, rhs, 0);
   tds_la_free(f);
   tds_spmat_free(&G);
