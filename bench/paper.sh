@@ -4,7 +4,8 @@
 # Usage: sh bench/paper.sh [TDS_BINARY] [EXPERIMENT ...]
 # Env: EVOLVER (default evolver-nox-d); PAPER_G_ITERS (g; u; V rounds, 1000);
 # PAPER_REPEAT (default 1): run each tds row that many times and show the
-# fastest run (the runs are identical but for their timings).
+# fastest run (the runs are identical but for their timings); PAPER_CACHE
+# (below).
 # Generated inputs (scripts/paper/generate.lua): an experiment named
 # FAMILY/CASE runs scripts/paper/gen.tds with PAPER_GEN=FAMILY/CASE; by
 # default every case of every family follows the paper's experiments
@@ -16,6 +17,12 @@ TDS=${1:-./tds}
 case $TDS in /*) ;; *) TDS=$(pwd)/$TDS ;; esac
 EVOLVER=${EVOLVER:-evolver-nox-d}
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
+# Evolver's outputs (it is deterministic) are kept by a hash of the input
+# and the commands in PAPER_CACHE (default build/evolver-cache; "none":
+# always run), with their run times: a second run only runs tds.
+CACHE=${PAPER_CACHE:-$ROOT/build/evolver-cache}
+[ "$CACHE" = none ] && CACHE=
+[ -n "$CACHE" ] && { mkdir -p "$CACHE" 2>/dev/null || CACHE=; }
 GEN_CASES=${PAPER_GEN_CASES:-"1 2 3 4 5 6 7 8 9 10"}
 [ "$GEN_CASES" = none ] && GEN_CASES=
 GEN=
@@ -94,10 +101,24 @@ for exp in $EXPS; do
       sed -i "s/inx < [0-9]*/inx < $PAPER_G_ITERS/; s/ITERS [0-9]*/ITERS $PAPER_G_ITERS/" "$d/gloop.cmd"
     fi
     for mode in gloop relax; do
-      t0=$(now)
-      (cd "$d" && "$EVOLVER" -f "$mode.cmd" in.fe < /dev/null) > "$d/$mode.out" 2>&1
-      t1=$(now)
-      secs=$(echo "$t1 - $t0" | bc -l)
+      key=
+      if [ -n "$CACHE" ]; then
+        # (not the header line naming the input's temporary path)
+        key=$CACHE/paper-$( (grep -v '^// .*written by tds' "$d/in.fe"; cat "$d/$mode.cmd"
+                             echo "$EVOLVER") | md5sum | cut -d' ' -f1)
+      fi
+      if [ -n "$key" ] && [ -f "$key" ] && [ -f "$key.secs" ]; then
+        cp "$key" "$d/$mode.out"
+        secs=$(cat "$key.secs")
+      else
+        t0=$(now)
+        (cd "$d" && "$EVOLVER" -f "$mode.cmd" in.fe < /dev/null) > "$d/$mode.out" 2>&1
+        t1=$(now)
+        secs=$(echo "$t1 - $t0" | bc -l)
+        if [ -n "$key" ]; then
+          cp "$d/$mode.out" "$key.tmp" && mv "$key.tmp" "$key" && echo "$secs" > "$key.secs"
+        fi
+      fi
       (cd "$d" && PAPER_DUMP=$d/$mode.out PAPER_LABEL=evolver-$mode PAPER_SECONDS=$secs \
         "$TDS" -q "$script") > "$d/$mode.m" 2>&1
       eline=$(grep '^RESULT' "$d/$mode.m")

@@ -197,9 +197,27 @@ local function userattr(kind, name)
   return a and a.user and a
 end
 
+-- Facetedge attributes (define facetedge attribute NAME type [dims]) are
+-- kept on the facet, one value per side: the facet attribute fe__NAME of
+-- shape [3][dims] (so they are copied with the facet by refine and the
+-- snapshots of failing commands, and dump writes them as that facet
+-- attribute, which a tds load of the dump gives back to the facetedges).
+local FEPRE = "fe__"
+E.FEPRE = FEPRE
+
 function E.defattr(kind, name, ty, dims)
   local d = {}
   for i, n in ipairs(dims) do d[i] = num(n) end
+  if kind == "facetedge" then
+    if #name + #FEPRE >= 32 then fail(("facetedge attribute %s: name longer than %d characters"):format(name, 31 - #FEPRE)) end
+    table.insert(d, 1, 3)
+    kind, name = "facet", FEPRE .. name
+  end
+  for _, n in ipairs(d) do
+    -- Evolver scripts free an attribute's storage by redefining it with a
+    -- size 0 (multiplicate.cmd); tds keeps it as it is
+    if n == 0 and userattr(kind, name) then USER = nil; return end
+  end
   local ok, err = pcall(tds.define_attribute, kind, name, ty, d)
   USER = nil
   if not ok then fail(tostring(err):gsub("^.-:%d+: ", "")) end
@@ -306,8 +324,47 @@ local function feattr(o, name)
       end
     end
   end
+  local u = userattr("facet", FEPRE .. name)
+  if u then
+    local v = o.f[FEPRE .. name][o.k]
+    if type(v) == "number" then return v + 0.0 end
+    return v -- a proxy of this side's array
+  end
+  if name == "edge" or name == "facet" then return around(o, name)[1] end
   fail(("facetedge %d has no attribute '%s'"):format(id, name))
 end
+
+local function fe_set(o, name, v)
+  local u = userattr("facet", FEPRE .. name)
+  local id = 3 * (o.f.id - 1) + o.k
+  if not u then fail(("facetedge %d has no attribute '%s' to set"):format(id, name)) end
+  local function fail_fe(err) -- the facet's column, named as the user knows it
+    fail((tostring(err):gsub("^.-:%d+: ", ""):gsub("^facet %d+: " .. FEPRE, ("facetedge %d: "):format(id))))
+  end
+  local rows = o.f[FEPRE .. name]
+  if #u.dims == 1 then
+    local ok, err = pcall(function() rows[o.k] = num(v) end)
+    if not ok then fail_fe(err) end
+    return
+  end
+  local function fill(d) -- a number assigned to an array sets every element
+    local r = {}
+    for i = 1, u.dims[d] do r[i] = d < #u.dims and fill(d + 1) or num(v) end
+    return r
+  end
+  local ok, err = pcall(function() rows[o.k] = type(v) == "table" and v or fill(2) end)
+  if not ok then fail_fe(err) end
+end
+
+-- Element attributes of Evolver (elements.htm) tds does not have: reading
+-- one is an error naming it as such.
+local EV_ATTRS = {}
+for w in ([[dihedral orientation vertex_normal sqcurve square_mean_curvature v_force
+  v_velocity raw_velocity v_oldx v_constraint_list e_constraint_list f_constraint_list
+  v_boundary e_boundary v_method_list e_method_list f_method_list on_quantity
+  on_method_instance mid_edge mid_facet axial_point triple_point tetra_point midv wrap
+  wrap_list no_transform phase f_next_vertex p_force p_velocity constraint_normal
+  gauss_curvature node_charge]]):gmatch("%S+") do EV_ATTRS[w] = true end
 
 function E.attr(o, name)
   if type(o) == "table" and o.__quantity then return E.qattr(o, name) end
@@ -322,6 +379,7 @@ function E.attr(o, name)
   end
   local f = ATTR[name]
   if f then return f(h, rev) end
+  if EV_ATTRS[name] then fail(("%s %d: attribute %s is not supported yet"):format(kindof(h), h.id, name)) end
   local ok, v = pcall(function() return h[name] end)
   if not ok then fail(v) end
   if v == nil then
@@ -337,6 +395,7 @@ function E.pred(h, what, n)
   if not isel(h) then fail(what .. " needs an element") end
   h = unwrap(h)
   n = math.floor(num(n))
+  if what == "value_of_constraint" then fail("value_of_constraint: not supported yet") end
   if what == "on_constraint" or what == "hit_constraint" then
     local cs = h.constraints or {}
     for _, c in ipairs(cs) do if c == n then return true end end
@@ -354,6 +413,7 @@ end
 function E.setattr(h, name, v, fromset)
   if type(h) == "table" and h.__quantity then return E.setqattr(h, name, v) end
   if not isel(h) then fail(("cannot set '%s' of a %s"):format(name, type(h))) end
+  if isfe(h) then return fe_set(h, name, v == true and 1 or v) end
   h = unwrap(h)
   local k = kindof(h)
   local u = userattr(k, name)
@@ -393,6 +453,7 @@ function E.fixname(low, raw, on)
 end
 
 function E.unsetattr(h, name, v)
+  if isfe(h) then return fe_set(h, name, 0) end
   h = unwrap(h)
   local k = kindof(h)
   local info = attrinfo(k, name)
@@ -471,7 +532,28 @@ function E.histogram(log, list, f)
 end
 
 
-function E.has_extra(h, name) return E.isel(h) and userattr(kindof(h), name) ~= nil end
+-- sizeof(name) of an extra attribute: its number of values per element
+-- (a facetedge attribute's per side); an array variable of that name wins.
+function E.attrsize(name)
+  local v = rawget(_G, name)
+  if type(v) == "table" then return #v + 0.0 end
+  for _, k in ipairs { "vertex", "edge", "facet", "body" } do
+    for _, n in ipairs { name, k == "facet" and FEPRE .. name or nil } do
+      local u = userattr(k, n)
+      if u then
+        local size = 1
+        for i, d in ipairs(u.dims or {}) do if not (n ~= name and i == 1) then size = size * d end end
+        return size + 0.0
+      end
+    end
+  end
+  fail(("sizeof: '%s' is not an array or an extra attribute"):format(name))
+end
+
+function E.has_extra(h, name)
+  if isfe(h) then return userattr("facet", FEPRE .. name) ~= nil end
+  return E.isel(h) and userattr(kindof(h), name) ~= nil
+end
 
 -- list GEN in Evolver's layout.
 local COLOR_NAME = { [-1] = "clear", [0] = "black", "blue", "green", "cyan", "red", "magenta",
@@ -483,7 +565,7 @@ local COLOR_NAME = { [-1] = "clear", [0] = "black", "blue", "green", "cyan", "re
 local function userlist(h, kind)
   local out = {}
   for _, a in ipairs(tds.attributes(KINDNUM[kind])) do
-    if a.user then
+    if a.user and a.name:sub(1, #FEPRE) ~= FEPRE then
       local function fmt(v)
         if type(v) ~= "table" then return ("%.15g"):format(v) end
         local t = {}
@@ -499,6 +581,36 @@ end
 -- list GEN in Evolver's layout: coordinates or ids, then the element's
 -- constraints and flags, then its length or area (%g) in a comment.
 function E.list(h, kind, first)
+  if isfe(h) then
+    -- Evolver's columns; neighbours around the edge are signed negative
+    -- when they run the edge the other way
+    if first then E.out("//    id       edge    facet  prevedge nextedge    prevfacet nextfacet\n") end
+    local e = around(h, "edge")[1]
+    local function around_id(name)
+      local o = feattr(h, name)
+      local oe = around(o, "edge")[1]
+      local sign = (select(2, unwrap(oe)) == select(2, unwrap(e))) and 1 or -1
+      return sign * feattr(o, "id")
+    end
+    local ex = {}
+    for _, a in ipairs(tds.attributes(tds.facet)) do
+      if a.user and a.name:sub(1, #FEPRE) == FEPRE then
+        local v = feattr(h, a.name:sub(#FEPRE + 1))
+        if type(v) == "number" then ex[#ex + 1] = ("%.15g"):format(v)
+        else
+          local vals = {}
+          local function walk(x) if type(x) == "number" then vals[#vals + 1] = ("%.15g"):format(x) else for i = 1, #x do walk(x[i]) end end end
+          walk(v)
+          ex[#ex + 1] = "{" .. table.concat(vals, ",") .. "}"
+        end
+      end
+    end
+    local eid = select(2, unwrap(e)) and -unwrap(e).id or unwrap(e).id
+    E.out(("%6d%11d%9d%10d%9d%13d%9d%s \n"):format(feattr(h, "id"), eid, h.f.id,
+      feattr(feattr(h, "prevedge"), "id"), feattr(feattr(h, "nextedge"), "id"),
+      around_id("prevfacet"), around_id("nextfacet"), table.concat(ex)))
+    return
+  end
   h = unwrap(h)
   local cons = kind ~= "body" and #h.constraints > 0 and table.concat(h.constraints, " ")
   if kind == "vertex" then

@@ -347,6 +347,9 @@ function P:elemchain(c)
     elseif w == "on_constraint" or w == "hit_constraint" or w == "on_boundary" then
       local n, nk = self:unary()
       return "E.pred(" .. c .. ", " .. q(w) .. ", " .. asnum(n, nk) .. ")", "b"
+    elseif w == "value_of_constraint" then
+      local n, nk = self:unary()
+      return "E.pred(" .. c .. ", " .. q(w) .. ", " .. asnum(n, nk) .. ")", "n"
     else
       if KINDS[w] then self:err("'" .. t.raw .. "' here makes a generator; use it after foreach or in an aggregate", dot) end
       if w == "x" and self:isop("[") then w = "__x" end -- vv.x[2]: coordinate 2
@@ -413,6 +416,12 @@ function P:postfix()
       or w == "valid_boundary" or w == "matrix_inverse" or w == "matrix_multiply"
       or w == "matrix_determinant") and self:isop("(", 1) then
     self:next(); self:next()
+    local a1, a2 = self:peek(), self:peek(1)
+    if w == "sizeof" and a1.t == "name" and self.extra[a1.s] and not self:lookup(a1.s)
+       and a2.t == "op" and a2.v == ")" then -- sizeof(extra_attribute): its values per element
+      self:next(); self:next()
+      return "E.attrsize(" .. q(a1.s) .. ")", "n"
+    end
     if w == "valid_element" then
       local kt = self:next()
       if kt.t ~= "name" or not KINDS[kt.s] then self:err("valid_element(kind[id]) expected", kt) end
@@ -430,12 +439,12 @@ function P:postfix()
     self:expect("]")
     return self:elemchain("E.getelem(" .. q(KINDS[w]) .. ", " .. asnum(i, ik) .. ")")
   end
-  if (w == "on_constraint" or w == "hit_constraint" or w == "on_boundary") then
+  if (w == "on_constraint" or w == "hit_constraint" or w == "on_boundary" or w == "value_of_constraint") then
     local cur = self:current()
     if not cur then self:err(w .. " needs an element (use it in a where clause or foreach)") end
     self:next()
     local n, nk = self:unary()
-    return "E.pred(" .. cur.var .. ", " .. q(w) .. ", " .. asnum(n, nk) .. ")", "b"
+    return "E.pred(" .. cur.var .. ", " .. q(w) .. ", " .. asnum(n, nk) .. ")", w == "value_of_constraint" and "n" or "b"
   end
   self:next()
   local b = self:lookup(w)
@@ -766,8 +775,28 @@ function P:statement1()
       self.i, self.depth = save, saved_depth
     end
     if (op == ":=" or op == "::=") and self:isop("{") and not self:lookup(w) then
+      self.usercmds = self.usercmds or {}
+      self.usercmds[w] = true -- a user command of that name is no unsupported command
       local body = self:funcbody({}, true)
       return "E.defcmd(" .. q(w) .. ", function() " .. body .. " end)"
+    end
+    -- name := command (no braces), as Evolver: `gg := g 5`, `few :=
+    -- transforms off`, `all := show facet`, `rr := r`. The right side is
+    -- a command when it starts with a name and does not read as a whole
+    -- expression, or is a lone command word.
+    local c = self:peek()
+    if (op == ":=" or op == "::=") and c.t == "name" and not self:lookup(w) then
+      local save, saved_depth = self.i, self.depth
+      local ok = pcall(self.expr, self)
+      local whole = ok and self:atend()
+      local lone = self.i == save + 1 and not self:lookup(c.s) and
+        (#c.raw == 1 and LETTERS[c.raw] or STMT[c.s] or type(rawget(_G, c.s)) == "function")
+      self.i, self.depth = save, saved_depth
+      if not whole or lone then
+        self.usercmds = self.usercmds or {}
+        self.usercmds[w] = true
+        return "E.defcmd(" .. q(w) .. ", function() " .. self:funcbody({}, false) .. " end)"
+      end
     end
     local v = asnum(self:expr())
     local b = self:lookup(w)
@@ -797,6 +826,22 @@ function P:statement1()
   if self:isname("on") or self:isname("off") then
     local on = self:next().s == "on"
     return "E.toggle(" .. q(w) .. ", " .. tostring(on) .. ")"
+  end
+  -- an Evolver command tds does not have (M.UNSUPPORTED, set by the
+  -- runtime): whatever follows is its arguments; it is an error naming it
+  -- when it runs (zoom 1 0.5, breakpoint gogo 12, exprint gogo)
+  local U = M.UNSUPPORTED
+  if U and (#t.raw == 1 and U[t.raw] or #t.raw > 1 and U[w]) and not self:lookup(w)
+     and type(rawget(_G, w)) ~= "function" and not (self.usercmds and self.usercmds[w]) then
+    local depth = 0
+    while true do
+      local x = self:peek()
+      if x.t == "eof" or (depth == 0 and self:atend(x)) then break end
+      self:next()
+      if x.t == "op" and (x.v == "(" or x.v == "[" or x.v == "{") then depth = depth + 1
+      elseif x.t == "op" and (x.v == ")" or x.v == "]" or x.v == "}") then depth = depth - 1 end
+    end
+    return "E.unsupported(" .. q(t.raw) .. ")"
   end
   -- procedure call: name(args)
   if self:isop("(") and not (#t.raw == 1 and LETTERS[t.raw]) then
@@ -1070,7 +1115,10 @@ function P:s_list()
   end
   if self:atend() then self:err("list needs a generator: list vertex, list edge where ...") end
   local w = self:next()
-  return "E.unsupported(" .. q("list " .. (w.s or tostring(w.v))) .. ")"
+  if w.s == "topinfo" then return "E.listtop()" end
+  local what = "list " .. (w.s or tostring(w.v))
+  while not self:atend() do self:next() end -- list constraint 1, list boundary 2
+  return "E.unsupported(" .. q(what) .. ")"
 end
 
 -- set gen attr [value] [where cond]; set gen.attr value
@@ -1202,7 +1250,10 @@ function M.translate(text, line0)
     local extra = {}
     if tds and tds.attributes then
       for _, k in ipairs { tds.vertex, tds.edge, tds.facet, tds.body } do
-        for _, a in ipairs(tds.attributes(k)) do if a.user then extra[a.name] = true end end
+        for _, a in ipairs(tds.attributes(k)) do
+          if a.user then extra[a.name] = true end
+          if a.user and a.name:sub(1, 4) == "fe__" then extra[a.name:sub(5)] = true end -- facetedge's
+        end
       end
     end
     local p = setmetatable({ text = text, toks = lex(text, line0), i = 1, nsym = 0, depth = 0, scopes = { {} },

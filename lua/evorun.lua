@@ -370,32 +370,35 @@ local INTERNAL = {
   facetedge_count = function() return 3.0 * tds.count(tds.facet) end,
   scale = function() return (tds.scale()) end,
   scale_limit = function() return tds.setting("scale_limit") end,
+  autochop_length = function() return tds.setting("autochop_length") end,
   iteration_counter = function() return tds.setting("iterations") + 0.0 end,
   gravity_constant = function() return (tds.gravity()) end,
   G = function() local g, on = tds.gravity(); return on and g or 0.0 end,
   space_dimension = function() local _, d = tds.dimensions(); return d + 0.0 end,
   surface_dimension = function() local d = tds.dimensions(); return d + 0.0 end,
   torus = function() return 0.0 end,
-  -- the identity and the datafile's view transforms (display only in tds)
-  transform_count = function() return tds.setting("view_transforms") + 1.0 end,
   symmetry_group = function() return 0.0 end,
   simplex_representation = function() return 0.0 end,
   lagrange_order = function() return 1.0 end,
-  linear = function() return 1.0 end,
+  linear = function() return E.lagrange1 and 0.0 or 1.0 end,
+  lagrange = function() return E.lagrange1 and 1.0 or 0.0 end,
   quadratic = function() return 0.0 end,
   clock = function() return os.clock() end,
   cpu_counter = function() return os.clock() end,
   random = function() return math.random() end,
   constraint_tolerance = function() return tds.setting("constraint_tolerance") end,
   datafilename = function() return tds.datafile_name and tds.datafile_name() or "" end,
+  random_seed = function() return (E.random_seed or 1) + 0.0 end, -- Evolver starts at 1
   date_and_time = function() return os.date("%a %b %d %H:%M:%S %Y") end,
   conj_grad = function() return tds.setting("conj_grad") and 1.0 or 0.0 end,
   quiet = function() return tds.quiet() and 1.0 or 0.0 end,
+  transforms = function() return E.toggle_get("transforms") and 1.0 or 0.0 end,
   gravity = function() local _, on = tds.gravity(); return on and 1.0 or 0.0 end,
   hessian_normal = function() return tds.hessian_setting("hessian_normal") and 1.0 or 0.0 end,
   linear_metric = function() return tds.hessian_setting("linear_metric") and 1.0 or 0.0 end,
   linear_metric_mix = function() return tds.hessian_setting("linear_metric_mix") end,
   last_eigenvalue = function() return tds.hessian_setting("last_eigenvalue") end,
+  hessian_epsilon = function() return tds.hessian_setting("hessian_epsilon") end,
   total_length = function()
     local s = 0.0
     for _, e in ipairs(E.all("edge")) do s = s + e.length end
@@ -432,9 +435,32 @@ local SETTABLE = {
   gravity_constant = function(v) local _, on = tds.gravity(); tds.gravity(num(v), on) end,
   constraint_tolerance = function(v) tds.setting("constraint_tolerance", num(v)) end,
   scale_limit = function(v) tds.setting("scale_limit", num(v)) end,
-  random_seed = function(v) math.randomseed(math.floor(num(v))) end,
+  autochop_length = function(v) tds.setting("autochop_length", num(v)) end,
+  random_seed = function(v) E.random_seed = math.floor(num(v)); math.randomseed(E.random_seed) end,
   linear_metric_mix = function(v) tds.hessian_setting("linear_metric_mix", num(v)) end,
+  hessian_epsilon = function(v) tds.hessian_setting("hessian_epsilon", num(v)) end,
 }
+
+-- Evolver's internal variables tds does not have (syntax.htm): reading
+-- one is an error naming it, not an undefined variable.
+local EVOLVER_VARS = {}
+for w in ([[ambient_pressure_value background breakflag body_dissolve_count brightness
+  check_count delete_count detorus_epsilon dissolve_count edge_delete_count
+  edge_dissolve_count edge_refine_count edge_pop_count edgeswap_count eigenneg eigenpos
+  eigenvalues eigenzero equi_count estimated_change facet_delete_count
+  facet_dissolve_count fix_count graphics_title hessian_slant_cutoff
+  high_boundary high_constraint inverse_periods integral_order integral_order_1d
+  integral_order_2d jiggle_temperature last_error last_hessian_scale memory_arena
+  memory_used notch_count pickvnum pickenum pickfnum pop_count pop_edge_to_tri_count
+  pop_quad_to_quad_count pop_tri_to_edge_count quadratic_metric_mix refine_count
+  rotation_order scale_scale scrollbuffersize self_sim_coeff string_curve_tolerance
+  t1_edgeswap_count target_tolerance temperature thickness torus_periods total_time
+  unfix_count vertex_dissolve_count vertex_pop_count view_transforms_unique_point
+  where_count window_aspect_ratio console_title usr1 usr2 usr3 usr4 usr5
+  usr6 usr7 usr8 usr9 x4 x5 x6 x7 x8 x9]]):gmatch("%S+") do
+  EVOLVER_VARS[w] = true
+end
+E.EVOLVER_VARS = EVOLVER_VARS
 
 function E.getv(name, cur)
   local f = INTERNAL[name] or INTERNAL[name:lower()]
@@ -447,6 +473,7 @@ function E.getv(name, cur)
   if v == nil and cur and E.has_extra(cur, low) then return E.attr(cur, low) end
   if v == nil and tds.quantity_info(low) ~= nil then return { __quantity = low } end
   if v == nil then v = tds.constraint_named(low) end -- a named constraint is its number
+  if v == nil and EVOLVER_VARS[low] then fail(("%s: not supported yet"):format(name)) end
   if v == nil then fail(("undefined variable '%s'"):format(name)) end
   if type(v) == "function" then
     if name == "new_body" then E.touch(); return v() end -- Evolver writes it without ()
@@ -486,7 +513,10 @@ function E.setindex(a, i, v)
   if type(a) ~= "table" then fail("indexing a value that is not an array") end
   local k = math.floor(num(i))
   if k < 1 or k > #a then fail(("array index %d out of range 1..%d"):format(k, #a)) end
-  a[k] = v
+  local ok, err = pcall(function() a[k] = v end)
+  if not ok then -- a facetedge attribute's column (lua/evoelem.lua) named as the user knows it
+    fail((tostring(err):gsub("^.-:%d+: ", ""):gsub("^facet (%d+): fe__", "facet %1: facetedge attribute ")))
+  end
 end
 
 local function newarray(dims, d, ty, init)
@@ -687,12 +717,18 @@ local TOGGLE_MSG = {
   quiet = "Quiet %s. (was %s)",
   gravity = "Gravity %s. (was %s)",
   check_increase = "Increase check %s. (was %s)",
+  autopop = "Autopopping %s.\n (was %s)",
+  immediate_autopop = "Immediate autopop mode %s.\n (was %s)",
+  autochop = "Autochopping %s. (was %s)",
   little_endian = "little_endian %s. (was %s)",
   big_endian = "big_endian %s. (was %s)",
   hessian_normal = "hessian_normal %s. (was %s)",
   linear_metric = "Linear interpolation metric with Hessian %s.(was %s)",
   hessian_diff = "hessian_diff %s. (was %s)",
+  hessian_special_normal = "hessian_special_normal %s. (was %s)",
+  transforms = "Transform showing %s. (was %s)", -- display only: no graphics in tds
 }
+local show_transforms = true
 
 -- Byte order of binary_printf: "<" little endian (Evolver's default on
 -- this machine), ">" big endian.
@@ -703,20 +739,27 @@ local function toggle_get(name)
   if name == "quiet" then return tds.quiet() end
   if name == "gravity" then local _, on = tds.gravity(); return on end
   if name == "check_increase" then return tds.setting("check_increase") end
+  if name == "autopop" or name == "immediate_autopop" or name == "autochop" then return tds.setting(name) end
   if name == "little_endian" then return endian == "<" end
   if name == "big_endian" then return endian == ">" end
-  if name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff" then
+  if name == "transforms" then return show_transforms end
+  if name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff"
+      or name == "hessian_special_normal" then
     return tds.hessian_setting(name)
   end
 end
+E.toggle_get = toggle_get
 local function toggle_set(name, on)
   if name == "conj_grad" then tds.setting("conj_grad", on)
   elseif name == "quiet" then tds.quiet(on)
   elseif name == "gravity" then local g = tds.gravity(); tds.gravity(g, on)
   elseif name == "check_increase" then tds.setting("check_increase", on)
+  elseif name == "autopop" or name == "immediate_autopop" or name == "autochop" then tds.setting(name, on)
   elseif name == "little_endian" then endian = on and "<" or ">"
   elseif name == "big_endian" then endian = on and ">" or "<"
-  elseif name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff" then
+  elseif name == "transforms" then show_transforms = on
+  elseif name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff"
+      or name == "hessian_special_normal" then
     tds.hessian_setting(name, on)
   end
 end
@@ -769,7 +812,7 @@ end
 -- have no effect without graphics.
 local FIXED_TOGGLE = {
   metric_conversion = false, autorecalc = true, gv_binary = "any", autodisplay = "any",
-  transforms = "any", clipped = "any", connected = "any", raw_cells = "any",
+  clipped = "any", connected = "any", raw_cells = "any",
   show_inner = "any", show_outer = "any", thicken = "any", pscolorflag = "any",
   ps_colorflag = "any", gridflag = "any", crossingflag = "any", labelflag = "any",
   show_all_edges = "any", rgb_colors = false,
@@ -786,6 +829,7 @@ function E.toggle(name, on)
          name, fixed and "on" or "off"))
   end
   if not TOGGLE_MSG[name] then
+    if name == "jiggle" then fail("jiggle on/off (jiggling at every iteration): not supported yet") end
     if E.B[name] or rawget(_G, name) then fail(("%s takes no on/off"):format(name)) end
     fail(("%s: not supported yet"):format(name))
   end
@@ -840,11 +884,12 @@ B.o = function()
   local ok, err = pcall(tds.pop, nil)
   if not ok then err = tostring(err); fail("o: " .. (err:match("not supported.*") or err)) end
 end
--- O: in the string model the same as o (Evolver pops vertices there).
+B.renumber_all = function() flush(); tds.renumber_all() end
+B.rebody = function() flush(); tds.rebody() end
+-- O: pops edges; in the string model the same as o (Evolver pops vertices there).
 B.O = function()
   flush()
-  if tds.dimensions() ~= 1 then fail("O: not supported yet (in the string model it is o)") end
-  tds.string_pop()
+  if tds.dimensions() == 1 then tds.string_pop() else tds.pop_edges(nil) end
 end
 B.j = function(t) flush(); tds.jiggle(t ~= nil and num(t, "j") or nil) end
 B.V = function(n) for _ = 1, times(n, "V") do flush(); tds.vertex_average(nil) end end
@@ -940,10 +985,63 @@ B.load = function(path)
     if err:find("^" .. path:gsub("%p", "%%%0") .. ":%d") then error(err, 0) end -- has its place
     fail(err)
   end
+  E.lagrange1 = false -- a new surface: the linear model
 end
-B.replace_load = B.load
 B.permload = B.load
+-- addload "file": its elements added to the surface (renumbered after the
+-- existing ones), its top section's declarations replacing those of the
+-- same name; its read section is not run. replace_load: the elements go
+-- first. Both are all or nothing.
+local function addload(fn, what, path)
+  if type(path) ~= "string" then fail(what .. " needs a datafile name: " .. what .. " \"file.fe\"") end
+  flush()
+  E.touch()
+  local ok, err = pcall(fn, path)
+  if not ok then
+    err = tostring(err)
+    if err:find("^" .. path:gsub("%p", "%%%0") .. ":%d") then error(err, 0) end
+    fail(err)
+  end
+end
+B.addload = function(path) addload(tds.addload, "addload", path) end
+B.replace_load = function(path) addload(tds.replace_load, "replace_load", path) end
 B.exec = function(text) E.exec(text) end
+
+-- The element model. tds has linear elements only: `linear`, `M 1` and
+-- `lagrange 1` (the same geometry in Evolver, stored another way) are
+-- accepted and report what Evolver reports; `quadratic`, `M 2` and
+-- `lagrange n` (n >= 2) are not supported yet. E.lagrange1: `lagrange 1`
+-- was given (Evolver's LAGRANGE model) since the last `linear`.
+local converted = false -- Evolver converts to named quantities once
+local NO_HIGHER = " (tds has linear elements only; linear and lagrange 1 are accepted)"
+B.linear = function()
+  if E.lagrange1 then E.out("Changing to LINEAR model. (was LAGRANGE)\n") end
+  E.lagrange1 = false
+end
+B.quadratic = function() fail("quadratic: not supported yet" .. NO_HIGHER) end
+B.lagrange = function(n)
+  if n == nil then fail("Syntax: LAGRANGE order") end
+  n = num(n, "lagrange")
+  if n % 1 ~= 0 then fail(("lagrange: order %g must be a whole number"):format(n)) end
+  if n < 1 then fail("Lagrange order must be at least 1.") end
+  if n > 1 then fail(("lagrange: not supported yet for order %d%s"):format(n, NO_HIGHER)) end
+  if E.lagrange1 then
+    E.out("Changing to LAGRANGE 1 model. (was LAGRANGE 1)\n")
+  else
+    E.out("Changing to LAGRANGE model. (was LINEAR)\n")
+    if not converted then E.out("Converting to all named quantities...Done.\n") end
+    converted = true
+  end
+  E.lagrange1 = true
+end
+B.M = function(n)
+  if n == nil then fail("M: give the model: M 1 (linear) or M 2 (quadratic)") end
+  n = num(n, "M")
+  if n == 2 then fail("M: not supported yet for M 2, the quadratic model" .. NO_HIGHER) end
+  if n ~= 1 then fail(("M %g: the model is 1 (linear) or 2 (quadratic)"):format(n)) end
+  if not E.lagrange1 then E.out("Model already LINEAR.\n") end
+  B.linear()
+end
 
 -- A toggle's name alone turns it on, as in Evolver (conj_grad; quiet).
 for name in pairs(TOGGLE_MSG) do B[name] = function() E.toggle(name, true) end end
@@ -961,9 +1059,9 @@ B.hessian = function() need_surface("hessian"); tds.hessian() end
 B.hessian_seek = function(s) need_surface("hessian_seek"); tds.hessian_seek(s ~= nil and num(s, "hessian_seek") or nil) end
 B.saddle = function(s) need_surface("saddle"); tds.saddle(s ~= nil and num(s, "saddle") or nil) end
 B.eigenprobe = function(c, iters)
-  if iters ~= nil then fail("eigenprobe(value, iterations): the inverse iteration form is not supported yet (use ritz(value, 1))") end
   need_surface("eigenprobe")
-  tds.eigenprobe(c ~= nil and num(c, "eigenprobe") or 0)
+  if iters ~= nil then iters = times(iters, "eigenprobe") end
+  tds.eigenprobe(c ~= nil and num(c, "eigenprobe") or 0, iters)
 end
 B.ritz = function(c, n)
   need_surface("ritz")
@@ -978,25 +1076,42 @@ end
 
 -- Evolver commands tds does not have: named in the error.
 local UNSUPPORTED = {}
-for w in ([[O J e A a b f k M p Q W y Z z s P D F H h X
-  hessian_menu lagrange
+for w in ([[J e A a b f k p Q W y Z z s P D F H h X
+  hessian_menu
   dirichlet dirichlet_seek sobolev sobolev_seek
   pop_quad_to_quad t1_edgeswap raw_vertex_average
-  rawest_vertex_average rawv rawestv vertex_merge
-  edge_merge facet_merge facet_crosscut rebody zoom detorus wrap_vertex 
-  addload
+  rawest_vertex_average rawv rawestv
+  edge_merge facet_merge facet_crosscut zoom detorus wrap_vertex 
   logfile keylogfile history pause subcommand breakpoint whereami flush_counts
   reset_counts metis kmetis body_metis ometis
-  exprint show show_expr showq show_trans close_show transforms transform_expr
+  exprint show show_expr showq close_show
   display_text delete_text postscript binary_off_file off_file geomview
-  homothety autopop autochop ribiere
+  homothety ribiere
   quietgo quietload verbose approximate_curvature runge_kutta
   post_project volgrads_every area_normalization effective_area normal_motion
   ysmp bunch_kaufman sparse_constraints augmented_hessian
   torus_filled kusner conf_edge normal_curvature boundary_curvature
   show_all_quantities interp_bdry_param break_after_warning break_on_warning
   itdebug memdebug debug estimate extrapolate set_body_target quantity]]):gmatch("%S+") do UNSUPPORTED[w] = true end
+for w in ([[deturck diffusion hessian_normal_one hessian_normal_perp hessian_special_normal
+  hessian_double_normal sobolev_mode dirichlet_mode metis_factor hessian_quiet pop_disjoin
+  pop_enjoin pop_to_edge pop_to_face septum_flag force_deletion star_finagling
+  force_edgeswap k_altitude_mode assume_oriented calculate_in_3d self_similar
+  immediate_autopop autopop_quartic longj simplex_to_fe ooglfile geompipe reorder_storage
+  free_discards dump_memlist wrap_inverse wrap_compose]]):gmatch("%S+") do
+  UNSUPPORTED[w] = true
+end
 E.UNSUPPORTED = UNSUPPORTED
+-- The translator takes what follows such a command as its arguments.
+evolang.UNSUPPORTED = setmetatable({}, { __index = function(_, k)
+  if UNSUPPORTED[k] and not B[k] then return true end
+end })
+-- jiggle is Evolver's toggle (jiggling at every iteration); tds's Lua
+-- jiggle(t) is one jiggle, as Evolver's j
+B.jiggle = function(t)
+  if t == nil then fail("jiggle (jiggling at every iteration): not supported yet; j [temperature] jiggles once") end
+  return B.j(t) -- tds's alias of j (doc/commands.md)
+end
 
 
 
@@ -1038,7 +1153,8 @@ function E.cmd(name, ...)
   if not b and #name > 1 then b = B[name:lower()] end
   if b then E.touch(); return b(...) end
   local f = rawget(_G, name)
-  if f == nil then f = rawget(_G, name:lower()) end
+  -- single letters are case-sensitive (W is not w)
+  if f == nil and #name > 1 then f = rawget(_G, name:lower()) end
   if type(f) == "function" then
     if user[f] == true then
       if nargs > 1 then fail(("%s takes at most a repetition count"):format(name)) end
@@ -1122,7 +1238,7 @@ function E.oncollection(name, kind, list)
     if kind ~= "vertex" then fail("pop " .. kind .. ": the string model pops vertices only (as Evolver)") end
     if #list > 0 then tds.string_pop(list, true) end
   elseif name == "pop" then
-    if kind ~= "vertex" then fail("pop " .. kind .. ": not supported yet (pop vertices)") end
+    if kind ~= "vertex" and kind ~= "edge" then fail("pop works on vertices and edges, not " .. kind) end
     tds.pop(list)
   elseif name == "edgeswap" then
     if kind ~= "edge" then fail("edgeswap needs edges") end
@@ -1207,6 +1323,8 @@ function E.run_read(path)
   end
   E.run(text, path, line0)
 end
+
+require("evoview")
 
 -- evolver [[ text ]]: run Evolver command text from Lua. Errors read
 -- "script.tds:CALLLINE: evolver:LINE: message" (LINE within the text).

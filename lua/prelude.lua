@@ -286,11 +286,32 @@ function K(angle) return tds.skinny(need(angle, "angle", "K(angle)")) end
 function n(angle) return tds.notch(need(angle, "angle", "n(angle)")) end
 notch = n
 function delete(set) return tds.delete(list_of(set, "delete")) end
+-- o() pops edges then vertices; o(set) pops the set's edges or vertices;
+-- O() pops edges only.
 function o(set)
   if type(set) == "function" then set = list_of(set) end
   return tds.pop(set)
 end
 pop = o
+function O() return tds.pop_edges(nil) end
+-- renumber_all(): ids 1, 2, ... for the live elements of each kind, in
+-- order (after deletions); returns how many ids changed.
+function renumber_all() return tds.renumber_all() end
+-- rebody(): each body cut into pieces becomes one body per piece.
+function rebody() return tds.rebody() end
+-- vertex_merge(v1, v2): vertex v2 (a handle or an id) joins v1.
+function vertex_merge(a, b)
+  local function vx(v)
+    if type(v) == "number" then
+      local h = math.tointeger(v) and vertex[math.tointeger(v)]
+      if h == nil then error(("vertex_merge: vertex %s does not exist"):format(v), 3) end
+      return h
+    end
+    return v
+  end
+  return tds.vertex_merge(vx(a), vx(b))
+end
+pop_edges = O
 function pop_edge_to_tri(set) return tds.pop_edge_to_tri(list_of(set, "pop_edge_to_tri")) end
 function pop_tri_to_edge(set) return tds.pop_tri_to_edge(list_of(set, "pop_tri_to_edge")) end
 function dissolve(set) return tds.dissolve(list_of(set, "dissolve")) end
@@ -342,6 +363,22 @@ function check_increase(on)
   tds.setting("check_increase", on and true or false)
   print(("Increase check %s. (was %s)"):format(on and "ON" or "OFF", was and "on" or "off"))
 end
+
+-- autopop(on), immediate_autopop(on), autochop(on [, length]): the mesh
+-- maintenance g does before each step (doc/commands.md). No argument
+-- toggles.
+local function gtoggle(name, what)
+  return function(on, len)
+    local was = tds.setting(name)
+    if on == nil then on = not was end
+    if len ~= nil then tds.setting("autochop_length", len) end
+    tds.setting(name, on and true or false)
+    print(("%s %s. (was %s)"):format(what, on and "ON" or "OFF", was and "on" or "off"))
+  end
+end
+autopop = gtoggle("autopop", "Autopopping")
+immediate_autopop = gtoggle("immediate_autopop", "Immediate autopop mode")
+autochop = gtoggle("autochop", "Autochopping")
 
 -- recalc(): after assigning parameters, put boundary vertices where their
 -- parameters say and constrained vertices back on their constraints (g, r
@@ -511,7 +548,7 @@ tds.props.vertex.gauss_curvature = function(h) return tds.vertex_gauss_curvature
 function hessian() return tds.hessian() end
 function hessian_seek(maxscale) return tds.hessian_seek(maxscale) end
 function saddle(maxscale) return tds.saddle(maxscale) end
-function eigenprobe(c) return tds.eigenprobe(c or 0) end
+function eigenprobe(c, n) return tds.eigenprobe(c or 0, n) end
 function ritz(shift, n) return tds.ritz(shift or 0, n or 5) end
 function lanczos(shift, n) return tds.ritz(shift or 0, n or 15) end
 function move(t) return tds.move(t) end
@@ -526,6 +563,7 @@ end
 hessian_normal = newton_toggle("hessian_normal", "hessian_normal %s. (was %s)")
 linear_metric = newton_toggle("linear_metric", "Linear interpolation metric with Hessian %s.(was %s)")
 hessian_diff = newton_toggle("hessian_diff", "hessian_diff %s. (was %s)")
+hessian_special_normal = newton_toggle("hessian_special_normal", "hessian_special_normal %s. (was %s)")
 
 -- Evolver's command language: the runtime (tds.E, evolver [[...]]), read
 -- sections run at load, and the prompt's Lua/Evolver rule.

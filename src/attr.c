@@ -211,6 +211,37 @@ static int valid_name(const char *name) {
   return 1;
 }
 
+/* Give user column col of kind the dimensions dim (same number as now),
+** keeping each element's values at the indices both shapes have (Evolver:
+** "data will be preserved as best as possible"); new places are 0. */
+static int resize(tds_ctx *ctx, tds_mesh *m, int kind, int col, const int32_t *dim,
+                  int64_t size) {
+  tds_ucol *u = &m->ucol[kind][col];
+  int32_t cap = kind == TDS_VERTEX ? m->capv
+                : kind == TDS_EDGE ? m->cape
+                : kind == TDS_FACET ? m->capf : m->capb;
+  double *v = tds_calloc(&m->alloc, (size_t)(cap > 0 ? cap : 1) * (size_t)size, sizeof *v);
+  if (!v) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+  for (int64_t k = 0; k < size; k++) { /* new flat index k -> old one, if inside */
+    int64_t rest = k, old = 0, stride = 1;
+    int inside = 1;
+    for (int i = u->ndim - 1; i >= 0; i--) {
+      int64_t idx = rest % dim[i];
+      rest /= dim[i];
+      if (idx >= u->dim[i]) inside = 0;
+      old += idx * stride;
+      stride *= u->dim[i];
+    }
+    if (!inside) continue;
+    for (int32_t e = 0; e < cap; e++) v[(size_t)e * (size_t)size + (size_t)k] = u->v[(size_t)e * (size_t)u->size + (size_t)old];
+  }
+  tds_free(&m->alloc, u->v);
+  u->v = v;
+  for (int i = 0; i < u->ndim; i++) u->dim[i] = dim[i];
+  u->size = (int32_t)size;
+  return TDS_OK;
+}
+
 int tds_attr_define(tds_ctx *ctx, tds_mesh *m, int kind, const char *name, int type,
                     int ndim, const int32_t *dim) {
   const char *kn = kind >= 0 && kind < TDS_NKINDS ? tds_kind_name[kind] : NULL;
@@ -242,10 +273,11 @@ int tds_attr_define(tds_ctx *ctx, tds_mesh *m, int kind, const char *name, int t
                         name, name);
     int same = a.type == type && a.ndim == ndim;
     for (int i = 0; same && i < ndim; i++) same = a.dim[i] == dim[i];
-    if (!same)
-      return tds_seterr(ctx, TDS_ERANGE, "%s attribute %s is already defined as %s%s", kn,
-                        name, tds_attr_type_name(a.type), a.ndim ? " with another shape" : "");
-    return TDS_OK;
+    if (same) return TDS_OK;
+    if (a.type == type && a.ndim == ndim) return resize(ctx, m, kind, a.col, dim, size);
+    return tds_seterr(ctx, TDS_ERANGE, "%s attribute %s is already defined as %s%s", kn,
+                      name, tds_attr_type_name(a.type),
+                      a.ndim ? " with another number of dimensions" : "");
   }
   int32_t cap = kind == TDS_VERTEX ? m->capv
                 : kind == TDS_EDGE ? m->cape

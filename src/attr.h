@@ -82,6 +82,12 @@ typedef struct tds_attr {
 /* A user attribute's storage: `size` doubles per element slot, grown with
 ** the mesh (mesh.c), zero for new elements, inherited by elements split
 ** from an element of the same kind (refine). */
+/* Evolver's facetedge attributes (`define facetedge attribute w real`)
+** are the facet attribute fe__w of shape [3][...], one value per side
+** (lua/evoelem.lua); a facet split off another does not inherit them
+** (tds_mesh_inherit): Evolver's new facetedges start at 0. */
+#define TDS_FE_ATTR_PREFIX "fe__"
+
 typedef struct tds_ucol {
   char name[TDS_ATTR_NAMELEN];
   int type;            /* TDS_AT_REAL or TDS_AT_INT */
@@ -132,7 +138,10 @@ int tds_attr_exclusive(tds_ctx *ctx, const tds_mesh *m, int kind, const char *wh
 /* Define user attribute `name` of `kind`: type TDS_AT_REAL or TDS_AT_INT,
 ** ndim dimensions dim[] (0 = a scalar). Every element gets zeros. Defining
 ** it again with the same type and shape is allowed (nothing changes);
-** a different shape, a built-in name, a bad name or size is TDS_ERANGE
+** with the same type and number of dimensions but other sizes it is
+** resized, each element keeping its values at the indices both shapes
+** have, as Evolver does; another type or number of dimensions, a
+** built-in name, a bad name or size is TDS_ERANGE
 ** with a message; TDS_ENOMEM. */
 int tds_attr_define(tds_ctx *ctx, tds_mesh *m, int kind, const char *name, int type,
                     int ndim, const int32_t *dim);

@@ -10,6 +10,7 @@
 #include "method.h"
 #include "geom.h"
 #include "motion.h"
+#include "torus.h"
 #include "vec3.h"
 
 #define UNUSED(x) (void)(x)
@@ -273,6 +274,24 @@ static int econ_set(SETTER_ARGS) {
   return TDS_OK;
 }
 
+/* wrap (torus model, torus.h): Evolver's wrap code. Dumps write wraps as
+** * + - signs after the vertices; the word only for counts beyond 1. */
+static int e_wrap_get(GETTER_ARGS) {
+  UNUSED(ctx);
+  UNUSED(a);
+  return one(v, n, tds_torus_wrap_code(s->m.ewrap[id]));
+}
+static int e_wrap_set(SETTER_ARGS) {
+  UNUSED(a);
+  if (!n) return tds_seterr(ctx, TDS_ERANGE, "edge %d: wrap cannot be unset", id + 1);
+  return tds_torus_set_wrap(ctx, s, id, v[0]);
+}
+static int e_wrap_dumped(const tds_surf *s, tds_id id) {
+  int k[3];
+  tds_wrap_unpack(s->m.ewrap[id], k);
+  return k[0] * k[0] > 1 || k[1] * k[1] > 1 || k[2] * k[2] > 1;
+}
+
 static const tds_attr edge_rows[] = {
     RO(TDS_EDGE, "length", TDS_AT_REAL, 1, e_length),
     ORIGINAL(TDS_EDGE),
@@ -295,6 +314,8 @@ static const tds_attr edge_rows[] = {
     ROW(.name = "color", .fe_alias = "colour", .kind = TDS_EDGE, .type = TDS_AT_COLOR,
         .size = 1,
         .io = FE_DECL, .get = get_scol, .set = e_color_set, .off = OFF(ecolor)),
+    ROW(.name = "wrap", .kind = TDS_EDGE, .type = TDS_AT_INT, .size = 1, .io = FE_DECL,
+        .get = e_wrap_get, .set = e_wrap_set, .dumped = e_wrap_dumped),
 };
 
 /* ---- facets ---- */

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "gather.h"
 #include "motion.h"
 #include "vec3.h"
 
@@ -36,6 +37,20 @@ int tds_build_face(tds_ctx *ctx, tds_surf *s, tds_id f, int n,
                         TDS_OID(oe[(k + 1) % n]) + 1);
   if (f < m->nf && tds_alive(m->fflags, f))
     return tds_seterr(ctx, TDS_ERANGE, "face %d is declared twice", f + 1);
+  /* torus: wrap[k] = where the tail of oe[k] is, unwrapped along the face
+  ** from its first vertex; the loop must close (wraps adding up to 0) */
+  int32_t wsum = 0;
+  if (m->torus) {
+    for (int k = 0; k < n; k++) {
+      if (tds_wrap_overflows(wsum, tds_oe_wrap(m, oe[k])))
+        return tds_seterr(ctx, TDS_ERANGE, "face %d: wraps out of range", f + 1);
+      wsum = tds_wrap_add(wsum, tds_oe_wrap(m, oe[k]));
+    }
+    if (wsum != 0)
+      return tds_seterr(ctx, TDS_ETOPO,
+                        "face %d: the wraps of its edges do not add up to zero (the "
+                        "face does not close in the torus)", f + 1);
+  }
   /* Reserve everything first: nothing below may fail. */
   if (tds_mesh_extend_dead(m, TDS_FACET, f + 1) ||
       tds_mesh_room(m, TDS_FACET, m->nf + (n > 3 ? n - 1 : 0)) ||
@@ -49,16 +64,25 @@ int tds_build_face(tds_ctx *ctx, tds_surf *s, tds_id f, int n,
     return TDS_OK;
   }
   double c[3] = {0, 0, 0};
-  for (int k = 0; k < n; k++) v3_add(c, c, m->x[tds_oe_tail(m, oe[k])]);
+  for (int k = 0, w = 0; k < n; k++) {
+    double p[3];
+    v3_add(c, c, tds_wrap_point(m, m->x[tds_oe_tail(m, oe[k])], w, p));
+    if (m->torus) w = tds_wrap_add(w, tds_oe_wrap(m, oe[k]));
+  }
   v3_scale(c, 1.0 / n);
   tds_id cv = tds_mesh_add_vertex(m, c);
   m->vflags[cv] = at->flags & TDS_FIXED;
   m->vcon[cv] = at->con | tds_surf_global_cons(s);
   tds_id spoke0 = m->ne; /* spoke k runs from the tail of oe[k] to cv */
-  for (int k = 0; k < n; k++) {
+  for (int k = 0, w = 0; k < n; k++) {
     tds_id e = tds_mesh_add_edge(m, tds_oe_tail(m, oe[k]), cv);
     m->eflags[e] = at->flags & (TDS_FIXED | TDS_NO_REFINE);
     m->econ[e] = at->con;
+    /* the centre is where the face's first vertex sees it */
+    if (m->torus) {
+      m->ewrap[e] = w ? tds_wrap_neg(w) : 0;
+      w = tds_wrap_add(w, tds_oe_wrap(m, oe[k]));
+    }
   }
   for (int k = 0; k < n; k++) {
     tds_id in = spoke0 + (k + 1) % n, out = spoke0 + k;

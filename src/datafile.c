@@ -51,6 +51,7 @@ static int begin_section(df *d, int sec, const char *at) {
   d->section = sec;
   if (sec == S_VERTICES) {
     d->seen_vertices = 1;
+    if ((rc = df_torus_start(d, at))) return rc;
     /* the model, now that the top section has said which */
     if (d->string_model) {
       rc = tds_strings_enable(d->ctx, d->s, d->space_dim ? d->space_dim : 3);
@@ -181,7 +182,11 @@ static int finish(df *d) {
   char where[300];
   snprintf(where, sizeof where, "%.280s: ", d->name);
   tds_mesh_body_warnings(d->ctx, m, where);
-  if (d->has_read) {
+  if (m->torus) {
+    int rc = df_torus_finish(d);
+    if (rc) return rc;
+  }
+  if (d->has_read && !d->app) { /* addload: the new file's read section is not run */
     const char *r = d->lx.src + d->read_at;
     size_t n = d->lx.n - d->read_at;
     if (has_commands(r, n)) {
@@ -207,15 +212,10 @@ static int surface_empty(const tds_surf *s) {
   return 1;
 }
 
-int tds_datafile_load_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
-                             const char *text, size_t len) {
-  TDS_REQUIRE(ctx, s && (text || !len));
-  TDS_REQUIRE(ctx, tds_alloc_same(&ctx->alloc, &s->m.alloc));
-  if (!name) name = "(datafile)";
-  if (!surface_empty(s))
-    return tds_seterr(ctx, TDS_ERANGE,
-                      "%s: a surface is already loaded; datafiles load into an "
-                      "empty surface", name);
+/* Read text into d->s: a new surface, or with `append` added to the one
+** there (datafile_append.c). On failure s is emptied, or put back. */
+static int read_text(tds_ctx *ctx, tds_surf *s, const char *name, const char *text,
+                     size_t len, int append) {
   if (len > TDS_DF_MAXFILE)
     return tds_seterr(ctx, TDS_ESYNTAX, "%s: file too large (more than %u bytes)", name,
                       TDS_DF_MAXFILE);
@@ -227,6 +227,10 @@ int tds_datafile_load_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
   d.p = "";
   int64_t lim = 1000000 + 16 * (int64_t)len;
   d.maxid = lim < TDS_DF_MAXID ? lim : TDS_DF_MAXID;
+  if (append) {
+    int rc = df_app_begin(&d);
+    if (rc) return rc;
+  }
   df_lex_init(&d.lx, ctx, name, text ? text : "", text ? len : 0);
   int rc = parse(&d);
   if (rc == TDS_OK) rc = finish(&d);
@@ -235,15 +239,41 @@ int tds_datafile_load_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
   tds_free(&ctx->alloc, d.oe);
   tds_free(&ctx->alloc, d.pv);
   df_free_ids(&d);
-  if (rc != TDS_OK) {
-    if (rc < 0) rc = -rc;
+  if (rc < 0) rc = -rc;
+  if (append) {
+    df_app_end(&d, rc == TDS_OK);
+  } else if (rc != TDS_OK) {
     tds_surf_free(s); /* leaves ctx->errmsg alone */
   }
   return rc;
 }
 
-int tds_datafile_load(tds_ctx *ctx, tds_surf *s, const char *path) {
-  TDS_REQUIRE(ctx, s && path);
+int tds_datafile_load_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
+                             const char *text, size_t len) {
+  TDS_REQUIRE(ctx, s && (text || !len));
+  TDS_REQUIRE(ctx, tds_alloc_same(&ctx->alloc, &s->m.alloc));
+  if (!name) name = "(datafile)";
+  if (!surface_empty(s))
+    return tds_seterr(ctx, TDS_ERANGE,
+                      "%s: a surface is already loaded; datafiles load into an "
+                      "empty surface", name);
+  return read_text(ctx, s, name, text, len, 0);
+}
+
+int tds_datafile_addload_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
+                                const char *text, size_t len) {
+  TDS_REQUIRE(ctx, s && (text || !len));
+  TDS_REQUIRE(ctx, tds_alloc_same(&ctx->alloc, &s->m.alloc));
+  if (!name) name = "(datafile)";
+  if (s->str)
+    return tds_seterr(ctx, TDS_ESYNTAX, "%s: addload in the string model is not supported yet",
+                      name);
+  return read_text(ctx, s, name, text, len, 1);
+}
+
+/* The whole file at path into *buf (the caller frees it), *n bytes. */
+static int slurp(tds_ctx *ctx, const char *path, char **out, size_t *nout) {
+  *out = NULL;
   FILE *f = fopen(path, "rb");
   if (!f) return tds_seterr(ctx, TDS_EIO, "cannot open '%s': %s", path, strerror(errno));
   size_t cap = 1 << 16, n = 0;
@@ -274,7 +304,31 @@ int tds_datafile_load(tds_ctx *ctx, tds_surf *s, const char *path) {
                     TDS_DF_MAXFILE);
   }
   fclose(f);
+  if (rc != TDS_OK) {
+    tds_free(&ctx->alloc, buf);
+    return rc;
+  }
+  *out = buf;
+  *nout = n;
+  return TDS_OK;
+}
+
+int tds_datafile_load(tds_ctx *ctx, tds_surf *s, const char *path) {
+  TDS_REQUIRE(ctx, s && path);
+  char *buf;
+  size_t n;
+  int rc = slurp(ctx, path, &buf, &n);
   if (rc == TDS_OK) rc = tds_datafile_load_buffer(ctx, s, path, buf, n);
+  tds_free(&ctx->alloc, buf);
+  return rc;
+}
+
+int tds_datafile_addload(tds_ctx *ctx, tds_surf *s, const char *path) {
+  TDS_REQUIRE(ctx, s && path);
+  char *buf;
+  size_t n;
+  int rc = slurp(ctx, path, &buf, &n);
+  if (rc == TDS_OK) rc = tds_datafile_addload_buffer(ctx, s, path, buf, n);
   tds_free(&ctx->alloc, buf);
   return rc;
 }

@@ -60,6 +60,24 @@ int tds_datafile_load(tds_ctx *ctx, tds_surf *s, const char *path);
 int tds_datafile_load_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
                              const char *text, size_t len);
 
+/* Evolver's `addload`: the datafile at path (or text[0..len)) added to
+** the surface s, which may hold anything (not the string model). The new
+** elements are numbered after the existing slots (their file ids become
+** `original`; KEEP_ORIGINALS is not obeyed), top-section declarations
+** replace existing ones of the same number or name (parameters, constraints,
+** boundaries, quantities, settings), user attributes already defined must
+** agree in type, and the file's read section is ignored (not run, not
+** kept). All or nothing: on any failure s is bit for bit as before, with
+** "path:line: message" in ctx->errmsg and the statuses of the load. */
+int tds_datafile_addload(tds_ctx *ctx, tds_surf *s, const char *path);
+int tds_datafile_addload_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
+                                const char *text, size_t len);
+
+/* Evolver's `replace_load`: every element of s goes, then path is
+** addloaded (ids start at 1 again; parameters, constraints, quantities
+** and attributes not redeclared stay). All or nothing like addload. */
+int tds_datafile_replace_load(tds_ctx *ctx, tds_surf *s, const char *path);
+
 /* Evolver's run-time `define constraint|boundary|quantity ...`: one
 ** top-section declaration in text[0..len), given as in a datafile, added
 ** to the live surface s. Messages are "name:LINE: ..." with the text's

@@ -406,9 +406,8 @@ static int edge_line(df *d) {
   if (df_looks_int(d))
     return df_err(d, d->p, TDS_ESYNTAX,
                   "%s: a third vertex (QUADRATIC midpoint) is not supported yet", what);
-  if (*d->p == '*' || *d->p == '+' || *d->p == '-')
-    return df_err(d, d->p, TDS_ESYNTAX,
-                  "%s: torus wrap signs (TORUS) are not supported yet", what);
+  int32_t wrap;
+  if ((rc = df_edge_wrap(d, what, &wrap))) return rc;
   uint32_t flags = 0;
   tds_cmask con = 0;
   int rev = 0;
@@ -424,6 +423,7 @@ static int edge_line(df *d) {
                      d->s->str ? 1 : 0, 0); /* strings carry tension by default */
   if (rc) return df_core(d, line, rc, NULL);
   d->s->m.efile[id] = line_file_id(d);
+  d->s->m.ewrap[id] = wrap;
   return apply_attrs(d, TDS_EDGE, id, pv0, d->npv, line);
 }
 

@@ -19,7 +19,6 @@
 
 /* Evolver keywords whose features the core does not have yet. */
 static const char *const unsupported[] = {
-    "torus", "torus_filled", "periods", "display_periods", "display_origin",
     "quadratic", "lagrange", "lagrange_order", "simplex_representation",
     "symmetry_group", "conformal_metric", "klein_metric",
     "method_instance", "optimizing_parameter", "optimising_parameter", "wulff",
@@ -31,12 +30,12 @@ static const char *const unsupported[] = {
     "integral_order_2d", "runge_kutta", "homothety", "autopop", "autochop",
     "area_normalization", "approximate_curvature", "effective_area", "jiggle",
     "temperature", "length_method_name", "area_method_name",
-    "volume_method_name", "hessian_special_normal_vector", "fixed_area",
+    "volume_method_name", "fixed_area",
     "area_fixed", "load_library", "interp_bdry_param",
-    "view_transform_generators", "function", "procedure",
+    "function", "procedure",
     "gradient_mode", "parameter_file", "ideal_gas", "knot_energy",
     "conserved", "on_assign_call", "nonwall", "content_rank", "axial_point",
-    "wrap", "phase", "actual_volume", "form_integrand", "k_form_order",
+    "phase", "actual_volume", "form_integrand", "k_form_order",
     "parameter_1", "element_modulus", "clip_coeff", NULL};
 
 int df_unsupported(const char *w) {
@@ -154,14 +153,15 @@ static int integrals(df *d, tds_expr *en[3], tds_expr *ct[3], int flags,
 /* The number after keyword kw (constraint, boundary): in 1..1e9 and not
 ** declared before (slot_of finds declared ones); what = "kw N". */
 static int decl_number(df *d, const char *kw, int (*slot_of)(const tds_surf *, int),
-                       int64_t *n, char *what, size_t cap) {
+                       int app_kind, int64_t *n, char *what, size_t cap) {
   char u[64];
   int rc = df_header_int(d, 0, df_upper(kw, u, sizeof u), n);
   if (rc) return rc;
   if (*n < 1 || *n > 1000000000)
     return df_err(d, NULL, TDS_ESYNTAX, "%s: number %lld out of range", u, (long long)*n);
   snprintf(what, cap, "%s %lld", kw, (long long)*n);
-  if (slot_of(d->s, (int)*n) >= 0)
+  int slot = slot_of(d->s, (int)*n);
+  if (slot >= 0 && !df_app_detach(d, app_kind, slot)) /* addload replaces */
     return df_err(d, NULL, TDS_ESYNTAX, "%s is declared twice", what);
   return TDS_OK;
 }
@@ -183,10 +183,11 @@ static int h_constraint(df *d, const hdr_kw *k) {
     for (size_t i = 0; i < nl; i++) name[i] = (char)(a[i] >= 'A' && a[i] <= 'Z' ? a[i] + 32 : a[i]);
     d->p += nl;
     snprintf(what, sizeof what, "constraint %s", name);
-    if (tds_surf_con_named(d->s, name, nl) >= 0)
+    int old = tds_surf_con_named(d->s, name, nl);
+    if (old >= 0 && !df_app_detach(d, DF_APP_CON, old))
       return df_err(d, a, TDS_ESYNTAX, "%s is declared twice", what);
-    n = tds_surf_con_free_number(d->s);
-  } else if ((rc = decl_number(d, k->name, tds_surf_con_slot, &n, what, sizeof what))) {
+    n = old >= 0 ? d->s->con[old].number : tds_surf_con_free_number(d->s);
+  } else if ((rc = decl_number(d, k->name, tds_surf_con_slot, DF_APP_CON, &n, what, sizeof what))) {
     return rc;
   }
   int flags = 0;
@@ -235,7 +236,7 @@ static int h_constraint(df *d, const hdr_kw *k) {
 static int h_boundary(df *d, const hdr_kw *k) {
   int64_t n, np;
   char what[64];
-  int rc = decl_number(d, k->name, tds_model_boundary_slot, &n, what, sizeof what);
+  int rc = decl_number(d, k->name, tds_model_boundary_slot, DF_APP_BDRY, &n, what, sizeof what);
   if (rc) return rc;
   int have;
   if ((rc = df_more(d, &have))) return rc;
@@ -265,6 +266,26 @@ static int h_boundary(df *d, const hdr_kw *k) {
   int line = df_line_of(d, NULL);
   rc = tds_model_boundary(d->ctx, d->s, (int)n, (int)np, flags, x, en, ct);
   return rc ? df_core(d, line, rc, NULL) : TDS_OK;
+}
+
+/* HESSIAN_SPECIAL_NORMAL_VECTOR with C1: C2: C3: (functions of the
+** coordinates and parameters). */
+static int h_special_normal(df *d, const hdr_kw *k) {
+  (void)k;
+  const char *what = "HESSIAN_SPECIAL_NORMAL_VECTOR";
+  tds_expr *c[3] = {0};
+  int rc = df_components(d, 'c', 0, c, what);
+  if (!rc && (!c[0] || !c[1] || !c[2]))
+    rc = df_err(d, d->p, TDS_ESYNTAX, "%s: needs C1, C2 and C3", what);
+  if (rc) {
+    df_free3(c);
+    return rc;
+  }
+  for (int i = 0; i < 3; i++) {
+    tds_expr_free(d->s->special_normal[i]);
+    d->s->special_normal[i] = c[i];
+  }
+  return TDS_OK;
 }
 
 /* ---- named quantities ---- */
@@ -300,7 +321,8 @@ static int h_quantity(df *d, const hdr_kw *k) {
                   "%s: expected ENERGY, FIXED = value or INFO_ONLY, found %s", what,
                   df_describe(d->p, b, sizeof b));
   }
-  if (tds_model_quantity_find(d->s, name) >= 0)
+  int oldq = tds_model_quantity_find(d->s, name);
+  if (oldq >= 0 && !df_app_detach(d, DF_APP_QUANT, oldq))
     return df_err_line(d, qline, TDS_ESYNTAX, "%s is declared twice", what);
   if (kind == 3) return df_not_supported(d, d->p, "conserved");
   d->p += wl;
@@ -476,6 +498,8 @@ static int h_dimension(df *d, const hdr_kw *k) {
   int space = k->name[1] == 'p';
   if (space ? n != 2 && n != 3 : n != 1 && n != 2)
     return df_err(d, NULL, TDS_ESYNTAX, "%s %lld is not supported yet", u, (long long)n);
+  if (d->app && (space ? n != 3 : n != 2))
+    return df_err(d, NULL, TDS_ESYNTAX, "addload of a string-model datafile is not supported yet");
   if (space) d->space_dim = (int)n;
   else d->string_model = n == 1;
   return TDS_OK;
@@ -488,6 +512,7 @@ static int h_metric(df *d, const hdr_kw *k) {
 
 static int h_string(df *d, const hdr_kw *k) {
   (void)k;
+  if (d->app) return df_err(d, NULL, TDS_ESYNTAX, "addload of a string-model datafile is not supported yet");
   d->string_model = 1;
   return TDS_OK;
 }
@@ -520,31 +545,88 @@ static int h_slice(df *d, const hdr_kw *k) {
   return TDS_OK;
 }
 
-/* VIEW_TRANSFORMS n, then n matrices each optionally preceded by COLOR c
-** or SWAP_COLORS; display only. */
-static int h_view_transforms(df *d, const hdr_kw *k) {
-  (void)k;
+/* VIEW_TRANSFORMS n or VIEW_TRANSFORM_GENERATORS n, then n matrices (4x4,
+** row-major) each optionally preceded by COLOR c or SWAP_COLORS (display
+** only, skipped). The view transforms are kept after the identity, as
+** Evolver lists them; generators are for transform_expr. */
+static int read_matrices(df *d, int gen) {
+  const char *what = gen ? "VIEW_TRANSFORM_GENERATORS" : "VIEW_TRANSFORMS";
   int64_t n;
-  int rc = df_header_int(d, 0, "VIEW_TRANSFORMS", &n);
+  int rc = df_header_int(d, 0, what, &n);
   if (rc) return rc;
-  if (n > 100000)
-    return df_err(d, NULL, TDS_ESYNTAX, "VIEW_TRANSFORMS: too many (%lld)", (long long)n);
-  d->s->view_transforms = (int)n;
-  for (int64_t t = 0; t < n; t++) {
+  if (n > TDS_MAX_VIEW - 1)
+    return df_err(d, NULL, TDS_ESYNTAX, "%s: too many (%lld)", what, (long long)n);
+  int line = df_line_of(d, NULL);
+  int first = gen ? 0 : 1, total = (int)n + first;
+  double (*m)[16] = tds_calloc(&d->ctx->alloc, (size_t)total + 1, sizeof *m);
+  uint8_t *sw = tds_calloc(&d->ctx->alloc, (size_t)total + 1, 1);
+  if (!m || !sw) {
+    tds_free(&d->ctx->alloc, m);
+    tds_free(&d->ctx->alloc, sw);
+    return df_err(d, NULL, TDS_ENOMEM, "out of memory");
+  }
+  if (!gen)
+    for (int k = 0; k < 4; k++) m[0][5 * k] = 1;
+  for (int64_t t = 0; t < n && !rc; t++) {
     int have;
     for (;;) {
-      if ((rc = df_more(d, &have))) return rc;
-      if (have && df_accept(d, "swap_colors")) continue;
+      if ((rc = df_more(d, &have))) break;
+      if (have && df_accept(d, "swap_colors")) {
+        sw[first + t] = 1;
+        continue;
+      }
       if (have && df_accept(d, "color")) {
         int16_t c;
-        if ((rc = df_more(d, &have)) || (rc = df_read_color(d, &c, "VIEW_TRANSFORMS")))
-          return rc;
+        if ((rc = df_more(d, &have)) || (rc = df_read_color(d, &c, what))) break;
         continue;
       }
       break;
     }
-    if ((rc = skip_values(d, 16, "VIEW_TRANSFORMS"))) return rc;
+    d->split = 1;
+    for (int k = 0; k < 16 && !rc; k++) rc = df_header_value(d, &m[first + t][k], what);
+    d->split = 0;
   }
+  if (!rc) {
+    rc = tds_surf_set_view(d->ctx, d->s, gen, n || gen ? total : 0, (const double (*)[16])m, sw);
+    if (rc) rc = df_core(d, line, rc, what);
+  }
+  tds_free(&d->ctx->alloc, m);
+  tds_free(&d->ctx->alloc, sw);
+  return rc;
+}
+
+static int h_view_transforms(df *d, const hdr_kw *k) {
+  (void)k;
+  return read_matrices(d, 0);
+}
+
+static int h_view_generators(df *d, const hdr_kw *k) {
+  (void)k;
+  return read_matrices(d, 1);
+}
+
+/* TORUS, TORUS_FILLED, PERIODS (datafile_torus.c) */
+static int h_torus(df *d, const hdr_kw *k) {
+  return df_torus(d, k->name[5] == '_');
+}
+static int h_periods(df *d, const hdr_kw *k) {
+  (void)k;
+  return df_periods(d);
+}
+/* DISPLAY_PERIODS (3 rows of 3) and DISPLAY_ORIGIN (3): display only. */
+static int h_display_periods(df *d, const hdr_kw *k) {
+  (void)k;
+  return skip_values(d, 9, "DISPLAY_PERIODS");
+}
+static int h_display_origin(df *d, const hdr_kw *k) {
+  (void)k;
+  return skip_values(d, 3, "DISPLAY_ORIGIN");
+}
+/* CLIPPED, CONNECTED, RAW_CELLS: how a torus surface is shown (Evolver's
+** toggles; exports write facets unwrapped, see doc/torus.md). */
+static int h_display_mode(df *d, const hdr_kw *k) {
+  (void)d;
+  (void)k;
   return TDS_OK;
 }
 
@@ -580,7 +662,7 @@ static int h_version(df *d, const hdr_kw *k) {
 /* KEEP_ORIGINALS: element ids as the file gives them (datafile_int.h). */
 static int h_keep(df *d, const hdr_kw *k) {
   (void)k;
-  d->keep_ids = 1;
+  d->keep_ids = !d->app; /* addload renumbers, as Evolver */
   return TDS_OK;
 }
 
@@ -589,6 +671,7 @@ static const hdr_kw header_kw[] = {
     {"define", h_define, 0, 0},
     {"constraint", h_constraint, 0, 0},
     {"boundary", h_boundary, 0, 0},
+    {"hessian_special_normal_vector", h_special_normal, 0, 0},
     {"quantity", h_quantity, 0, 0},
     {"gravity_constant", h_value, AT(gravity), ANY},
     {"spring_constant", h_value, AT(gap_constant), ANY},
@@ -596,6 +679,17 @@ static const hdr_kw header_kw[] = {
     {"symmetric_content", h_symmetric, 0, 0},
     {"string", h_string, 0, 0},
     {"metric", h_metric, 0, 0},
+    {"torus", h_torus, 0, 0},
+    {"torus_filled", h_torus, 0, 0},
+    {"periods", h_periods, 0, 0},
+    {"torus_periods", h_periods, 0, 0},
+    {"display_periods", h_display_periods, 0, 0},
+    {"display_origin", h_display_origin, 0, 0},
+    {"clipped", h_display_mode, 0, 0},
+    {"clipped_cells", h_display_mode, 0, 0},
+    {"connected", h_display_mode, 0, 0},
+    {"connected_cells", h_display_mode, 0, 0},
+    {"raw_cells", h_display_mode, 0, 0},
     {"constraint_tolerance", h_value, AT(constraint_tol), POSITIVE},
     {"space_dimension", h_dimension, 0, 0},
     {"surface_dimension", h_dimension, 0, 0},
@@ -604,6 +698,7 @@ static const hdr_kw header_kw[] = {
     {"view_matrix", h_view_matrix, 0, 0},
     {"slice_coeff", h_slice, 0, 0},
     {"view_transforms", h_view_transforms, 0, 0},
+    {"view_transform_generators", h_view_generators, 0, 0},
     {"evolver_version", h_version, 0, 0},
     {"soapfilm", h_nothing, 0, 0},
     {"linear", h_nothing, 0, 0},

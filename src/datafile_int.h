@@ -127,6 +127,8 @@ typedef struct df {
   int split;           /* several values in a row: element lines, matrices */
   int space_dim;       /* SPACE_DIMENSION given (0: not given) */
   int string_model;    /* STRING or SURFACE_DIMENSION 1 given */
+  int torus_line;      /* line of TORUS / TORUS_FILLED (0: none) */
+  int periods_line;    /* line of PERIODS (0: none) */
   /* Element ids: as Evolver, elements are numbered 1, 2, ... in the order
   ** the file gives them (the file's ids become `original`), unless the
   ** top section says KEEP_ORIGINALS (slot = the file's id - 1). */
@@ -136,7 +138,20 @@ typedef struct df {
   int32_t nread[4];    /* elements of each kind read so far */
   int64_t fid;         /* the current element line's id in the file */
   int64_t orig;        /* its ORIGINAL value, or -1 */
+  struct df_app *app;  /* append mode (addload): what to put back on failure */
 } df;
+
+/* ---- append mode (datafile_append.c) ----
+** df_app_begin saves what the file may change and numbers the new
+** elements after the existing ones; df_app_detach(d, kind, slot) lets the
+** file redeclare an existing constraint, boundary or quantity slot (1:
+** done, its old definition kept aside; 0: not in append mode, or already
+** redeclared by this file); df_app_end keeps the result (ok) or puts the
+** surface back as it was. */
+enum { DF_APP_CON, DF_APP_BDRY, DF_APP_QUANT };
+int df_app_begin(df *d);
+int df_app_detach(df *d, int kind, int slot);
+void df_app_end(df *d, int ok);
 
 /* Free the id maps (datafile_elements.c). */
 void df_free_ids(df *d);
@@ -156,6 +171,21 @@ int df_string_model(df *d);
 int df_metric(df *d, const char *at);
 /* At the end: check the cells. */
 int df_string_finish(df *d);
+
+/* ---- the torus model (datafile_torus.c) ---- */
+
+/* TORUS (filled 0) or TORUS_FILLED (1): the cursor is after the word. */
+int df_torus(df *d, int filled);
+/* PERIODS: three rows of three expressions, each row on one line. */
+int df_periods(df *d);
+/* When the VERTICES section starts: PERIODS needs TORUS. */
+int df_torus_start(df *d, const char *at);
+/* The wrap signs after an edge's vertices (none: *wrap = 0): three of
+** * + -; an error without TORUS. */
+int df_edge_wrap(df *d, const char *what, int32_t *wrap);
+/* After the elements: facets close in the torus, volumes settled to whole
+** cells (torus.h), a warning for bodies that wrap round the torus. */
+int df_torus_finish(df *d);
 
 /* ---- messages (datafile_read.c) ---- */
 

@@ -21,6 +21,7 @@
 #include "model.h"
 #include "string_model.h"
 #include "wfile.h"
+#include "wrap.h"
 
 typedef struct out {
   FILE *f;
@@ -35,6 +36,33 @@ static void num(out *o, double v, const char *what, int id) {
     snprintf(o->what, sizeof o->what, "%s %d", what, id);
   }
   fprintf(o->f, " %.17g", v);
+}
+
+/* VIEW_TRANSFORM_GENERATORS, or else the datafile's VIEW_TRANSFORMS after
+** the identity, as Evolver's dump writes them (it leaves out transforms
+** made by transform_expr from generators). */
+static void matrices(out *o, const char *kw, int n, const double (*m)[16],
+                     const uint8_t *swap) {
+  fprintf(o->f, "%s %d\n", kw, n);
+  for (int t = 0; t < n; t++) {
+    if (swap && swap[t]) fputs("swap_colors\n", o->f);
+    for (int i = 0; i < 4; i++) {
+      for (int j = 0; j < 4; j++) num(o, m[t][4 * i + j], kw, t + 1);
+      fputc('\n', o->f);
+    }
+  }
+}
+
+static void view_matrices(out *o, const tds_surf *s) {
+  if (s->nvgen) {
+    matrices(o, "VIEW_TRANSFORM_GENERATORS", s->nvgen, (const double (*)[16])s->vgen,
+             s->vgen_swap);
+    return;
+  }
+  static const double id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  if (s->view_transforms > 1 && !memcmp(s->view[0], id, sizeof id))
+    matrices(o, "VIEW_TRANSFORMS", s->view_transforms - 1, (const double (*)[16])(s->view + 1),
+             s->view_swap ? s->view_swap + 1 : NULL);
 }
 
 /* Write expression text cleaned for the datafile (see the top). */
@@ -198,6 +226,23 @@ static void header(out *o, const tds_surf *s) {
     fputc('\n', f);
   }
   if (s->npar) fputc('\n', f);
+  if (s->m.torus) {
+    /* the period formulas as given (parameters stay live), one row a line */
+    fputs(s->m.torus == 2 ? "TORUS_FILLED\nPERIODS\n" : "TORUS\nPERIODS\n", f);
+    for (int i = 0; i < 3; i++) {
+      for (int j = 0; j < 3; j++) {
+        if (s->period_expr[i][j]) {
+          fputs(j ? " (" : "(", f);
+          text(o, s->period_expr[i][j]);
+          fputc(')', f);
+        } else {
+          num(o, s->m.period[i][j], "period", i + 1);
+        }
+      }
+      fputc('\n', f);
+    }
+    fputc('\n', f);
+  }
   defines(o, s);
   gravity(o, s);
   if (s->gap_constant != 1) {
@@ -221,6 +266,7 @@ static void header(out *o, const tds_surf *s) {
     fputs(" FIXED\n", f);
   }
   if (s->symmetric_content) fputs("SYMMETRIC_CONTENT\n", f);
+  view_matrices(o, s);
   fputc('\n', f);
 
   /* constraints in order of their numbers */
@@ -260,6 +306,15 @@ static void header(out *o, const tds_surf *s) {
     }
     components(o, "ENERGY", 'E', b->energy, s->str ? 1 : 3);
     components(o, "CONTENT", 'C', b->content, s->str ? 1 : 3);
+    fputc('\n', f);
+  }
+  if (s->special_normal[0]) {
+    fputs("HESSIAN_SPECIAL_NORMAL_VECTOR\n", f);
+    for (int k = 0; k < 3; k++) {
+      fprintf(f, "C%d: ", k + 1);
+      text(o, s->special_normal[k]);
+      fputc('\n', f);
+    }
     fputc('\n', f);
   }
   for (int i = 0; i < s->nquant; i++) {
@@ -368,6 +423,12 @@ static void elements(out *o, tds_surf *s) {
   for (tds_id e = 0; e < m->ne; e++) {
     if (!tds_alive(m->eflags, e)) continue;
     fprintf(f, "%d %d %d", e + 1, m->ev[e][0] + 1, m->ev[e][1] + 1);
+    if (m->torus) { /* Evolver's signs; larger counts by the wrap word */
+      int k[3];
+      tds_wrap_unpack(m->ewrap[e], k);
+      if (k[0] * k[0] <= 1 && k[1] * k[1] <= 1 && k[2] * k[2] <= 1)
+        for (int i = 0; i < 3; i++) fputs(k[i] > 0 ? " +" : k[i] < 0 ? " -" : " *", f);
+    }
     attrs(o, s, TDS_EDGE, e);
     fputc('\n', f);
   }

@@ -29,6 +29,7 @@
 #include "gather.h"
 #include "method.h"
 #include "string_model.h"
+#include "torus.h"
 #include "vec3.h"
 
 /* Where a weighted value goes: body b (its volume and, if constrained,
@@ -62,6 +63,10 @@ struct term {
 void tds_eval_scatter_hess(tds_hess_acc *ha, const tds_id *vs, int kind, double w,
                            double (*h)[9]) {
   if (w == 0) return;
+  if (ha->add) {
+    ha->add(ha, vs, kind, w, h);
+    return;
+  }
   for (int c = 0; c < kind; c++) {
     int32_t r = ha->vidx[vs[c]];
     if (r < 0) continue;
@@ -309,6 +314,31 @@ static term make(const tds_surf *s, int row, sink_fn fn, tds_expr *const *ig, in
   return t;
 }
 
+/* Torus lifts (torus.h): the facet's volume translated by its body's
+** lattice translation t exceeds the untranslated one by t_z times the
+** facet_flux row with d = 2 (int z dx dy), or by t_d / 3 times the row with
+** d (symmetric content); t->slot is d. Weighted as s_volume weights the
+** volume, with the energy -p of a prescribed pressure. */
+static int s_torus_lift(const tds_surf *s, const term *t, tds_id f, sink *o) {
+  const tds_mesh *m = &s->m;
+  if (m->fflags[f] & TDS_NONCONTENT) return 0;
+  int n = 0;
+  double pw = 0;
+  for (int j = 0; j < 2; j++) {
+    tds_id b = m->fb[f][j];
+    int32_t w = s->tlift[2 * f + j];
+    if (b == TDS_NONE || !w) continue;
+    double tv[3];
+    tds_wrap_vec(m->period, w, tv);
+    double c = tv[t->slot] * t->w * (j ? -1.0 : 1.0);
+    if (c == 0) continue;
+    o[n++] = (sink){b, c};
+    if (m->bflags[b] & TDS_PRESSURE) pw -= c * m->bpressure[b];
+  }
+  if (pw != 0) o[n++] = (sink){TDS_NONE, pw};
+  return n;
+}
+
 /* Run t and add its own total to the energy. */
 static int energy_term(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, term t) {
   if (!out->grad) t.gq = -2;
@@ -338,6 +368,17 @@ static int facet_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
                     tds_mk_volume, s_volume);
   out->energy += ten.total + vol.total;
   out->area += ten.sum;
+  if (rc == TDS_OK && s->m.torus && s->m.nb > 0) {
+    int bad = tds_torus_lifts(ctx, s);
+    if (bad < 0) return -bad;
+    for (int d = sym ? 0 : 2; d < 3 && rc == TDS_OK; d++) {
+      term t = make(s, TDS_M_FACET_FLUX, s_torus_lift, NULL, 0);
+      t.slot = d;
+      t.L.k = d;
+      t.w = sym ? 1.0 / 3 : 1;
+      rc = energy_term(ctx, s, out, t);
+    }
+  }
   if (rc == TDS_OK && s->gravity_on && s->gravity != 0 && s->m.nb > 0)
     rc = energy_term(ctx, s, out, make(s, TDS_M_FULL_GRAVITY, s_gravity, NULL, 0));
   return rc;

@@ -18,8 +18,11 @@
 
 /* Hessian collection (hess.h): when tds_eval_out.hess is not NULL, every
 ** term's element Hessian, times its sink's weight and the weight below,
-** is added as triplets (upper half of the global matrix) to trip. */
-typedef struct tds_hess_acc {
+** is added as triplets (upper half of the global matrix) to trip, or
+** (add not NULL) passed to add instead: the element's corners vs, kind
+** of them, weight w != 0, h its 3kind x 3kind Hessian (both halves). */
+typedef struct tds_hess_acc tds_hess_acc;
+struct tds_hess_acc {
   const int32_t *vidx;  /* vertex slot -> global index of its x (y, z
                            follow), or -1 for a vertex that cannot move */
   double ew;            /* weight of the energy's Hessian */
@@ -28,7 +31,9 @@ typedef struct tds_hess_acc {
   int lower;            /* take the kernels' lower halves (a symmetry
                            check; the matrix stored is the same) */
   int status;           /* TDS_ENOMEM when a triplet could not be added */
-} tds_hess_acc;
+  void (*add)(tds_hess_acc *ha, const tds_id *vs, int kind, double w, double (*h)[9]);
+  void *user;           /* for add */
+};
 
 typedef struct tds_eval_out {
   double energy;        /* total energy */

@@ -4,6 +4,7 @@
 #include "la.h"
 #include "sparse.h"
 #include "string_model.h"
+#include "torus.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -36,8 +37,9 @@ int tds_fixq_build(tds_ctx *ctx, tds_surf *s, tds_fixq *fq) {
   tds_fixq_free(fq);
   fq->alloc = ctx->alloc;
   int32_t nq = 0, nglobal = 0;
+  tds_id dropped = tds_torus_dropped_body(m); /* TORUS_FILLED */
   for (tds_id b = 0; b < m->nb; b++)
-    if (tds_alive(m->bflags, b) && (m->bflags[b] & TDS_TARGET)) nq++;
+    if (tds_alive(m->bflags, b) && (m->bflags[b] & TDS_TARGET) && b != dropped) nq++;
   for (int i = 0; i < s->nquant; i++)
     if (s->quant[i].kind == TDS_Q_FIXED) nglobal++;
   nq += nglobal;
@@ -58,7 +60,7 @@ int tds_fixq_build(tds_ctx *ctx, tds_surf *s, tds_fixq *fq) {
   int32_t q = 0;
   for (tds_id b = 0; b < m->nb; b++) {
     fq->bq[b] = -1;
-    if (tds_alive(m->bflags, b) && (m->bflags[b] & TDS_TARGET)) {
+    if (tds_alive(m->bflags, b) && (m->bflags[b] & TDS_TARGET) && b != dropped) {
       fq->qbody[q] = b;
       fq->qquant[q] = -1;
       fq->target[q] = m->btarget[b];
@@ -189,7 +191,7 @@ static int solve_sparse(tds_ctx *ctx, tds_fixq *fq, double *rhs) {
   if (rc == TDS_OK && tds_spmat_from_trip(&t, 1, &G))
     rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   tds_sptrip_free(&t);
-  if (rc == TDS_OK) rc = tds_la_factor(ctx, &G, &f);
+  if (rc == TDS_OK) rc = tds_la_factor(ctx, &G, 1e-10, &f); /* la.h's default pivot size */
   if (rc == TDS_OK) rc = tds_la_solve(ctx, f, rhs, 0);
   tds_la_free(f);
   tds_spmat_free(&G);

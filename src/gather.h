@@ -3,12 +3,12 @@
 **
 ** Every kernel that needs the corner positions of a facet or an edge (its
 ** area, normal, volume, angles, length, vector) gets them here, never by
-** indexing m->x with the element's vertices itself. Today a corner is
-** just a pointer into m->x and every helper compiles to the same loads as
-** the direct reads did. The torus model will change only these helpers: a
-** facet's corners become its first vertex plus the wrapped edge vectors
-** (written into the tds_corners scratch, which is why callers pass one),
-** and an edge vector becomes head + wrap*period - tail. Callers only ever
+** indexing m->x with the element's vertices itself. Without a torus a
+** corner is just a pointer into m->x and every helper compiles to the same
+** loads as the direct reads did. In the torus model (m->torus) a facet's
+** corners are its first vertex and the others translated by the wraps of
+** the facet's edges (written into the tds_corners scratch, which is why
+** callers pass one), and an edge's head is x[head] + wrap . periods. Callers only ever
 ** use differences of corners of one gathered element, or the corners
 ** themselves as points of that element.
 **
@@ -33,6 +33,7 @@
 #define TDS_GATHER_H
 
 #include "mesh.h"
+#include "wrap.h"
 
 /* Gathered corners of one element: x[0..2] (facet) or x[0..1] (edge:
 ** tail, head), valid while the mesh's coordinates and this struct are
@@ -42,11 +43,41 @@ typedef struct tds_corners {
   double tmp[3][3];
 } tds_corners;
 
-/* Corners of facet f in its orientation: x[k] is vertex fv[f][k]. */
+/* The wrap of oriented edge oe (0 without a torus). */
+static inline int32_t tds_oe_wrap(const tds_mesh *m, int32_t oe) {
+  int32_t w = m->ewrap[TDS_OID(oe)];
+  return TDS_OREV(oe) && w ? tds_wrap_neg(w) : w;
+}
+
+/* Point x of the mesh translated by wrap w, into out (or x itself when w is
+** 0); returns the pointer to use. */
+static inline const double *tds_wrap_point(const tds_mesh *m, const double *x, int32_t w,
+                                           double out[3]) {
+  if (!w) return x;
+  double d[3];
+  tds_wrap_vec(m->period, w, d);
+  out[0] = x[0] + d[0];
+  out[1] = x[1] + d[1];
+  out[2] = x[2] + d[2];
+  return out;
+}
+
+/* Corners of facet f in its orientation: x[k] is vertex fv[f][k]. On a
+** torus the corners are unwrapped from the first: x[0] is the first
+** vertex's position, x[1] and x[2] follow the facet's edges (so they may
+** lie outside the unit cell). */
 static inline __attribute__((always_inline)) void
 tds_gather_facet(const tds_mesh *m, tds_id f, tds_corners *c) {
   TDS_ASSERT(f >= 0 && f < m->nf);
   const tds_id *fv = m->fv[f];
+  if (__builtin_expect(m->torus != 0, 0)) {
+    const int32_t *fe = m->fe[f];
+    c->x[0] = m->x[fv[0]];
+    c->x[1] = tds_wrap_point(m, m->x[fv[1]], tds_oe_wrap(m, fe[0]), c->tmp[1]);
+    int32_t w2 = tds_oe_wrap(m, fe[2]);
+    c->x[2] = tds_wrap_point(m, m->x[fv[2]], w2 ? tds_wrap_neg(w2) : 0, c->tmp[2]);
+    return;
+  }
   c->x[0] = m->x[fv[0]];
   c->x[1] = m->x[fv[1]];
   c->x[2] = m->x[fv[2]];
@@ -60,6 +91,8 @@ tds_gather_edge(const tds_mesh *m, int32_t oe, tds_corners *c) {
   int r = TDS_OREV(oe);
   c->x[0] = m->x[ev[r]];
   c->x[1] = m->x[ev[!r]];
+  if (__builtin_expect(m->torus != 0, 0))
+    c->x[1] = tds_wrap_point(m, c->x[1], tds_oe_wrap(m, oe), c->tmp[1]);
 }
 
 /* d = head - tail of oriented edge oe. */

@@ -98,6 +98,11 @@ typedef struct tds_hess_red {
   tds_alloc alloc;        /* of the arrays (the ctx's) */
 } tds_hess_red;
 
+/* One vertex's motion basis B (columns B[.][a], a < d) and curvature
+** block C (d x d) as above, f its fgrad; returns d. */
+int tds_hess_vertex_space(const tds_surf *s, tds_id v, const double f[3], double B[3][3],
+                          double C[3][3]);
+
 int tds_hess_reduce(tds_ctx *ctx, const tds_surf *s, const tds_hess *h, tds_hess_red *out);
 void tds_hess_red_free(tds_hess_red *r);
 

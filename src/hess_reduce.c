@@ -20,9 +20,7 @@ void tds_hess_red_free(tds_hess_red *r) {
   memset(r, 0, sizeof *r);
 }
 
-/* Basis B (columns B[.][a]) and curvature block C (d x d) of vertex v,
-** f the gradient there; returns d. */
-static int vertex_space(const tds_surf *s, tds_id v, const double f[3], double B[3][3],
+int tds_hess_vertex_space(const tds_surf *s, tds_id v, const double f[3], double B[3][3],
                         double C[3][3]) {
   const tds_mesh *m = &s->m;
   double vars[TDS_NVARS], g[TDS_NDIFF], H[TDS_NDIFF][TDS_NDIFF];
@@ -111,7 +109,7 @@ int tds_hess_reduce(tds_ctx *ctx, const tds_surf *s, const tds_hess *h, tds_hess
   if (!C || !out->start || !out->basis) goto nomem;
   out->start[0] = 0;
   for (int32_t k = 0; k < nvm; k++) {
-    int d = vertex_space(s, h->vert[k], h->fgrad + 3 * k, out->basis[k], C[k]);
+    int d = tds_hess_vertex_space(s, h->vert[k], h->fgrad + 3 * k, out->basis[k], C[k]);
     out->start[k + 1] = out->start[k] + d;
   }
   int32_t m = out->m = out->start[nvm];

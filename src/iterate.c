@@ -1,5 +1,6 @@
 /* iterate.c: gradient descent with optimizing scale (the g command). */
 #include "iterate.h"
+#include "autopop.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -29,6 +30,7 @@ typedef struct work {
   int at_target;     /* quantities were at target at the start */
   double slope;      /* dE/ds along vel at the start (negative) */
   int undone;        /* check_increase took the last step back */
+  int keep_vel;      /* autochop: vel is the motion from before the chop */
   tds_alloc al;      /* the ctx's allocator */
 } work;
 
@@ -348,14 +350,69 @@ static int conjugate(tds_ctx *ctx, tds_surf *s, work *w) {
   return TDS_OK;
 }
 
+/* autopop and autochop (autopop.h): each from the motion as it is, and
+** the work arrays made again for the surface they leave. */
+static int maintain(tds_ctx *ctx, tds_surf *s, work *w) {
+  for (int pass = 0; pass < 2; pass++) {
+    if (!(pass ? s->autochop : s->autopop)) continue;
+    int rc = direction(ctx, s, w), changed = 0;
+    if (rc != TDS_OK) return rc;
+    const double(*vel)[3] = (const double(*)[3])w->vel;
+    int32_t *ends = NULL, nv0 = s->m.nv;
+    rc = pass ? tds_autochop(ctx, s, vel, w->nv, s->scale, s->autochop_length, &ends, &changed)
+              : tds_autopop(ctx, s, vel, w->nv, s->scale, &changed);
+    if (rc != TDS_OK) return rc;
+    if (changed) {
+      int32_t nold = w->nv;
+      double (*old)[3] = NULL;
+      if (pass) { /* the old vertices keep their motion, new ones stay */
+        old = tds_malloc(&w->al, (size_t)(nold > 0 ? nold : 1) * sizeof *old);
+        if (!old) {
+          tds_free(&s->m.alloc, ends);
+          return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+        }
+        memcpy(old, w->vel, (size_t)nold * sizeof *old);
+      }
+      tds_alloc al = w->al;
+      work_free(w);
+      rc = work_init(ctx, s, w);
+      if (rc != TDS_OK) {
+        memset(w, 0, sizeof *w);
+        tds_free(&al, old);
+        tds_free(&s->m.alloc, ends);
+        return rc;
+      }
+      if (old) {
+        memcpy(w->vel, old, (size_t)nold * sizeof *old);
+        for (tds_id v = nv0; v < s->m.nv; v++) {
+          const int32_t *ab = ends + 2 * (v - nv0);
+          for (int k = 0; k < 3; k++) w->vel[v][k] = 0.5 * (old[ab[0]][k] + old[ab[1]][k]);
+        }
+        tds_free(&al, old);
+        w->keep_vel = 1;
+      }
+      tds_free(&s->m.alloc, ends);
+    }
+  }
+  return TDS_OK;
+}
+
 static int step(tds_ctx *ctx, tds_surf *s, work *w) {
   tds_mesh *m = &s->m;
+  if (s->autopop || s->autochop) {
+    int rc = maintain(ctx, s, w);
+    if (rc != TDS_OK) return rc;
+  }
   if (m->nv) { /* an empty surface has no arrays (memcpy from NULL is UB) */
     memcpy(w->x0, m->x, (size_t)m->nv * sizeof *w->x0);
     memcpy(w->p0, m->vp, (size_t)m->nv * sizeof *w->p0);
   }
-  int rc = direction(ctx, s, w);
-  if (rc == TDS_OK && s->conj_grad) rc = conjugate(ctx, s, w);
+  int rc = TDS_OK;
+  if (w->keep_vel) w->keep_vel = 0;
+  else {
+    rc = direction(ctx, s, w);
+    if (rc == TDS_OK && s->conj_grad) rc = conjugate(ctx, s, w);
+  }
   if (rc != TDS_OK) return rc;
   double E, scale;
   if (s->fixed_scale) {

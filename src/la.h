@@ -7,8 +7,8 @@
 **
 ** Inertia: the numbers of negative, zero and positive eigenvalues, read
 ** from the factorisation's pivots (Sylvester's law). A pivot counts as
-** zero when its size is below 1e-10 times the largest entry of the
-** matrix (null pivot detection); a matrix with zero pivots is singular,
+** zero when its size is below eps times the largest entry of the matrix
+** (null pivot detection; eps <= 0: 1e-10); a matrix with zero pivots is singular,
 ** and tds_la_solve refuses it (TDS_ENUM) unless allow_singular was
 ** asked for (then the null directions get 0 in the solution).
 ** Core code: status codes through ctx, no globals.
@@ -25,11 +25,17 @@ typedef struct tds_inertia {
   int32_t neg, zero, pos;
 } tds_inertia;
 
-/* Factor the n x n symmetric matrix A (upper triangle, CSC; A->upper).
+/* Factor the n x n symmetric matrix A (upper triangle, CSC; A->upper),
+** eps the relative zero-pivot size above.
 ** *out is a new factorisation (free with tds_la_free), NULL on failure.
 ** TDS_OK, TDS_ENOMEM, TDS_ERANGE (not square / not upper), TDS_ENUM
 ** (an entry not finite, or the factorisation failed). */
-int tds_la_factor(tds_ctx *ctx, const tds_spmat *A, tds_la **out);
+int tds_la_factor(tds_ctx *ctx, const tds_spmat *A, double eps, tds_la **out);
+
+/* Factor the n x n general (unsymmetric) matrix A (CSC, not upper): LU
+** with pivoting. Solves as above; its inertia means nothing but `zero`
+** (null pivots). Same status codes. */
+int tds_la_factor_lu(tds_ctx *ctx, const tds_spmat *A, tds_la **out);
 
 /* Inertia of the factored matrix. */
 tds_inertia tds_la_inertia(const tds_la *f);

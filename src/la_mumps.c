@@ -1,6 +1,10 @@
 /* la_mumps.c: la.h on MUMPS (sequential build, libdmumps_seq): symmetric
-** general (SYM = 2) LDL^T with 1x1 and 2x2 pivots, AMD-type ordering
-** chosen by MUMPS; inertia from INFOG(12) (negative pivots) and INFOG(28)
+** general (SYM = 2) LDL^T with 1x1 and 2x2 pivots, QAMD ordering
+** (approximate minimum degree that puts dense rows, the constraint
+** border of a Newton system, last: SCOTCH, MUMPS's automatic choice,
+** orders with fewer operations but its analysis costs twice the
+** factorisation on a 50k-vertex surface, and plain AMD/AMF analyse a
+** dense row slowly); inertia from INFOG(12) (negative pivots) and INFOG(28)
 ** (null pivots, ICNTL(24) = 1). Each factorisation owns its MUMPS
 ** instance, so several may coexist (no globals). */
 #include "la.h"
@@ -42,10 +46,10 @@ static void quiet(DMUMPS_STRUC_C *id) {
   id->icntl[3] = 0;
 }
 
-int tds_la_factor(tds_ctx *ctx, const tds_spmat *A, tds_la **out) {
+/* sym: MUMPS's SYM (2: symmetric upper, 0: general, unsymmetric LU);
+** eps: the relative zero-pivot size (la.h). */
+static int factor(tds_ctx *ctx, const tds_spmat *A, int sym, double eps, tds_la **out) {
   *out = NULL;
-  if (A->nrow != A->ncol || !A->upper)
-    return tds_seterr(ctx, TDS_ERANGE, "la: the matrix must be square and symmetric (upper)");
   int32_t n = A->nrow;
   int64_t nnz = A->colptr[n];
   tds_la *f = tds_calloc(&ctx->alloc, 1, sizeof *f);
@@ -80,7 +84,7 @@ int tds_la_factor(tds_ctx *ctx, const tds_spmat *A, tds_la **out) {
   DMUMPS_STRUC_C *id = &f->id;
   id->comm_fortran = USE_COMM_WORLD;
   id->par = 1;
-  id->sym = 2;
+  id->sym = sym;
   id->job = -1;
   dmumps_c(id);
   if (id->infog[0] < 0) {
@@ -95,9 +99,17 @@ int tds_la_factor(tds_ctx *ctx, const tds_spmat *A, tds_la **out) {
   id->irn = f->irn;
   id->jcn = f->jcn;
   id->a = f->a;
+  id->icntl[6] = 6;    /* ICNTL(7): QAMD */
   id->icntl[12] = 1;   /* ICNTL(13): no ScaLAPACK root (keeps inertia) */
+  if (sym == 0) {
+    id->icntl[6] = 0;  /* ICNTL(7): AMD ordering, the same on every run
+                          (the automatic choice made the pg runs that use
+                          it differ from run to run in the last bits) */
+    id->icntl[47] = 0; /* ICNTL(48): no tree parallelism (fixed order) */
+  }
   id->icntl[23] = 1;   /* ICNTL(24): detect null pivots */
-  id->cntl[2] = -1e-10 * (amax > 0 ? amax : 1); /* CNTL(3) < 0: absolute threshold */
+  if (!(eps > 0)) eps = 1e-10;
+  id->cntl[2] = -eps * (amax > 0 ? amax : 1); /* CNTL(3) < 0: absolute threshold */
   for (int tries = 0;; tries++) {
     id->job = 4; /* analyse and factor */
     dmumps_c(id);
@@ -117,6 +129,20 @@ int tds_la_factor(tds_ctx *ctx, const tds_spmat *A, tds_la **out) {
   f->in.pos = n - f->in.neg - f->in.zero;
   *out = f;
   return TDS_OK;
+}
+
+int tds_la_factor(tds_ctx *ctx, const tds_spmat *A, double eps, tds_la **out) {
+  *out = NULL;
+  if (A->nrow != A->ncol || !A->upper)
+    return tds_seterr(ctx, TDS_ERANGE, "la: the matrix must be square and symmetric (upper)");
+  return factor(ctx, A, 2, eps, out);
+}
+
+int tds_la_factor_lu(tds_ctx *ctx, const tds_spmat *A, tds_la **out) {
+  *out = NULL;
+  if (A->nrow != A->ncol || A->upper)
+    return tds_seterr(ctx, TDS_ERANGE, "la: the matrix must be square and general (not upper)");
+  return factor(ctx, A, 0, 0, out);
 }
 
 tds_inertia tds_la_inertia(const tds_la *f) { return f->in; }

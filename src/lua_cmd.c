@@ -207,7 +207,9 @@ static int l_setting(lua_State *L) {
                                       "constraint_tolerance", "gap_constant",
                                       "iterations", "conj_grad", "view_transforms",
                                       "check_increase", "random_seed",
-                                      "evolver_line_search", NULL};
+                                      "evolver_line_search", "autopop",
+                                      "immediate_autopop", "autochop",
+                                      "autochop_length", NULL};
   int which = luaL_checkoption(L, 1, NULL, names);
   tds_surf *s = &st->s;
   int set = !lua_isnone(L, 2);
@@ -235,8 +237,8 @@ static int l_setting(lua_State *L) {
   case 4:
     lua_pushinteger(L, (lua_Integer)s->iterations);
     break;
-  case 6: /* read-only: the datafile's count */
-    lua_pushinteger(L, s->view_transforms);
+  case 6: /* read-only: Evolver's transform_count - 1 (lua_view.c) */
+    lua_pushinteger(L, s->view_transforms > 1 ? s->view_transforms - 1 : 0);
     break;
   case 7:
     if (set) s->check_increase = lua_toboolean(L, 2);
@@ -245,6 +247,26 @@ static int l_setting(lua_State *L) {
   case 9:
     if (set) s->evolver_ls = lua_toboolean(L, 2);
     lua_pushboolean(L, s->evolver_ls);
+    break;
+  case 10:
+    if (set) s->autopop = lua_toboolean(L, 2);
+    lua_pushboolean(L, s->autopop);
+    break;
+  case 11:
+    if (set) s->immediate_autopop = lua_toboolean(L, 2);
+    lua_pushboolean(L, s->immediate_autopop);
+    break;
+  case 12:
+    if (set) s->autochop = lua_toboolean(L, 2);
+    lua_pushboolean(L, s->autochop);
+    break;
+  case 13:
+    if (set) {
+      double len = tds_lua_checkfinite(L, 2, "autochop length");
+      if (len < 0) tds_lua_error(L, "autochop length must not be negative, not %f", len);
+      s->autochop_length = len;
+    }
+    lua_pushnumber(L, s->autochop_length);
     break;
   case 8: /* the jiggle's generator state (jiggle.h) */
     if (set) s->rng = (uint64_t)luaL_checkinteger(L, 2);

@@ -19,6 +19,11 @@
 **   tds.write_fe(path, hdr, rd)  the element lists as a datafile
 **   tds.load_replace(path)       Evolver's load: path's surface replaces the
 **                                current one (unchanged if path is bad)
+**   tds.addload(path)            Evolver's addload: path's elements added to
+**                                the current surface (its read section is
+**                                not run); unchanged if path is bad
+**   tds.replace_load(path)       Evolver's replace_load: the elements go,
+**                                path is addloaded (unchanged if bad)
 **   tds.read_text()              the loaded datafile's read section (or nil)
 **   tds.datafile_name()          the loaded datafile's path (or nil)
 **   After a load, tds.on_load(path) is called if set: it runs the read
@@ -117,6 +122,28 @@ static int l_load_replace(lua_State *L) {
   tds_surf_free(&st->s);
   tds_surf_init(&st->s);
   load(L, st, path);
+  return 0;
+}
+
+/* tds.addload(path): Evolver's `addload` (datafile.h). */
+static int l_addload(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  const char *path = luaL_checkstring(L, 1);
+  if (tds_datafile_addload(&st->ctx, &st->s, path) != TDS_OK)
+    return raise_msg(L, st->ctx.errmsg);
+  if (!st->datafile) { /* addload into an empty session names the surface */
+    char *copy = strdup(path);
+    if (copy) st->datafile = copy;
+  }
+  return 0;
+}
+
+/* tds.replace_load(path): Evolver's `replace_load` (datafile.h). */
+static int l_replace_load(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  const char *path = luaL_checkstring(L, 1);
+  if (tds_datafile_replace_load(&st->ctx, &st->s, path) != TDS_OK)
+    return raise_msg(L, st->ctx.errmsg);
   return 0;
 }
 
@@ -314,6 +341,8 @@ void tds_open_datafile(lua_State *L, tds_state *st) {
                                  {"write_text", l_write_text},
                                  {"read_text", l_read_text},
                                  {"load_replace", l_load_replace},
+                                 {"addload", l_addload},
+                                 {"replace_load", l_replace_load},
                                  {"datafile_name", l_datafile_name},
                                  {"define_text", l_define_text},
                                  {NULL, NULL}};

@@ -84,18 +84,50 @@ static void print_counts(tds_state *st, tds_inertia in) {
              (int)in.pos);
 }
 
-/* tds.eigenprobe(c) -> below, equal, above (prints Eigencounts) */
+/* tds.eigenprobe(c [, iterations]) -> below, equal, above [, eigenvalue]
+** (prints Eigencounts; with iterations, inverse iteration towards the
+** eigenvalue nearest c, which becomes last_eigenvalue and the eigenvector
+** move follows) */
 static int l_eigenprobe(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   nstate *ns = get_ns(L);
   double c = lua_isnoneornil(L, 1) ? 0 : tds_lua_checkfinite(L, 1, "eigenprobe value");
   tds_inertia in;
-  check_rc(L, st, tds_newton_probe(&st->ctx, &st->s, &ns->o, c, &in));
-  print_counts(st, in);
+  if (lua_isnoneornil(L, 2)) {
+    check_rc(L, st, tds_newton_probe(&st->ctx, &st->s, &ns->o, c, &in));
+    print_counts(st, in);
+    lua_pushinteger(L, in.neg);
+    lua_pushinteger(L, in.zero);
+    lua_pushinteger(L, in.pos);
+    return 3;
+  }
+  lua_Integer n = luaL_checkinteger(L, 2);
+  if (n < 0 || n > 1000000)
+    return tds_lua_error(L, "eigenprobe: the iteration count %d is out of range", (int)n);
+  tds_surf *s = &st->s;
+  double (*vec)[3] = calloc((size_t)s->m.nv + 1, sizeof *vec);
+  if (!vec) return luaL_error(L, "out of memory");
+  double val = NAN;
+  int iters = 0;
+  int rc = tds_newton_invit(&st->ctx, s, &ns->o, c, (int)n, &val, &in, vec, &iters);
+  if (rc != TDS_OK) {
+    free(vec);
+    return tds_lua_fail(L, st, rc);
+  }
   lua_pushinteger(L, in.neg);
   lua_pushinteger(L, in.zero);
   lua_pushinteger(L, in.pos);
-  return 3;
+  if (isnan(val)) { /* no iteration (n = 0, or nothing can move) */
+    free(vec);
+    return 3;
+  }
+  ns->last = val;
+  free(ns->vec);
+  ns->vec = vec;
+  ns->nv = s->m.nv;
+  ns->topo = s->m.topo_gen;
+  lua_pushnumber(L, val);
+  return 4;
 }
 
 /* tds.ritz(shift, n) -> {eigenvalues nearest shift}, below, equal, above */
@@ -177,10 +209,13 @@ static int l_eigenvector(lua_State *L) {
 }
 
 /* tds.hessian_setting(name [, value]) -> value: hessian_normal,
-** linear_metric, linear_metric_mix, hessian_diff; last_eigenvalue (read) */
+** linear_metric, linear_metric_mix, hessian_diff, hessian_epsilon,
+** hessian_special_normal;
+** last_eigenvalue (read) */
 static int l_setting(lua_State *L) {
   static const char *const names[] = {"hessian_normal", "linear_metric", "linear_metric_mix",
-                                      "hessian_diff", "last_eigenvalue", NULL};
+                                      "hessian_diff", "last_eigenvalue", "hessian_epsilon",
+                                      "hessian_special_normal", NULL};
   nstate *ns = get_ns(L);
   int which = luaL_checkoption(L, 1, NULL, names);
   int set = !lua_isnone(L, 2);
@@ -196,6 +231,18 @@ static int l_setting(lua_State *L) {
   case 3:
     if (set) ns->o.diff = lua_toboolean(L, 2);
     lua_pushboolean(L, ns->o.diff);
+    break;
+  case 5:
+    if (set) {
+      double x = tds_lua_checkfinite(L, 2, "hessian_epsilon");
+      if (!(x > 0)) return tds_lua_error(L, "hessian_epsilon must be positive, not %f", x);
+      ns->o.epsilon = x;
+    }
+    lua_pushnumber(L, ns->o.epsilon);
+    break;
+  case 6:
+    if (set) ns->o.special_normal = lua_toboolean(L, 2);
+    lua_pushboolean(L, ns->o.special_normal);
     break;
   case 4: /* read-only */
     if (set) return tds_lua_error(L, "last_eigenvalue is read-only");
@@ -217,6 +264,7 @@ void tds_open_newton(lua_State *L, tds_state *st) {
   memset(ns, 0, sizeof *ns);
   ns->o.normal = 1;       /* Evolver's defaults */
   ns->o.metric_mix = 0.5;
+  ns->o.epsilon = 1e-10;
   lua_createtable(L, 0, 1);
   lua_pushcfunction(L, ns_gc);
   lua_setfield(L, -2, "__gc");

@@ -259,6 +259,7 @@ tds_state *tds_lua_surface_new(lua_State *L, int env, int safe, const char *outd
   tds_open_newton(L, st);
   tds_open_string(L, st);
   tds_open_topo(L, st);
+  tds_open_view(L, st);
   lua_pushvalue(L, -1);
   lua_setfield(L, env, "tds"); /* st lib */
 

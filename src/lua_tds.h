@@ -128,6 +128,7 @@ int tds_lua_may_write(lua_State *L, tds_state *st, const char *path);
 void tds_open_out(lua_State *L, tds_state *st);       /* lua_out.c */
 void tds_open_topo(lua_State *L, tds_state *st);      /* lua_topo.c */
 void tds_open_newton(lua_State *L, tds_state *st);    /* lua_newton.c */
+void tds_open_view(lua_State *L, tds_state *st);      /* lua_view.c */
 
 /* Push the handle of element (kind, 0-based id) of the surface of the
 ** running binding (its upvalue 1). Handles are interned: while a handle is

@@ -65,9 +65,32 @@ static int l_edgeswap(lua_State *L) {
   return on_set(L, TDS_EDGE, tds_edgeswap, "Edges swapped: %d\n");
 }
 
-/* tds.pop([vertices]) -> vertices popped */
-static int l_pop(lua_State *L) {
+/* tds.pop() -> edges + vertices popped (Evolver's o) */
+static int l_pop_all(lua_State *L) {
   tds_state *st = TDS_STATE(L);
+  int32_t ne = 0, nv = 0;
+  int rc = tds_pop(&st->ctx, &st->s, &ne, &nv);
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+  tds_printf(&st->ctx, "Edges popped: %d\nVertices popped: %d\n", ne, nv);
+  lua_pushinteger(L, ne + nv);
+  return 1;
+}
+
+/* tds.pop_edges([edges]) -> vertices pulled apart (Evolver's O, pop edge) */
+static int l_pop_edges(lua_State *L) {
+  return on_set(L, TDS_EDGE, tds_pop_edges, "Edges popped: %d\n");
+}
+
+static int arg_kind(lua_State *L, tds_state *st);
+
+/* tds.pop([vertices or edges]) -> count popped; no argument: o */
+static int l_pop(lua_State *L) {
+  if (lua_isnoneornil(L, 1)) return l_pop_all(L);
+  tds_state *st = TDS_STATE(L);
+  int kind = arg_kind(L, st);
+  if (kind == TDS_EDGE) return l_pop_edges(L);
+  if (kind != TDS_VERTEX && kind >= 0)
+    return tds_lua_error(L, "pop works on vertices and edges");
   uint8_t *sel = tds_lua_selection(L, st, 1, TDS_VERTEX);
   int32_t n = 0;
   int rc = tds_pop_vertices(&st->ctx, &st->s, sel, &n);
@@ -164,6 +187,37 @@ static int l_delete(lua_State *L) {
                        kind == TDS_VERTEX ? "vertices" : "bodies");
 }
 
+/* tds.renumber_all() -> elements whose id changed */
+static int l_renumber_all(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  int32_t n = 0;
+  int rc = tds_renumber_all(&st->ctx, &st->s, &n);
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+  lua_pushinteger(L, n);
+  return 1;
+}
+
+/* tds.vertex_merge(v1, v2): v2 joins v1 */
+static int l_vertex_merge(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  tds_id a = tds_check_elem(L, st, 1, TDS_VERTEX, NULL);
+  tds_id b = tds_check_elem(L, st, 2, TDS_VERTEX, NULL);
+  int rc = tds_vertex_merge(&st->ctx, &st->s, a, b);
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+  return 0;
+}
+
+/* tds.rebody() -> new bodies */
+static int l_rebody(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  int32_t n = 0;
+  int rc = tds_rebody(&st->ctx, &st->s, &n);
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+  tds_printf(&st->ctx, "New bodies: %d\n", n);
+  lua_pushinteger(L, n);
+  return 1;
+}
+
 void tds_open_topo(lua_State *L, tds_state *st) {
   static const luaL_Reg fns[] = {
       {"edgeweed", l_edgeweed},         {"areaweed", l_areaweed},
@@ -171,7 +225,9 @@ void tds_open_topo(lua_State *L, tds_state *st) {
       {"notch", l_notch},               {"delete_edges", l_delete_edges},
       {"delete_facets", l_delete_facets}, {"edgeswap", l_edgeswap},
       {"delete", l_delete},
-      {"pop", l_pop},
+      {"pop", l_pop},                   {"pop_edges", l_pop_edges},
+      {"renumber_all", l_renumber_all}, {"vertex_merge", l_vertex_merge},
+      {"rebody", l_rebody},
       {"dissolve", l_dissolve},         {"reverse_orientation", l_reverse},
       {"pop_edge_to_tri", l_pop_edge_to_tri}, {"pop_tri_to_edge", l_pop_tri_to_edge},
       {NULL, NULL}};

@@ -24,6 +24,7 @@ static const column ecols[] = {
     COL(econ, sizeof(tds_cmask)), COL(ebdry, sizeof(int32_t)),
     COL(eten, sizeof(double)),    COL(ecolor, sizeof(int16_t)),
     COL(eside, sizeof(int32_t)), COL(efile, sizeof(int32_t)),
+    COL(ewrap, sizeof(int32_t)),
 };
 static const column fcols[] = {
     COL(fv, sizeof(tds_id[3])),   COL(fe, sizeof(int32_t[3])),
@@ -147,6 +148,7 @@ static void set_defaults(tds_mesh *m, int kind, tds_id i) {
     m->ecolor[i] = 0;
     m->eside[i] = TDS_NONE;
     m->efile[i] = 0;
+    m->ewrap[i] = 0;
     break;
   case TDS_FACET:
     for (int k = 0; k < 3; k++) {
@@ -328,6 +330,8 @@ void tds_mesh_inherit(tds_mesh *m, int kind, tds_id dst, tds_id src) {
   file[dst] = file[src];
   for (int c = 0; c < m->nucol[kind]; c++) {
     tds_ucol *u = &m->ucol[kind][c];
+    if (kind == TDS_FACET && !strncmp(u->name, TDS_FE_ATTR_PREFIX, sizeof TDS_FE_ATTR_PREFIX - 1))
+      continue; /* facetedge attributes: new sides start at 0, as in Evolver */
     memcpy(u->v + (size_t)dst * (size_t)u->size, u->v + (size_t)src * (size_t)u->size,
            (size_t)u->size * sizeof *u->v);
   }
@@ -372,6 +376,8 @@ int tds_mesh_copy(tds_mesh *dst, const tds_mesh *src) {
              (size_t)cap * (size_t)src->ucol[k][c].size * sizeof(double));
     FIELD(dst, kinds[k].n_off, int32_t) = CFIELD(src, kinds[k].n_off, int32_t);
   }
+  dst->torus = src->torus;
+  memcpy(dst->period, src->period, sizeof dst->period);
   dst->topo_gen = src->topo_gen + 1;
   dst->coord_gen = src->coord_gen;
   dst->adj_gen = 0;
@@ -389,4 +395,25 @@ size_t tds_mesh_bytes(const tds_mesh *m) {
   }
   for (int k = 0; k < 4; k++) b += sizeof(int32_t) * (size_t)m->adj_cap[k];
   return b;
+}
+
+void tds_mesh_move_slot(tds_mesh *m, int kind, tds_id dst, tds_id src) {
+  TDS_ASSERT(kind >= 0 && kind < TDS_NKINDS);
+  if (dst == src) return;
+  for (int c = 0; c < kinds[kind].ncols; c++) {
+    const column *col = &kinds[kind].cols[c];
+    char *p = FIELD(m, col->off, char *);
+    memmove(p + (size_t)dst * col->size, p + (size_t)src * col->size, col->size);
+  }
+  for (int c = 0; c < m->nucol[kind]; c++) {
+    tds_ucol *u = &m->ucol[kind][c];
+    memmove(u->v + (size_t)dst * (size_t)u->size, u->v + (size_t)src * (size_t)u->size,
+            (size_t)u->size * sizeof *u->v);
+  }
+}
+
+void tds_mesh_truncate(tds_mesh *m, int kind, int32_t n) {
+  TDS_ASSERT(kind >= 0 && kind < TDS_NKINDS);
+  FIELD(m, kinds[kind].n_off, int32_t) = n;
+  m->topo_gen++;
 }

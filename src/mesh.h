@@ -61,6 +61,9 @@ typedef struct tds_mesh {
   int16_t *ecolor;
   int32_t *eside;           /* one facet side on the edge or TDS_NONE */
   int32_t *efile;
+  int32_t *ewrap;           /* torus model: how the edge crosses the unit
+                               cell, packed lattice counts (torus.h); the
+                               true head is x[head] + wrap . periods */
   /* facets */
   int32_t nf, capf;
   tds_id (*fv)[3];
@@ -87,6 +90,11 @@ typedef struct tds_mesh {
   ** element columns above */
   struct tds_ucol *ucol[TDS_NKINDS];
   int nucol[TDS_NKINDS];
+
+  /* the torus model (torus.h): 0 none, 1 TORUS, 2 TORUS_FILLED; period[i]
+  ** is the i-th period vector (rows of the datafile's PERIODS) */
+  int torus;
+  double period[3][3];
 
   uint64_t topo_gen;        /* bumped by every topology change */
   uint64_t coord_gen;       /* bumped by every coordinate change */
@@ -195,6 +203,12 @@ static inline int32_t *tds_mesh_file_ids(const tds_mesh *m, int kind) {
 ** element src to dst (same kind): an element split from another inherits
 ** them, as in Evolver. */
 void tds_mesh_inherit(tds_mesh *m, int kind, tds_id dst, tds_id src);
+
+/* Copy every column (and user attribute) of slot src of `kind` over slot
+** dst, references unchanged (renumber_all compacts with it). */
+void tds_mesh_move_slot(tds_mesh *m, int kind, tds_id dst, tds_id src);
+/* Shrink the slot range of `kind` to n (slots beyond are forgotten). */
+void tds_mesh_truncate(tds_mesh *m, int kind, int32_t n);
 
 /* Bytes of storage held by the mesh per live facet (for the benchmark). */
 size_t tds_mesh_bytes(const tds_mesh *m);

@@ -1,6 +1,7 @@
 /* mesh_check.c: validate every invariant of the element store.
 ** Walks the raw arrays (not iterators) so a broken mesh is still readable.
 ** Messages use 1-based ids, as users see them. */
+#include "torus.h"
 #include "mesh.h"
 
 #include <math.h>
@@ -164,5 +165,6 @@ int tds_mesh_check(tds_ctx *ctx, tds_mesh *m) {
   int rc = check_facets(ctx, m);
   if (rc == TDS_OK) rc = check_rings(ctx, m);
   if (rc == TDS_OK) rc = check_adjacency(ctx, m);
+  if (rc == TDS_OK && m->torus) rc = tds_torus_check(ctx, m); /* facets close */
   return rc;
 }

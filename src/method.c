@@ -35,28 +35,46 @@ void tds_mk_normal_derivs(const double *const *x, double u[3][3][3]) {
   }
 }
 
+/* eps_ijm n_m: the matrix of n x. */
+static void cross_matrix(const double n[3], double E[3][3]) {
+  E[0][0] = E[1][1] = E[2][2] = 0;
+  E[0][1] = n[2], E[0][2] = -n[1];
+  E[1][0] = -n[2], E[1][2] = n[0];
+  E[2][0] = n[1], E[2][1] = -n[0];
+}
+
 void tds_mk_area_hess(const double *const *x, double (*h)[9]) {
-  double ab[3], ac[3], N[3], u[3][3][3];
+  double ab[3], ac[3], N[3];
   v3_sub(ab, x[1], x[0]);
   v3_sub(ac, x[2], x[0]);
   v3_cross(N, ab, ac);
   double len = v3_norm(N);
-  memset(h, 0, sizeof(double[9][9]));
-  if (!(len > 0)) return; /* not differentiable: a degenerate facet */
+  if (!(len > 0)) { /* not differentiable: a degenerate facet */
+    memset(h, 0, sizeof(double[9][9]));
+    return;
+  }
   double n[3] = {N[0] / len, N[1] / len, N[2] / len};
-  tds_mk_normal_derivs(x, u);
-  /* A = |N|/2: d2A = (u.u' - (n.u)(n.u'))/(2|N|) + n . d2N / 2 */
+  /* A = |N|/2: d2A = (u.u' - (n.u)(n.u'))/(2|N|) + n . d2N / 2, where
+  ** u[c][i].u[d][j] = delta_ij d_c.d_d - (d_d)_i (d_c)_j and
+  ** n.u[c][i] = (d_c x n)_i */
+  double d[3][3], mc[3][3], dd[3][3], E[3][3];
+  for (int c = 0; c < 3; c++) {
+    v3_sub(d[c], x[(c + 1) % 3], x[(c + 2) % 3]);
+    v3_cross(mc[c], d[c], n);
+  }
   for (int c = 0; c < 3; c++)
-    for (int i = 0; i < 3; i++)
-      for (int d = 0; d < 3; d++)
-        for (int j = 0; j < 3; j++) {
-          const double *p = u[c][i], *q = u[d][j];
-          double v = (v3_dot(p, q) - v3_dot(n, p) * v3_dot(n, q)) / len;
-          double s = sigma(c, d);
-          if (s != 0)
-            for (int m = 0; m < 3; m++) v += s * eps(i, j, m) * n[m];
-          h[3 * c + i][3 * d + j] = 0.5 * v;
-        }
+    for (int e = 0; e < 3; e++) dd[c][e] = v3_dot(d[c], d[e]);
+  cross_matrix(n, E);
+  double il = 0.5 / len;
+  for (int c = 0; c < 3; c++)
+    for (int e = 0; e < 3; e++) {
+      double s = 0.5 * sigma(c, e);
+      for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+          h[3 * c + i][3 * e + j] =
+              il * ((i == j ? dd[c][e] : 0) - d[e][i] * d[c][j] - mc[c][i] * mc[e][j]) +
+              s * E[i][j];
+    }
 }
 
 static double k_length(const tds_mlocal *L, double g[3][3], double h[9][9]) {
@@ -85,20 +103,29 @@ static double k_length(const tds_mlocal *L, double g[3][3], double h[9][9]) {
 ** z-volume (P = z0 + z1 + z2) and the gravity moment. */
 static void nz_poly_hess(const double *const *x, double P, const double *dP,
                          const double (*ddP)[3], double den, double (*h)[9]) {
-  double u[3][3][3];
-  tds_mk_normal_derivs(x, u);
+  /* u[c][j][2] = (E_j x d_c)_z: (d_c)_y for j = 0, -(d_c)_x for j = 1, 0 */
+  double uz[3][3];
+  for (int c = 0; c < 3; c++) {
+    const double *p = x[(c + 1) % 3], *q = x[(c + 2) % 3];
+    uz[c][0] = p[1] - q[1];
+    uz[c][1] = -(p[0] - q[0]);
+    uz[c][2] = 0;
+  }
   double Nz = (x[1][0] - x[0][0]) * (x[2][1] - x[0][1]) -
               (x[1][1] - x[0][1]) * (x[2][0] - x[0][0]);
+  double id = 1 / den;
   for (int c = 0; c < 3; c++)
-    for (int i = 0; i < 3; i++)
-      for (int d = 0; d < 3; d++)
-        for (int j = 0; j < 3; j++) {
-          double v = P * sigma(c, d) * eps(i, j, 2);
-          if (i == 2) v += dP[c] * u[d][j][2];
-          if (j == 2) v += dP[d] * u[c][i][2];
-          if (i == 2 && j == 2) v += Nz * ddP[c][d];
-          h[3 * c + i][3 * d + j] = v / den;
-        }
+    for (int d = 0; d < 3; d++) {
+      double ps = P * sigma(c, d);
+      double *r0 = h[3 * c], *r1 = h[3 * c + 1], *r2 = h[3 * c + 2];
+      /* eps(i, j, 2): +1 for (0, 1), -1 for (1, 0) */
+      r0[3 * d] = 0, r0[3 * d + 1] = ps, r0[3 * d + 2] = dP[d] * uz[c][0];
+      r1[3 * d] = -ps, r1[3 * d + 1] = 0, r1[3 * d + 2] = dP[d] * uz[c][1];
+      r2[3 * d] = dP[c] * uz[d][0], r2[3 * d + 1] = dP[c] * uz[d][1];
+      r2[3 * d + 2] = Nz * ddP[c][d];
+      for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) h[3 * c + i][3 * d + j] *= id;
+    }
 }
 
 void tds_mk_volume_hess(const double *const *x, double (*h)[9]) {
@@ -183,6 +210,7 @@ const tds_method tds_methods[TDS_M_NROWS] = {
     [TDS_M_VERTEX_TAIL] = {"vertex_scalar_tail", TDS_EL_EDGE, TDS_MF_SCALAR, tds_mk_vertex_tail},
     [TDS_M_METRIC_LENGTH] = {"metric_edge_length", TDS_EL_EDGE, TDS_MF_HESS_FD | TDS_MF_METRIC,
                              tds_mk_metric_length},
+    [TDS_M_FACET_FLUX] = {"facet_flux", TDS_EL_FACET, 0, tds_mk_facet_flux},
 };
 
 int tds_method_by_name(const char *name) {

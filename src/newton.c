@@ -203,10 +203,11 @@ static double seek(tds_ctx *ctx, tds_surf *s, start *st, const tds_nsys *n,
 
 /* Factor the bordered system at shift c; *index: negative eigenvalues of
 ** H - c M on the constraints. */
-static int factor(tds_ctx *ctx, const tds_nsys *n, double c, tds_la **f, tds_inertia *in) {
+static int factor(tds_ctx *ctx, const tds_nsys *n, double eps, double c, tds_la **f,
+                  tds_inertia *in) {
   tds_spmat K = {0};
   int rc = tds_nsys_kkt(ctx, n, c, &K);
-  if (rc == TDS_OK) rc = tds_la_factor(ctx, &K, f);
+  if (rc == TDS_OK) rc = tds_la_factor(ctx, &K, eps, f);
   tds_spmat_free(&K);
   if (rc != TDS_OK) return rc;
   *in = tds_la_inertia(*f);
@@ -216,7 +217,8 @@ static int factor(tds_ctx *ctx, const tds_nsys *n, double c, tds_la **f, tds_ine
     tds_la_free(*f);
     *f = NULL;
     return tds_seterr(ctx, TDS_ENUM, "hessian: the constraints' gradients are dependent "
-                      "(a volume or quantity cannot be held)");
+                      "(a volume or quantity cannot be held, or hessian_epsilon is so "
+                      "large that its pivot counts as zero)");
   }
   return TDS_OK;
 }
@@ -270,7 +272,7 @@ int tds_newton_probe(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double
   rc = tds_nsys_build(ctx, s, o, &n);
   if (rc == TDS_OK) {
     tds_la *f = NULL;
-    rc = factor(ctx, &n, c, &f, in);
+    rc = factor(ctx, &n, o->epsilon, c, &f, in);
     tds_la_free(f);
     tds_nsys_free(&n);
   }
@@ -297,7 +299,7 @@ int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
   rc = tds_nsys_build(ctx, s, o, &n);
   if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
   tds_inertia in = {0};
-  rc = factor(ctx, &n, 0, &f, &in);
+  rc = factor(ctx, &n, o->epsilon, 0, &f, &in);
   if (rc == TDS_OK) {
     w = tds_calloc(&ctx->alloc, (size_t)(n.m + n.nq) + 1, sizeof *w);
     if (!w) rc = tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory");

@@ -52,6 +52,14 @@ typedef struct tds_newton_opts {
   int linear_metric;    /* M as above instead of the identity */
   double metric_mix;    /* linear_metric_mix, 0 .. 1 */
   int diff;             /* hessian_diff: H by central differences */
+  int special_normal;   /* hessian_special_normal: the normal is the
+                           datafile's HESSIAN_SPECIAL_NORMAL_VECTOR */
+  double epsilon;       /* hessian_epsilon: a pivot below epsilon x the
+                           largest entry counts as zero (la.h); <= 0: 1e-10 */
+  int general;          /* assemble through the xyz Hessian (hess.h) and
+                           triplets, as hessian_diff does, instead of
+                           straight into the unknowns (a check: the
+                           same matrix, slower) */
 } tds_newton_opts;
 
 /* One Newton step (Evolver's hessian): solve K [w; y] = [-grad; target -
@@ -86,6 +94,20 @@ int tds_newton_probe(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double
 int tds_newton_ritz(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double shift,
                     int32_t n, double *vals, int32_t *got, tds_inertia *in, double (*vec)[3],
                     int *iters, double *change);
+
+/* eigenprobe(c, maxit): the counts at c (as tds_newton_probe, printed as
+** Evolver's "Eigencounts:" line), then
+** inverse iteration with (H - c M)^-1 (on the constraints; c moved off an
+** eigenvalue a little) from a seeded start, towards the eigenvalue
+** nearest c: at most maxit iterations after the first estimate, stopping
+** when the estimate x'Mx / x'M(H - cM)^-1 Mx + c changes by 1e-13
+** relative; prints "k  ev = value" at k = 0, every 10th and the last (as
+** Evolver). *val: the estimate; vec (nv slots x 3, zeroed; may be NULL):
+** the eigenvector as a displacement per vertex (unit M-norm), signed to
+** go downhill in energy when the gradient is not zero (Evolver's rule).
+** With maxit 0 only the counts. */
+int tds_newton_invit(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double c, int maxit,
+                     double *val, tds_inertia *in, double (*vec)[3], int *iters);
 
 /* Move every vertex by t times vec (a displacement per vertex slot, as
 ** tds_newton_ritz gives), projecting onto its constraints and then the

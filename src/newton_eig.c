@@ -71,12 +71,12 @@ static int apply_T(tds_ctx *ctx, const tds_nsys *n, tds_la *f, const double *MX,
 }
 
 /* Factor K - shift [M 0; 0 0], nudging the shift off an eigenvalue. */
-static int factor_at(tds_ctx *ctx, const tds_nsys *n, double *shift, tds_la **f,
-                     tds_inertia *in) {
+static int factor_at(tds_ctx *ctx, const tds_nsys *n, double eps, double *shift, tds_la **f,
+                     tds_inertia *in, tds_inertia *first) {
   for (int tries = 0;; tries++) {
     tds_spmat K = {0};
     int rc = tds_nsys_kkt(ctx, n, *shift, &K);
-    if (rc == TDS_OK) rc = tds_la_factor(ctx, &K, f);
+    if (rc == TDS_OK) rc = tds_la_factor(ctx, &K, eps, f);
     tds_spmat_free(&K);
     if (rc != TDS_OK) return rc;
     *in = tds_la_inertia(*f);
@@ -85,8 +85,10 @@ static int factor_at(tds_ctx *ctx, const tds_nsys *n, double *shift, tds_la **f,
     if (in->neg < 0 || in->pos < 0) {
       tds_la_free(*f);
       *f = NULL;
-      return tds_seterr(ctx, TDS_ENUM, "ritz: the constraints' gradients are dependent");
+      return tds_seterr(ctx, TDS_ENUM, "ritz: the constraints' gradients are dependent (or hessian_epsilon is "
+                         "so large that their pivots count as zero)");
     }
+    if (tries == 0 && first) *first = *in;
     if (!in->zero || tries == 3) return TDS_OK;
     tds_la_free(*f);
     *f = NULL;
@@ -118,7 +120,7 @@ int tds_newton_ritz(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
   if (!user_shift) { /* below every eigenvalue: step down until none is below */
     shift = -1;
     for (int k = 0;; k++) {
-      rc = factor_at(ctx, &n, &shift, &f, &in);
+      rc = factor_at(ctx, &n, o->epsilon, &shift, &f, &in, NULL);
       if (rc != TDS_OK) goto done;
       if (in.neg == 0 || k == 60) break;
       tds_la_free(f);
@@ -126,7 +128,7 @@ int tds_newton_ritz(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
       shift *= 4;
     }
   } else {
-    rc = factor_at(ctx, &n, &shift, &f, &in);
+    rc = factor_at(ctx, &n, o->epsilon, &shift, &f, &in, NULL);
     if (rc != TDS_OK) goto done;
   }
   *in_out = in;
@@ -229,6 +231,92 @@ done:
   tds_free(&ctx->alloc, row);
   tds_free(&ctx->alloc, lam);
   tds_free(&ctx->alloc, ord);
+  tds_nsys_free(&n);
+  if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
+  tds_snap_free(&sn);
+  return TDS_OK;
+}
+
+int tds_newton_invit(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double c, int maxit,
+                     double *val, tds_inertia *in_out, double (*vec)[3], int *iters) {
+  *iters = 0;
+  *val = NAN;
+  if (!isfinite(c)) return tds_seterr(ctx, TDS_ERANGE, "eigenprobe: the probe value is not finite");
+  if (maxit < 0) return tds_seterr(ctx, TDS_ERANGE, "eigenprobe: the iteration count must not be negative");
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
+  if (rc != TDS_OK) return rc;
+  if ((rc = tds_recalc_if_stale(ctx, s)) != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
+  tds_nsys n;
+  rc = tds_nsys_build(ctx, s, o, &n);
+  if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
+  tds_la *f = NULL;
+  int32_t m = n.m;
+  double *x = tds_malloc(&ctx->alloc, ((size_t)m + 1) * sizeof *x);
+  double *Mx = tds_malloc(&ctx->alloc, ((size_t)m + 1) * sizeof *Mx);
+  double *y = tds_malloc(&ctx->alloc, ((size_t)m + n.nq + 1) * sizeof *y);
+  if (!x || !Mx || !y) {
+    rc = tds_seterr(ctx, TDS_ENOMEM, "eigenprobe: out of memory");
+    goto done;
+  }
+  /* the counts at c itself (the eigenprobe line), then the factor used,
+  ** moved off c when c is an eigenvalue */
+  tds_inertia in;
+  double shift = c;
+  if ((rc = factor_at(ctx, &n, o->epsilon, &shift, &f, &in, &in)) != TDS_OK) goto done;
+  *in_out = in;
+  tds_printf(ctx, "Eigencounts:    %d <,  %d ==,  %d > \n", (int)in.neg, (int)in.zero,
+             (int)in.pos);
+  if (m - n.nq <= 0 || maxit == 0) goto done;
+  /* seeded start, taken into the constraint space by one application */
+  unsigned seed = 7;
+  for (int32_t i = 0; i < m; i++) {
+    seed = seed * 1103515245u + 12345u;
+    x[i] = (double)(seed >> 8) / (1 << 24) - 0.5;
+  }
+  double prev = NAN, ev = NAN;
+  for (int it = 0;; it++) {
+    /* y = T x, ev = shift + x'Mx / x'My; then x = y normalised */
+    tds_nsys_metric(&n, x, Mx);
+    memcpy(y, Mx, (size_t)m * sizeof *y);
+    for (int32_t q = 0; q < n.nq; q++) y[m + q] = 0;
+    if ((rc = tds_la_solve(ctx, f, y, 0)) != TDS_OK) goto done;
+    double xMx = 0, xMy = 0;
+    for (int32_t i = 0; i < m; i++) {
+      xMx += Mx[i] * x[i];
+      xMy += Mx[i] * y[i];
+    }
+    if (it > 0) { /* the start is not in the constraint space: no estimate */
+      ev = xMy != 0 ? shift + xMx / xMy : (double)INFINITY;
+      int last = it - 1 == maxit || fabs(ev - prev) <= 1e-13 * fmax(1, fabs(ev));
+      if (it == 1 || (it - 1) % 10 == 0 || last)
+        tds_printf(ctx, "%d  ev = %20.15f\n", it - 1, ev);
+      prev = ev;
+      *iters = it - 1;
+      if (last) break;
+    }
+    tds_nsys_metric(&n, y, Mx);
+    double nn = 0;
+    for (int32_t i = 0; i < m; i++) nn += Mx[i] * y[i];
+    if (!(nn > 0) || !isfinite(nn)) {
+      rc = tds_seterr(ctx, TDS_ENUM, "eigenprobe: the inverse iteration broke down");
+      goto done;
+    }
+    for (int32_t i = 0; i < m; i++) x[i] = y[i] / sqrt(nn);
+  }
+  *val = ev;
+  /* downhill: the eigenvector's sign makes the energy fall to first order */
+  double slope = 0;
+  for (int32_t i = 0; i < m; i++) slope += n.grad[i] * x[i];
+  double sg = slope > 0 ? -1 : 1;
+  if (vec)
+    for (int32_t j = 0; j < m; j++)
+      for (int i = 0; i < 3; i++) vec[n.vert[j]][i] += sg * x[j] * n.dx[j][i];
+done:
+  tds_la_free(f);
+  tds_free(&ctx->alloc, x);
+  tds_free(&ctx->alloc, Mx);
+  tds_free(&ctx->alloc, y);
   tds_nsys_free(&n);
   if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
   tds_snap_free(&sn);

@@ -21,9 +21,56 @@ typedef struct tds_nsys {
   double energy;
 } tds_nsys;
 
+/* The normal space of each vertex slot (hessian_normal, newton.h): the
+** normal, the number of triple-junction edges at it and their direction
+** (each signed to agree with the first).
+**
+** The normal is the area-weighted sum of the facets' unit normals, each
+** facet's sign chosen to agree with the vertex's dominant normal
+** direction (the leading eigenvector of sum area n n^T). On a smooth,
+** consistently oriented surface this is the plain sum of the facets'
+** area vectors, which is the volume gradient; where the facets around a
+** vertex fold over (a crumpled mesh, inconsistent orientations) it still
+** points across the sheet, as Evolver's hessian normal does. */
+typedef struct vnorm {
+  double an[3];
+  double P[3][3];       /* sum area n n^T (only where the normals spread) */
+  double td[3];
+  int nt, nf, bent;     /* bent: two triple edges not along one line */
+} vnorm;
+
+/* vn: m->nv slots. TDS_OK or TDS_ENOMEM (then vn is incomplete). */
+int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn);
+
+/* hessian_special_normal: the normal of every vertex off triple
+** junctions becomes the datafile's HESSIAN_SPECIAL_NORMAL_VECTOR there
+** (a function of the coordinates and parameters). TDS_OK, TDS_ERANGE
+** (no such vector), TDS_ENUM (not finite). */
+int tds_special_normals(tds_ctx *ctx, const tds_surf *s, vnorm *vn);
+
+/* Columns W (d x c) of the unknowns of a vertex with motion basis B
+** (3 x d, dx = B u): the normal space's directions pulled back into u
+** (least squares) and made orthonormal in space (|B w| = 1); with full,
+** or when the vertex has no normal space, its whole motion space (c = d,
+** each coordinate scaled to unit length in space). Returns c. */
+int tds_normal_columns(const vnorm *vn, const double B[3][3], int d, int full, double W[3][3]);
+
 /* Build at the current positions (multipliers recomputed first). */
 int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys *out);
 void tds_nsys_free(tds_nsys *n);
+
+/* The linear_metric matrix out->M (out->m, out->dx set): vk maps a vertex
+** slot to its movable index (or -1), ustart a movable index to its first
+** unknown. TDS_OK or TDS_ENOMEM. */
+int tds_nsys_build_metric(tds_ctx *ctx, const tds_mesh *m, double mix, const int32_t *vk,
+                          const int32_t *ustart, tds_nsys *out);
+
+/* tds_nsys_build's fast path (newton_asm.c): the same system assembled
+** straight into the unknowns on a pattern from the edges. *miss set (and
+** out empty, TDS_OK) when an element couples vertices with no edge
+** between them: then use the general path. Multipliers as stored. */
+int tds_nsys_assemble(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys *out,
+                      int *miss);
 
 /* The bordered K - c [M 0; 0 0] (upper CSC). */
 int tds_nsys_kkt(tds_ctx *ctx, const tds_nsys *n, double c, tds_spmat *K);

@@ -23,182 +23,6 @@ void tds_nsys_free(tds_nsys *n) {
   memset(n, 0, sizeof *n);
 }
 
-/* Per vertex slot: the normal, the number of triple-junction edges at
-** it and their direction (each signed to agree with the first).
-**
-** The normal is the area-weighted sum of the facets' unit normals, each
-** facet's sign chosen to agree with the vertex's dominant normal
-** direction (the leading eigenvector of sum area n n^T). On a smooth,
-** consistently oriented surface this is the plain sum of the facets'
-** area vectors, which is the volume gradient; where the facets around a
-** vertex fold over (a crumpled mesh, inconsistent orientations) it still
-** points across the sheet, as Evolver's hessian normal does. */
-typedef struct vnorm {
-  double an[3];
-  double P[3][3];       /* sum area n n^T */
-  double td[3];
-  int nt, nf, bent;     /* bent: two triple edges not along one line */
-} vnorm;
-
-/* Area vector (length = area) of live facet f. */
-static void facet_vec(const tds_mesh *m, tds_id f, double c[3]) {
-  const tds_id *fv = m->fv[f];
-  double a[3], b[3];
-  v3_sub(a, m->x[fv[1]], m->x[fv[0]]);
-  v3_sub(b, m->x[fv[2]], m->x[fv[0]]);
-  v3_cross(c, a, b);
-  v3_scale(c, 0.5);
-}
-
-/* TDS_OK or TDS_ENOMEM (then vn is incomplete: an answer that depends on
-** memory would make a command's result depend on it). */
-static int vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
-  memset(vn, 0, (size_t)m->nv * sizeof *vn);
-  for (tds_id f = 0; f < m->nf; f++) {
-    if (m->fflags[f] & TDS_DEAD) continue;
-    double c[3];
-    facet_vec(m, f, c);
-    double A = v3_norm(c);
-    for (int k = 0; k < 3; k++) {
-      vnorm *w = &vn[m->fv[f][k]];
-      v3_add(w->an, w->an, c);
-      w->nf++;
-      if (A > 0)
-        for (int i = 0; i < 3; i++)
-          for (int j = 0; j < 3; j++) w->P[i][j] += c[i] * c[j] / A;
-    }
-  }
-  /* the dominant direction: power iteration from the plain sum */
-  double (*ref)[3] = tds_malloc(al, ((size_t)m->nv + 1) * sizeof *ref);
-  if (!ref) return TDS_ENOMEM;
-  for (tds_id v = 0; v < m->nv; v++) {
-    vnorm *w = &vn[v];
-    double r[3];
-    v3_copy(r, w->an);
-    if (!(v3_norm(r) > 1e-12 * (w->P[0][0] + w->P[1][1] + w->P[2][2]))) {
-      int big = 0;
-      for (int i = 1; i < 3; i++)
-        if (w->P[i][i] > w->P[big][big]) big = i;
-      for (int i = 0; i < 3; i++) r[i] = w->P[i][big];
-    }
-    for (int it = 0; it < 100; it++) {
-      double t[3];
-      for (int i = 0; i < 3; i++) t[i] = w->P[i][0] * r[0] + w->P[i][1] * r[1] + w->P[i][2] * r[2];
-      double l = v3_norm(t);
-      if (!(l > 0)) break;
-      v3_scale(t, 1 / l);
-      double dr[3];
-      v3_sub(dr, t, r);
-      v3_copy(r, t);
-      if (it > 0 && v3_dot(dr, dr) < 1e-30) break; /* converged */
-    }
-    v3_copy(ref[v], r);
-    memset(w->an, 0, sizeof w->an);
-  }
-  for (tds_id f = 0; f < m->nf; f++) {
-    if (m->fflags[f] & TDS_DEAD) continue;
-    double c[3];
-    facet_vec(m, f, c);
-    for (int k = 0; k < 3; k++) {
-      tds_id v = m->fv[f][k];
-      v3_axpy(vn[v].an, v3_dot(c, ref[v]) < 0 ? -1 : 1, c);
-    }
-  }
-  tds_free(al, ref);
-  for (tds_id e = 0; e < m->ne; e++) {
-    if (m->eflags[e] & TDS_DEAD) continue;
-    if (tds_edge_valence(m, e) < 3) continue;
-    double d[3];
-    v3_sub(d, m->x[m->ev[e][1]], m->x[m->ev[e][0]]);
-    double len = v3_norm(d);
-    if (!(len > 0)) continue;
-    v3_scale(d, 1 / len);
-    for (int k = 0; k < 2; k++) {
-      vnorm *w = &vn[m->ev[e][k]];
-      if (w->nt) {
-        double dot = v3_dot(d, w->td) / v3_norm(w->td);
-        if (fabs(dot) < 0.5) w->bent = 1;
-        v3_axpy(w->td, dot < 0 ? -1 : 1, d);
-      } else {
-        v3_copy(w->td, d);
-      }
-      w->nt++;
-    }
-  }
-  return TDS_OK;
-}
-
-/* Columns W (d x c) of the unknowns of a vertex with motion basis B
-** (3 x d, dx = B u): the normal space's directions pulled back into u
-** (least squares) and made orthonormal in space (|B w| = 1). c = d (the
-** identity) when the vertex keeps its whole motion space. Returns c. */
-static int normal_columns(const vnorm *vn, const double B[3][3], int d, int full,
-                          double W[3][3]) {
-  memset(W, 0, sizeof(double[3][3]));
-  double nx[3][3];
-  int cn = 0;
-  if (!full && vn->nf > 0 && vn->nt <= 2 && !vn->bent) {
-    if (vn->nt == 0) {
-      double len = v3_norm(vn->an);
-      if (len > 0) {
-        for (int i = 0; i < 3; i++) nx[0][i] = vn->an[i] / len;
-        cn = 1;
-      }
-    } else { /* the plane perpendicular to the triple line */
-      double t[3];
-      v3_copy(t, vn->td);
-      v3_scale(t, 1 / v3_norm(t));
-      for (int e = 0; e < 3 && cn < 2; e++) {
-        double w[3] = {0, 0, 0};
-        w[e] = 1;
-        v3_axpy(w, -v3_dot(w, t), t);
-        for (int l = 0; l < cn; l++) v3_axpy(w, -v3_dot(w, nx[l]), nx[l]);
-        double len = v3_norm(w);
-        if (len > 0.5) {
-          for (int i = 0; i < 3; i++) nx[cn][i] = w[i] / len;
-          cn++;
-        }
-      }
-    }
-  }
-  if (cn == 0) {
-    for (int a = 0; a < d; a++) W[a][a] = 1;
-    /* unit length in space for each coordinate direction */
-    for (int a = 0; a < d; a++) {
-      double l = sqrt(B[0][a] * B[0][a] + B[1][a] * B[1][a] + B[2][a] * B[2][a]);
-      if (l > 0) W[a][a] = 1 / l;
-    }
-    return d;
-  }
-  /* G = B^T B; w = G^-1 B^T n; Gram-Schmidt with <a, b> = (B a).(B b) */
-  double G[3][3];
-  for (int a = 0; a < d; a++)
-    for (int b = 0; b < d; b++) G[a][b] = B[0][a] * B[0][b] + B[1][a] * B[1][b] + B[2][a] * B[2][b];
-  int c = 0;
-  for (int j = 0; j < cn && c < d; j++) {
-    double g[9], w[3];
-    for (int a = 0; a < d; a++) {
-      w[a] = B[0][a] * nx[j][0] + B[1][a] * nx[j][1] + B[2][a] * nx[j][2];
-      for (int b = 0; b < d; b++) g[a * d + b] = G[a][b];
-    }
-    if (tds_dense_solve(d, g, w) != 0) continue;
-    for (int l = 0; l < c; l++) {
-      double dot = 0;
-      for (int a = 0; a < d; a++)
-        for (int b = 0; b < d; b++) dot += w[a] * G[a][b] * W[b][l];
-      for (int a = 0; a < d; a++) w[a] -= dot * W[a][l];
-    }
-    double nn = 0;
-    for (int a = 0; a < d; a++)
-      for (int b = 0; b < d; b++) nn += w[a] * G[a][b] * w[b];
-    if (!(nn > 1e-12)) continue; /* the normal is across the motion space */
-    for (int a = 0; a < d; a++) W[a][c] = w[a] / sqrt(nn);
-    c++;
-  }
-  if (c == 0) return normal_columns(vn, B, d, 1, W);
-  return c;
-}
-
 /* The multipliers the Hessian of the Lagrangian uses are the pressures
 ** stored on the surface, as in Evolver (those of the last `g` or Newton
 ** step: a Newton iteration then converges to what Evolver's does); when
@@ -223,6 +47,39 @@ static int need_pressures(tds_ctx *ctx, tds_surf *s, int *needp) {
 
 static int nomem(tds_ctx *ctx) { return tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory"); }
 
+int tds_nsys_build_metric(tds_ctx *ctx, const tds_mesh *m, double mix, const int32_t *vk,
+                          const int32_t *ustart, tds_nsys *out) {
+  int32_t mm = out->m;
+  tds_sptrip t = {.nrow = mm, .ncol = mm, .alloc = ctx->alloc};
+  for (tds_id f = 0; f < m->nf; f++) {
+    if (m->fflags[f] & TDS_DEAD) continue;
+    const tds_id *fv = m->fv[f];
+    double a[3], b[3], c[3];
+    v3_sub(a, m->x[fv[1]], m->x[fv[0]]);
+    v3_sub(b, m->x[fv[2]], m->x[fv[0]]);
+    v3_cross(c, a, b);
+    double area = 0.5 * v3_norm(c) * m->ften[f]; /* weighted as Evolver's */
+    for (int x = 0; x < 3; x++)
+      for (int y = 0; y < 3; y++) {
+        int32_t kx = vk[fv[x]], ky = vk[fv[y]];
+        if (kx < 0 || ky < 0) continue;
+        double wgt = area * (x == y ? mix / 6 + (1 - mix) / 3 : mix / 12);
+        for (int32_t p = ustart[kx]; p < ustart[kx + 1]; p++)
+          for (int32_t q = ustart[ky]; q < ustart[ky + 1]; q++) {
+            if (p > q || (x != y && p == q)) continue;
+            double v = wgt * v3_dot(out->dx[p], out->dx[q]);
+            if (v != 0 && tds_sptrip_add(&t, p, q, v)) goto nomem;
+          }
+      }
+  }
+  if (tds_spmat_from_trip(&t, 1, &out->M)) goto nomem;
+  tds_sptrip_free(&t);
+  return TDS_OK;
+nomem:
+  tds_sptrip_free(&t);
+  return nomem(ctx);
+}
+
 int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys *out) {
   memset(out, 0, sizeof *out);
   out->alloc = ctx->alloc;
@@ -235,6 +92,12 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
   double (*W)[3][3] = NULL;
   int need = 0, rc = need_pressures(ctx, s, &need);
   if (rc == TDS_OK && need) rc = tds_pressures(ctx, s);
+  if (rc == TDS_OK && !o->diff && !o->general) { /* the fast way (newton_asm.c) */
+    int miss = 0;
+    rc = tds_nsys_assemble(ctx, s, o, out, &miss);
+    if (rc != TDS_OK || !miss) return rc;
+    out->alloc = ctx->alloc;
+  }
   if (rc == TDS_OK) rc = tds_hess_assemble(ctx, s, NULL, &h);
   if (rc == TDS_OK && o->diff) rc = tds_hess_diff(ctx, s, &h);
   if (rc == TDS_OK) rc = tds_hess_reduce(ctx, s, &h, &r);
@@ -249,12 +112,14 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
   ustart = tds_malloc(&ctx->alloc, ((size_t)nvm + 1) * sizeof *ustart);
   rk = tds_malloc(&ctx->alloc, ((size_t)r.m + 1) * sizeof *rk);
   if (!vn || !W || !ustart || !rk) goto nomem;
-  if (vertex_normals(&ctx->alloc, m, vn) != TDS_OK) goto nomem;
+  if (tds_vertex_normals(&ctx->alloc, m, vn) != TDS_OK) goto nomem;
+  if (o->normal && o->special_normal && (rc = tds_special_normals(ctx, s, vn)) != TDS_OK)
+    goto fail;
   ustart[0] = 0;
   for (int32_t k = 0; k < nvm; k++) {
     int d = r.start[k + 1] - r.start[k];
     for (int32_t a = r.start[k]; a < r.start[k + 1]; a++) rk[a] = k;
-    int c = d == 0 ? 0 : normal_columns(&vn[h.vert[k]], r.basis[k], d, !o->normal, W[k]);
+    int c = d == 0 ? 0 : tds_normal_columns(&vn[h.vert[k]], r.basis[k], d, !o->normal, W[k]);
     ustart[k + 1] = ustart[k] + c;
   }
   int32_t mm = out->m = ustart[nvm];
@@ -325,38 +190,12 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
   if (tds_spmat_from_trip(&t, 0, &out->A)) goto nomem;
   tds_sptrip_free(&t);
   if (o->linear_metric) {
-    t = (tds_sptrip){.nrow = mm, .ncol = mm, .alloc = ctx->alloc};
-    double mix = o->metric_mix;
     int32_t *vk = tds_malloc(&ctx->alloc, ((size_t)m->nv + 1) * sizeof *vk);
     if (!vk) goto nomem;
     for (tds_id v = 0; v < m->nv; v++) vk[v] = h.vidx[v] < 0 ? -1 : h.vidx[v] / 3;
-    for (tds_id f = 0; f < m->nf; f++) {
-      if (m->fflags[f] & TDS_DEAD) continue;
-      const tds_id *fv = m->fv[f];
-      double a[3], b[3], c[3];
-      v3_sub(a, m->x[fv[1]], m->x[fv[0]]);
-      v3_sub(b, m->x[fv[2]], m->x[fv[0]]);
-      v3_cross(c, a, b);
-      double area = 0.5 * v3_norm(c) * m->ften[f]; /* weighted as Evolver's */
-      for (int x = 0; x < 3; x++)
-        for (int y = 0; y < 3; y++) {
-          int32_t kx = vk[fv[x]], ky = vk[fv[y]];
-          if (kx < 0 || ky < 0) continue;
-          double wgt = area * (x == y ? mix / 6 + (1 - mix) / 3 : mix / 12);
-          for (int32_t p = ustart[kx]; p < ustart[kx + 1]; p++)
-            for (int32_t q = ustart[ky]; q < ustart[ky + 1]; q++) {
-              if (p > q || (x != y && p == q)) continue;
-              double v = wgt * v3_dot(out->dx[p], out->dx[q]);
-              if (v != 0 && tds_sptrip_add(&t, p, q, v)) {
-                tds_free(&ctx->alloc, vk);
-                goto nomem;
-              }
-            }
-        }
-    }
+    rc = tds_nsys_build_metric(ctx, m, o->metric_mix, vk, ustart, out);
     tds_free(&ctx->alloc, vk);
-    if (tds_spmat_from_trip(&t, 1, &out->M)) goto nomem;
-    tds_sptrip_free(&t);
+    if (rc != TDS_OK) goto fail;
   }
   tds_free(&ctx->alloc, vn);
   tds_free(&ctx->alloc, W);

@@ -1,5 +1,6 @@
 /* pg.c: the driver of the projected-gradient method (see pg.h, pg_int.h
 ** and doc/method.md): work arrays, the iteration loop, termination. */
+#include "torus.h"
 #include "pg.h"
 
 #include <math.h>
@@ -155,6 +156,7 @@ nomem:
 }
 
 int tds_pg_flip_all(tds_ctx *ctx, tds_surf *s, int32_t *nflips) {
+  if (s->m.torus) return tds_torus_unsupported(ctx, "pg's flips");
   pgw w;
   int rc = pg_work_init(ctx, s, &w, 0);
   if (rc != TDS_OK) return rc;
@@ -213,6 +215,7 @@ void tds_pg_defaults(tds_pg_opts *o) {
   o->accel = 1;
   o->depth = 20;
   o->flips = 1;
+  o->newton = 1;
 }
 
 static double mean_edge(const tds_mesh *m) {
@@ -273,6 +276,7 @@ static int evaluate(tds_ctx *ctx, tds_surf *s, pgw *w, int flips, double sfac,
 
 int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
                tds_pg_result *res) {
+  if (s->m.torus) return tds_torus_unsupported(ctx, "pg");
   double t0 = now();
   memset(res, 0, sizeof *res);
   if (s->str) /* the string model (struct tds_strings): no triangles */
@@ -319,6 +323,33 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   int stuck = 0, resumes = 0;
   int64_t plain_until = 0; /* > 0: resume the mixing at this iteration */
   res->hysteresis = w.flip_tol;
+  /* Newton preconditioning (pg_newton.c, doc/method.md): once r is below
+  ** 1e-3 x mean edge and no edge has flipped for nt_wait iterations, the
+  ** map's Jacobian is measured and factored, and the mixing works on the
+  ** preconditioned map; measured again when r has not halved for
+  ** nt_patience iterations, dropped after a flip (the map changed) or when
+  ** r grows a hundredfold. Not on a surface without a fixed vertex and
+  ** without the rigid-motion gauge (a free closed surface: its rigid
+  ** motions make the Jacobian singular); with the gauge (a drop free to
+  ** slide on a table) the motions it removes are a border of the system. */
+  pg_newton nt;
+  memset(&nt, 0, sizeof nt);
+  int anchored = 0; /* a fixed vertex with facets, or a boundary vertex:
+                       else rigid motions are exact null directions of
+                       the Jacobian (a free closed surface) */
+  for (tds_id v = 0; v < m->nv; v++)
+    if ((w.kind[v] == VK_FIXED && m->vf_start[v + 1] > m->vf_start[v] &&
+         !(m->vflags[v] & TDS_DEAD)) || w.kind[v] == VK_BDRY)
+      anchored = 1;
+  int use_nt = accel && o->newton && w.nmov > 0 && (w.nrig || anchored);
+  if (use_nt && pg_newton_init(&nt, &w.al, &w) != TDS_OK) {
+    pg_work_free(&w);
+    return tds_snap_end(ctx, s, &sn, tds_seterr(ctx, TDS_ENOMEM, "out of memory"));
+  }
+  const int64_t nt_wait = 10, nt_patience = 20, nt_maxb = 50;
+  const double nt_start = 1e-3 * hbar;
+  int64_t nt_next = 0, nt_since = 0;
+  double nt_ref = INFINITY, nt_r0 = INFINITY;
   save_best(s, &w);
   tds_printf(ctx, "pg: %d movable vertices, %s%s\n", w.nmov,
              accel ? "accelerated (Anderson)" : "plain",
@@ -331,6 +362,10 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
     if (nf) {
       res->flips += nf;
       since_flip = 0;
+      if (nt.lu) {
+        pg_newton_drop(&nt);
+        nt_next = k + nt_wait;
+      }
       if (accel) {
         pg_accel_reset(&w.aa);
         res->restarts++;
@@ -436,7 +471,43 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
                                      "be projected onto its constraints");
       break;
     }
-    if (accel && since_flip >= warm) {
+    if (nt.lu) { /* the preconditioner's progress */
+      if (si.r < 0.5 * nt_ref) {
+        nt_ref = si.r;
+        nt_since = k;
+      } else if (si.r > 100 * nt_r0 || k - nt_since > nt_patience) {
+        pg_newton_drop(&nt);
+        nt_next = si.r > 100 * nt_r0 ? k + 5 * nt_wait : k;
+      }
+      if (nt.lu && pg_newton_sliver(s, &w)) { /* degenerating: not here */
+        pg_newton_drop(&nt);
+        nt_next = k + 5 * nt_wait;
+      }
+    }
+    if (accel && since_flip >= warm && use_nt && !nt.lu && since_flip >= nt_wait &&
+        k >= nt_next && nt.builds < nt_maxb && si.r > noise && si.r < nt_start) {
+      pg_get_state(s, &w, w.aa.G);
+      rc = pg_newton_build(ctx, s, &w, &nt, w.aa.X, sfac, 1e-7 * hbar);
+      if (rc == TDS_ENUM) rc = TDS_OK; /* no usable Jacobian here */
+      if (rc != TDS_OK) break;
+      if (!nt.lu) nt_next = k + 5 * nt_wait; /* try later */
+      if (nt.lu) {
+        pg_accel_reset(&w.aa);
+        nt_ref = nt_r0 = si.r;
+        nt_since = k;
+      }
+    }
+    if (accel && since_flip >= warm && nt.lu) {
+      pg_get_state(s, &w, w.aa.G);
+      rc = pg_newton_apply(ctx, &nt, &w, w.aa.X, w.aa.G);
+      if (rc != TDS_OK) break;
+      pg_accel_mix(&w.aa, lim2);
+      if (pg_set_state(s, &w, w.aa.X)) {
+        rc = tds_seterr(ctx, TDS_ENUM, "projected gradient: a vertex could "
+                                       "not be projected onto its constraints");
+        break;
+      }
+    } else if (accel && since_flip >= warm) {
       pg_get_state(s, &w, w.aa.G);
       if (pg_accel_mix(&w.aa, lim2) && pg_set_state(s, &w, w.aa.X)) {
         rc = tds_seterr(ctx, TDS_ENUM, "projected gradient: a vertex could "
@@ -475,6 +546,8 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   res->restarts += w.aa.restarts;
   res->threaded = w.threaded;
   res->cpu_seconds = cpu_now() - c0;
+  res->newton_builds = nt.builds;
+  pg_newton_free(&nt);
   pg_work_free(&w);
   int rc2 = rc == TDS_OK || rc == TDS_EINTR ? tds_surf_update(ctx, s) : TDS_OK;
   if (rc == TDS_OK) rc = rc2;

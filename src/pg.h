@@ -36,6 +36,8 @@ typedef struct tds_pg_opts {
   double rtol;            /* > 0: also stop once r < rtol * mean edge length */
   int threads;            /* threads of the facet pass: 1 (default) or 2;
                              the results do not depend on it */
+  int newton;             /* 1: Newton-type preconditioning of the
+                             accelerated run (default); 0: none */
 } tds_pg_opts;
 
 typedef struct tds_pg_result {
@@ -58,6 +60,7 @@ typedef struct tds_pg_result {
   int converged;          /* stopped by the termination criterion */
   int status;             /* how the run ended: TDS_PG_* below */
   int64_t window_flips;   /* TDS_PG_CYCLING: flips in the last windows */
+  int64_t newton_builds;  /* Jacobians measured (Newton preconditioning) */
   double hysteresis;      /* flip hysteresis at the end: 1e-3, widened
                              up to 0.1 while flips cycle (doc/method.md) */
   char message[640];      /* STALLED, CYCLING, MAX: what happened and what

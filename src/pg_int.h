@@ -76,10 +76,33 @@ typedef struct pg_accel {
   tds_alloc al;           /* of the arrays */
 } pg_accel;
 
+/* Newton-type preconditioner (pg_newton.c); the multipliers' dependence
+** on the positions is in it for up to PG_NT_NQ constraints. */
+#define PG_NT_NQ 4
+typedef struct tds_la tds_la;
+typedef struct pg_newton {
+  int32_t *inv;           /* per vertex: movable index, or -1 */
+  int32_t *nbp, *nbi;     /* closed neighbourhoods (CSR, movable indices) */
+  int32_t *nbn;           /* scratch: neighbours found so far */
+  int32_t *color, ncolor; /* distance-2 colouring */
+  double *X0, *F0, *Xp, *Fp, *b;
+  double (*xs)[3], (*ps)[2];
+  int32_t *mark;
+  double *R0, *Rp, *dR, *S0, *Sp, *dS; /* multipliers' parts (pg_newton.c) */
+  tds_la *lu;             /* the factored bordered Jacobian, or NULL */
+  int64_t builds;         /* Jacobians measured in this run */
+  tds_alloc al;
+} pg_newton;
+
 /* Work arrays of one run; allocated once (pg.c). */
 typedef struct pgw {
   int32_t nv, ne, nf, nmov;
   int rigid;              /* no fixed vertex: rigid gauge (pg_step.c) */
+  int frozen;             /* pg_step keeps the multipliers, restoring
+                             coefficients and gauge motion of its last
+                             unfrozen call */
+  double gxc[3], gT[3], gR[3]; /* the gauge's last rigid motion (centre,
+                             translation, rotation) */
   int nrig;               /* rigid motions in the gauge (<= 6) */
   int rig[6];             /* their indices: 0-2 translations, 3-5 rotations */
   uint8_t *kind;          /* per vertex slot: VK_* */
@@ -199,5 +222,21 @@ void pg_accel_reset(pg_accel *a);
 ** from a->G), 0 for a plain step. lim2: largest squared distance of a
 ** vertex's mixed position from its plain one. */
 int pg_accel_mix(pg_accel *a, double lim2);
+
+/* pg_newton.c */
+int pg_newton_init(pg_newton *nt, const tds_alloc *al, const pgw *w); /* TDS_OK/ENOMEM */
+void pg_newton_free(pg_newton *nt);
+void pg_newton_drop(pg_newton *nt);  /* forget the factorisation */
+/* Measure and factor the Jacobian at state X (finite differences of step
+** h); the surface is left as it was. TDS_OK (nt->lu NULL when the mesh
+** has a facet with an angle below about 10 degrees: not built), TDS_ENOMEM,
+** TDS_ENUM (singular: no factorisation). */
+int pg_newton_build(tds_ctx *ctx, tds_surf *s, pgw *w, pg_newton *nt, const double *X,
+                    double sfac, double h);
+/* Nonzero when a facet at a movable vertex has an angle below about 10
+** degrees: no Newton preconditioning then. */
+int pg_newton_sliver(const tds_surf *s, const pgw *w);
+/* G (the plain image of X) becomes X + dX, dX the preconditioned move. */
+int pg_newton_apply(tds_ctx *ctx, pg_newton *nt, const pgw *w, const double *X, double *G);
 
 #endif

@@ -181,7 +181,13 @@ static void remove_drift(const tds_surf *s, pgw *w) {
   const tds_mesh *m = &s->m;
   int nr = w->nrig;
   if (nr == 0) return;
-  double xc[3];
+  double xc[3], cT[3] = {0, 0, 0}, cR[3] = {0, 0, 0};
+  if (w->frozen) { /* the last unfrozen call's rigid motion (pg_newton.c) */
+    v3_copy(xc, w->gxc);
+    v3_copy(cT, w->gT);
+    v3_copy(cR, w->gR);
+    goto apply;
+  }
   centroid(s, w, xc);
   /* The full 6 x 6 Gram (all rigid motions) and right-hand side; the
   ** chosen ones are picked below. */
@@ -225,14 +231,18 @@ static void remove_drift(const tds_surf *s, pgw *w) {
     for (int j = 0; j < n; j++) A[n * i + j] = G[6 * idx[i] + idx[j]];
     A[n * i + i] *= 1 + 1e-12;
   }
-  if (n == 0 || tds_dense_solve(n, A, c) != 0) return;
-  /* The move to remove: u = cT + cR x r, in tangential part. */
-  double cT[3] = {0, 0, 0}, cR[3] = {0, 0, 0};
-  for (int i = 0; i < n; i++) {
-    int ri = w->rig[idx[i]];
-    if (ri < 3) cT[ri] = c[i];
-    else cR[ri - 3] = c[i];
+  if (n > 0 && tds_dense_solve(n, A, c) == 0) {
+    /* The move to remove: u = cT + cR x r, in tangential part. */
+    for (int i = 0; i < n; i++) {
+      int ri = w->rig[idx[i]];
+      if (ri < 3) cT[ri] = c[i];
+      else cR[ri - 3] = c[i];
+    }
   }
+  v3_copy(w->gxc, xc);
+  v3_copy(w->gT, cT);
+  v3_copy(w->gR, cR);
+apply:
   for (int32_t j = 0; j < w->nmov; j++) {
     tds_id v = w->mov[j];
     if (w->bnb[v][0] >= 0) continue; /* on the contact line: see gauge() */
@@ -313,6 +323,13 @@ static int directions_multipliers(tds_ctx *ctx, const tds_surf *s, pgw *w) {
     direction(s, w, v);
     if (!nq) continue;
     const double *d = w->d[v];
+    if (w->frozen) {
+      for (int32_t e = fq->start[v]; e < fq->start[v + 1]; e++) {
+        w->an[e] = v3_dot(fq->g[e], d);
+        to_motion(w, v, fq->g[e]);
+      }
+      continue;
+    }
     double gd = v3_dot(w->acc[v].ga, d) + v3_dot(w->grad[v], d);
     int32_t e0 = fq->start[v], e1 = fq->start[v + 1];
     for (int32_t e = e0; e < e1; e++) {
@@ -328,7 +345,7 @@ static int directions_multipliers(tds_ctx *ctx, const tds_surf *s, pgw *w) {
         gr[ij] += v3_dot(fq->g[e], fq->g[e2]);
       }
   }
-  if (!nq) return TDS_OK;
+  if (!nq || w->frozen) return TDS_OK;
   for (int32_t q = 0; q < nq; q++)
     if (!(w->gram[q * nq + q] > 0)) w->gram[q * nq + q] = 1; /* no movable vertex */
   if (tds_dense_solve(nq, w->gram, w->rhs) != 0)

@@ -3,6 +3,7 @@
 
 #include <ctype.h>
 #include <stdlib.h>
+#include <math.h>
 #include <string.h>
 #include <strings.h>
 
@@ -42,6 +43,7 @@ void tds_surf_free(tds_surf *s) {
     free_exprs(s->bdry[i].content, 3);
   }
   tds_free(&a, s->bdry);
+  free_exprs(s->special_normal, 3);
   for (int i = 0; i < s->nquant; i++) {
     tds_free(&a, s->quant[i].name);
     for (int j = 0; j < s->quant[i].ninst; j++)
@@ -50,14 +52,53 @@ void tds_surf_free(tds_surf *s) {
   }
   tds_free(&a, s->quant);
   free_exprs(s->metric, 9);
+  for (int i = 0; i < 3; i++) free_exprs(s->period_expr[i], 3);
+  tds_free(&a, s->tlift);
   tds_free(&a, s->read_text);
   tds_free(&a, s->orig_start);
   tds_free(&a, s->orig_facets);
   tds_free(&a, s->cg_dir);
   tds_free(&a, s->cg_prev);
+  tds_free(&a, s->view);
+  tds_free(&a, s->vgen);
+  tds_free(&a, s->view_swap);
+  tds_free(&a, s->vgen_swap);
   tds_strings_free(s);
   tds_surf_init(s);
   s->m.alloc = a;
+}
+
+int tds_surf_set_view(tds_ctx *ctx, tds_surf *s, int gen, int n, const double (*m)[16],
+                      const uint8_t *swap) {
+  if (n < 0 || n > TDS_MAX_VIEW)
+    return tds_seterr(ctx, TDS_ERANGE, "%d view transforms: at most %d", n, TDS_MAX_VIEW);
+  for (int i = 0; i < n; i++)
+    for (int k = 0; k < 16; k++)
+      if (!isfinite(m[i][k]))
+        return tds_seterr(ctx, TDS_ERANGE, "view transform %d: entry [%d][%d] is not finite",
+                          i + 1, k / 4 + 1, k % 4 + 1);
+  double (*c)[16] = NULL;
+  uint8_t *sw = NULL;
+  if (n) {
+    c = tds_malloc(&s->m.alloc, (size_t)n * sizeof *c);
+    sw = tds_calloc(&s->m.alloc, (size_t)n, 1);
+    if (!c || !sw) {
+      tds_free(&s->m.alloc, c);
+      tds_free(&s->m.alloc, sw);
+      return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+    }
+    memcpy(c, m, (size_t)n * sizeof *c);
+    for (int i = 0; swap && i < n; i++) sw[i] = swap[i] != 0;
+  }
+  double (**pm)[16] = gen ? &s->vgen : &s->view;
+  uint8_t **ps = gen ? &s->vgen_swap : &s->view_swap;
+  tds_free(&s->m.alloc, *pm);
+  tds_free(&s->m.alloc, *ps);
+  *pm = c;
+  *ps = sw;
+  if (gen) s->nvgen = n;
+  else s->view_transforms = n;
+  return TDS_OK;
 }
 
 int tds_surf_param_find(const tds_surf *s, const char *name, size_t len) {

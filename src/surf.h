@@ -83,8 +83,15 @@ typedef struct tds_surf {
   double gravity;         /* G */
   int gravity_on;         /* gravity energy active */
   int symmetric_content;  /* volume via (x,y,z)/3 . dS */
-  int view_transforms;    /* VIEW_TRANSFORMS count of the datafile (display
-                             only: the matrices are not kept) */
+  int view_transforms;    /* Evolver's transform_count: matrices in view[];
+                             0 = none given (the identity alone) */
+  double (*view)[16];     /* the view transforms, 4x4 row-major (display
+                             and scripts only; the datafile's VIEW_TRANSFORMS
+                             after the identity, or transform_expr's) */
+  uint8_t *view_swap;     /* per view transform: SWAP_COLORS (or NULL) */
+  int nvgen;              /* VIEW_TRANSFORM_GENERATORS */
+  double (*vgen)[16];
+  uint8_t *vgen_swap;
   double gap_constant;    /* spring constant for convex constraints */
   tds_expr *metric[9];    /* Riemannian metric G[i][j] = metric[3i+j] (NULL
                              entries 0), string model only; metric_on says
@@ -106,12 +113,28 @@ typedef struct tds_surf {
   int32_t stall_facet;    /* facet slot + 1 of g's last stall warning; 0 none */
   int check_increase;     /* undo a g step that raises the energy, stop g */
   int evolver_ls;         /* g's line search: Evolver's bracketing (iterate.c) */
+  int autopop;            /* g deletes edges and facets about to vanish, pops */
+  int immediate_autopop;  /* ... each as soon as it is found (autopop.h) */
+  int autochop;           /* g bisects edges about to grow past autochop_length */
+  double autochop_length;
   uint64_t rng;           /* state of the jiggle's random numbers (jiggle.h) */
 
   char *read_text;        /* a datafile's read section, kept verbatim */
+  struct tds_expr *special_normal[3]; /* HESSIAN_SPECIAL_NORMAL_VECTOR c1..c3
+                              (Newton steps' normals with
+                              hessian_special_normal), or NULL */
 
   struct tds_strings *str; /* the string model's cells (string_model.h),
                               NULL in the soapfilm model */
+
+  /* the torus model (torus.h; the periods and wraps are in the mesh) */
+  struct tds_expr *period_expr[3][3]; /* PERIODS as given, re-evaluated by
+                                         recalc; NULL: a constant */
+  int32_t *tlift;         /* per facet side 2f+j (j 0 front body, 1 back):
+                             the packed lattice translation that makes the
+                             body's facets one closed surface */
+  int32_t tlift_cap;
+  uint64_t tlift_gen;     /* topo_gen tlift was built for (0: never) */
 
   /* derived: facets of each declared face (CSR by forig), for bodies */
   int32_t *orig_start, *orig_facets;
@@ -147,6 +170,15 @@ int tds_surf_con_slot(const tds_surf *s, int number);
 int tds_surf_con_named(const tds_surf *s, const char *name, size_t len);
 /* The smallest constraint number not declared (what a named one gets). */
 int tds_surf_con_free_number(const tds_surf *s);
+
+/* Replace the view transforms (n matrices, 4x4 row-major; n = 0: the
+** identity alone) or, with gen, the view transform generators, by copies
+** of m[0..n) and their SWAP_COLORS flags swap[0..n) (NULL: none). All or
+** nothing: TDS_ERANGE if a value is not finite or n is beyond
+** TDS_MAX_VIEW, TDS_ENOMEM. */
+#define TDS_MAX_VIEW 100000
+int tds_surf_set_view(tds_ctx *ctx, tds_surf *s, int gen, int n, const double (*m)[16],
+                      const uint8_t *swap);
 
 /* The constraints declared GLOBAL: every vertex is on them, also vertices
 ** made later by refining or splitting faces. */

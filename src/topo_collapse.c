@@ -1,5 +1,6 @@
 /* topo_collapse.c: edge collapse and the commands built on it (delete
 ** edge, t/edgeweed, delete facet, w/areaweed). */
+#include "torus.h"
 #include "topo_edit.h"
 
 #include <math.h>
@@ -257,17 +258,23 @@ static int run(tds_ctx *ctx, tds_surf *s, int facets, int how,
 }
 
 int tds_delete_edges(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  if (s->m.torus) return tds_torus_unsupported(ctx, "delete (edges)");
   return run(ctx, s, 0, BY_SEL, sel, 0, n);
 }
 
 int tds_edgeweed(tds_ctx *ctx, tds_surf *s, double len, int32_t *n) {
+  if (s->m.torus) return tds_torus_unsupported(ctx, "t (edgeweed)");
   return run(ctx, s, 0, BY_LEN, NULL, len, n);
 }
 
 int tds_delete_facets(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  if (s->m.torus) return tds_torus_unsupported(ctx, "delete (facets)");
   return run(ctx, s, 1, BY_SEL, sel, 0, n);
 }
 
 int tds_areaweed(tds_ctx *ctx, tds_surf *s, double area, int32_t *n) {
+  if (s->m.torus) return tds_torus_unsupported(ctx, "w (areaweed)");
   return run(ctx, s, 1, BY_AREA, NULL, area, n);
 }
+
+int tds_delete_facet_raw(tds_surf *s, tds_id f) { return delete_facet(s, f); }

@@ -75,6 +75,43 @@ int tds_edgeswap(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
 ** before. *n: vertices split. */
 int tds_pop_vertices(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
 
+/* Pop vertex v whose star is one cone that is not minimal by Evolver's
+** sphere construction (topo_popcone.c): no snapshot, no energy update.
+** *done = 0 (nothing changed) when its regions do not make simple cells.
+** TDS_OK or TDS_ENOMEM (then half changed: callers run under a snapshot). */
+int tds_pop_cone(tds_surf *s, tds_id v, int *done);
+
+/* O / pop on edges (sel over edges, NULL: all; topo_popedge.c): each
+** selected live edge with more than three facets, not fixed, on no
+** constraint (beyond global ones) or boundary, is split into two chains
+** as Evolver splits it: the two neighbouring facets with the smallest
+** angle between them (the wedge) are pulled 1% of an edge length apart
+** from the others along the whole run of such edges (through free
+** vertices where only facets fin between the two edges of the run), and
+** new triangles join the two runs; a run with no vertex inside is first
+** split at its midpoint. Edges are visited in id order; *n gets the
+** number of vertices pulled apart (Evolver's "Edges popped"). */
+int tds_pop_edges(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
+
+/* Pop one edge (no snapshot, no energy update): *npulled as above, 0 when
+** the edge is not poppable. TDS_OK, or TDS_ENOMEM/TDS_ETOPO (the surface
+** is then half changed: callers run under a snapshot). */
+int tds_pop_one_edge(tds_surf *s, tds_id e, int32_t *npulled);
+
+/* o: pop every edge (tds_pop_edges), then every vertex (tds_pop_vertices),
+** all or nothing; the two counts in *nedges, *nverts. */
+int tds_pop(tds_ctx *ctx, tds_surf *s, int32_t *nedges, int32_t *nverts);
+
+/* The same without a snapshot (for autopop inside g, which has one). */
+int tds_pop_raw(tds_ctx *ctx, tds_surf *s, int32_t *nedges, int32_t *nverts);
+
+/* Raw pieces (no snapshot, no energy update; storage is reserved inside):
+** split edge e at its midpoint as l does (TDS_OK or TDS_ENOMEM), delete
+** facet f as `delete facet` does (1 done, 0 nothing collapsible, -1 out
+** of memory). */
+int tds_split_edge_raw(tds_surf *s, tds_id e);
+int tds_delete_facet_raw(tds_surf *s, tds_id f);
+
 
 /* pop_edge_to_tri (sel over edges): each edge of valence 3 between two
 ** free tetrahedral points (four triple edges each, all other edges of
@@ -91,6 +128,26 @@ int tds_pop_edge_to_tri(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *
 ** different bodies, collapses to a point that opens into a short triple
 ** edge across, joining the two bodies' sides. *n: facets transformed. */
 int tds_pop_tri_to_edge(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
+
+/* renumber_all (topo_renumber.c): the live elements of each kind get ids
+** 1, 2, ... in their present order, every reference following; dead slots
+** are dropped. *n: elements whose id changed. Refused in the string model
+** (its cells are not renumbered yet). */
+int tds_renumber_all(tds_ctx *ctx, tds_surf *s, int32_t *n);
+
+/* vertex_merge (0-based ids): vertex v2 joins v1 (which stays where it
+** is): every edge and facet at v2 now has v1, and v2 goes. Refused (the
+** surface as before) when the two are joined by an edge or have a
+** neighbour in common (the merge would lay two edges side by side), as
+** Evolver's manual asks. */
+int tds_vertex_merge(tds_ctx *ctx, tds_surf *s, tds_id v1, tds_id v2);
+
+/* rebody: the facets of each body are divided into edge-connected sets
+** (a body cut in two by a pinched neck); the set with the lowest facet
+** keeps the body, each other set gets a new body with the same attributes
+** (as Evolver's rebody). Bodies with target volumes: every piece's target
+** becomes its actual volume. *n: new bodies. */
+int tds_rebody(tds_ctx *ctx, tds_surf *s, int32_t *n);
 
 /* dissolve (kind, sel): remove elements without closing the gap, as if
 ** their lines were erased from the datafile: only vertices without edges,

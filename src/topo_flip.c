@@ -1,4 +1,5 @@
 /* topo_flip.c: edge flips and equiangulation (the u command). */
+#include "torus.h"
 #include "topo.h"
 #include "snap.h"
 
@@ -172,6 +173,7 @@ static int equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
 
 /* All or nothing, as tds_refine. */
 int tds_equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nflips) {
+  if (s->m.torus) return tds_torus_unsupported(ctx, "u (equiangulate)");
   tds_snap sn;
   int rc = tds_snap_take(ctx, s, &sn);
   if (rc != TDS_OK) return rc;
@@ -180,6 +182,7 @@ int tds_equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nfl
 
 int tds_equiangulate_once(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
                           int32_t *nflips) {
+  if (s->m.torus) return tds_torus_unsupported(ctx, "equiangulate");
   tds_snap sn;
   int rc = tds_snap_take(ctx, s, &sn);
   if (rc != TDS_OK) return rc;

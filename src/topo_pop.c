@@ -1,5 +1,6 @@
 /* topo_pop.c: o / pop on vertices: a vertex where separate cones of
 ** facets meet (a pinched neck after t) is split into one vertex per cone. */
+#include "torus.h"
 #include "topo_edit.h"
 
 #include <stdlib.h>
@@ -76,19 +77,47 @@ static int pop(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npop) {
   int rc = TDS_OK;
   tds_cmask gl = tds_surf_global_cons(s);
   /* Splitting v changes only v's own star, so the stars of the vertices
-  ** after it, built once above, stay valid. */
+  ** after it, built once above, stay valid; a sphere pop (tds_pop_cone)
+  ** changes its neighbours' stars: the adjacency is rebuilt after one. */
   for (tds_id v = 0; v < nv0 && rc == TDS_OK; v++) {
     if (!tds_alive(m->vflags, v) || (sel && !sel[v])) continue;
     if ((m->vflags[v] & TDS_FIXED) || (m->vcon[v] & ~gl) || m->vbdry[v] != TDS_NONE) continue;
+    int32_t kf = m->vf_start[v + 1] - m->vf_start[v];
+    if (kf > maxf) { /* grown by a sphere pop */
+      tds_id *f2 = tds_realloc(&m->alloc, fl, (size_t)(kf + 1) * sizeof *fl);
+      if (f2) fl = f2;
+      int *l2 = tds_realloc(&m->alloc, lab, (size_t)(kf + 1) * sizeof *lab);
+      if (l2) lab = l2;
+      tds_id *c2 = tds_realloc(&m->alloc, copy, (size_t)(kf + 1) * sizeof *copy);
+      if (c2) copy = c2;
+      if (!f2 || !l2 || !c2) {
+        rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory while popping");
+        break;
+      }
+      maxf = kf;
+    }
     int nc = 0, minimal = 0;
     int nf = star(m, v, fl, lab, &nc, &minimal);
     if (nf <= 0) continue;
     if (nc == 1) {
       if (!minimal) {
-        rc = tds_seterr(ctx, TDS_ERANGE, "not supported yet for vertex %d, a "
-                        "non-minimal cone (tds pops only pinched vertices, where "
-                        "separate cones meet)", v + 1);
-        break;
+        int done = 0;
+        rc = tds_pop_cone(s, v, &done);
+        if (rc != TDS_OK) {
+          rc = tds_seterr(ctx, rc, "out of memory while popping vertex %d", v + 1);
+          break;
+        }
+        if (!done) {
+          rc = tds_seterr(ctx, TDS_ERANGE, "not supported yet for vertex %d, a "
+                          "non-minimal cone whose regions do not form simple cells",
+                          v + 1);
+          break;
+        }
+        cnt++;
+        if (tds_mesh_adjacency(m) != TDS_OK) {
+          rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory while popping");
+          break;
+        }
       }
       continue;
     }
@@ -131,5 +160,39 @@ static int pop(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npop) {
 }
 
 int tds_pop_vertices(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  if (s->m.torus) return tds_torus_unsupported(ctx, "pop");
   return tds_snap_run(ctx, s, pop, sel, n);
+}
+
+int tds_pop_raw(tds_ctx *ctx, tds_surf *s, int32_t *nedges, int32_t *nverts) {
+  *nedges = *nverts = 0;
+  int32_t ne0 = s->m.ne, ne = 0, nv = 0;
+  int rc = TDS_OK;
+  for (tds_id e = 0; e < ne0 && rc == TDS_OK; e++) {
+    int32_t k = 0;
+    rc = tds_pop_one_edge(s, e, &k);
+    if (rc == TDS_ENOMEM) rc = tds_seterr(ctx, rc, "out of memory while popping edges");
+    else if (rc != TDS_OK) rc = tds_seterr(ctx, rc, "o: edge %d: the chain changed while popping", e + 1);
+    ne += k;
+  }
+  if (rc == TDS_OK) rc = pop(ctx, s, NULL, &nv);
+  if (rc == TDS_OK) {
+    *nedges = ne;
+    *nverts = nv;
+  }
+  return rc;
+}
+
+int tds_pop(tds_ctx *ctx, tds_surf *s, int32_t *nedges, int32_t *nverts) {
+  *nedges = *nverts = 0;
+  tds_snap sn;
+  int rc = tds_snap_take(ctx, s, &sn);
+  if (rc != TDS_OK) return rc;
+  int32_t ne = 0, nv = 0;
+  rc = tds_snap_end(ctx, s, &sn, tds_pop_raw(ctx, s, &ne, &nv));
+  if (rc == TDS_OK) {
+    *nedges = ne;
+    *nverts = nv;
+  }
+  return rc;
 }

@@ -8,6 +8,7 @@
 #include "motion.h"
 #include "recalc.h"
 #include "snap.h"
+#include "torus.h"
 #include "vec3.h"
 
 /* Oriented reference to the first (tail side) or second half of the split
@@ -46,10 +47,14 @@ static tds_id inner_edge(tds_mesh *m, tds_id f, tds_id v0, tds_id v1) {
   return e;
 }
 
-static tds_id new_facet(tds_mesh *m, tds_id src, int32_t a, int32_t b, int32_t c) {
+/* A new facet like src from three oriented edges; on a torus the edge on
+** side `inner` (0..2, or -1: none) is new and gets the wrap that closes
+** the facet. */
+static tds_id new_facet(tds_mesh *m, tds_id src, int32_t a, int32_t b, int32_t c, int inner) {
   int32_t oe[3] = {a, b, c};
   tds_id f = tds_mesh_add_facet(m, oe);
   tds_facet_inherit(m, f, src);
+  if (m->torus && inner >= 0) tds_torus_close(m, f, inner);
   return f;
 }
 
@@ -58,9 +63,11 @@ static void set3(tds_mesh *m, tds_id f, int32_t a, int32_t b, int32_t c) {
   tds_mesh_set_facet(m, f, oe);
 }
 
-static double dist2(const tds_mesh *m, tds_id a, tds_id b) {
-  double d[3];
-  v3_sub(d, m->x[a], m->x[b]);
+/* Squared distance from vertex a translated by wrap wa to b translated by
+** wb (wraps 0 without a torus). */
+static double dist2(const tds_mesh *m, tds_id a, int32_t wa, tds_id b, int32_t wb) {
+  double d[3], pa[3], pb[3];
+  v3_sub(d, tds_wrap_point(m, m->x[a], wa, pa), tds_wrap_point(m, m->x[b], wb, pb));
   return v3_dot(d, d);
 }
 
@@ -97,27 +104,33 @@ static void split_facet(tds_mesh *m, tds_id f, const tds_id *midv,
     tds_id c0 = inner_edge(m, f, mm[0], mm[2]);
     tds_id c1 = inner_edge(m, f, mm[1], mm[0]);
     tds_id c2 = inner_edge(m, f, mm[2], mm[1]);
-    new_facet(m, f, half(e2, o[0], 0), TDS_OREF(c0, 0), half(e2, o[2], 1));
-    new_facet(m, f, half(e2, o[0], 1), half(e2, o[1], 0), TDS_OREF(c1, 0));
-    new_facet(m, f, TDS_OREF(c2, 0), half(e2, o[1], 1), half(e2, o[2], 0));
+    new_facet(m, f, half(e2, o[0], 0), TDS_OREF(c0, 0), half(e2, o[2], 1), 1);
+    new_facet(m, f, half(e2, o[0], 1), half(e2, o[1], 0), TDS_OREF(c1, 0), 2);
+    new_facet(m, f, TDS_OREF(c2, 0), half(e2, o[1], 1), half(e2, o[2], 0), 0);
     set3(m, f, TDS_OREF(c2, 1), TDS_OREF(c0, 1), TDS_OREF(c1, 1));
   } else if (nsplit == 2) {
     /* Edges 0 (a0->a1) and 1 (a1->a2) split: corner at a1, then the quad
     ** a0, m0, m1, a2 cut along its shorter diagonal. */
+    /* the corners in the facet's frame (torus): m0, then m1 after the
+    ** second half of edge 0 and the first of edge 1 */
+    int32_t w0 = tds_oe_wrap(m, half(e2, o[0], 0));
+    int32_t w1 = tds_wrap_add(w0, tds_wrap_add(tds_oe_wrap(m, half(e2, o[0], 1)),
+                                               tds_oe_wrap(m, half(e2, o[1], 0))));
+    int32_t w2 = tds_wrap_add(w1, tds_oe_wrap(m, half(e2, o[1], 1)));
     tds_id ec = inner_edge(m, f, mm[0], mm[1]);
-    new_facet(m, f, half(e2, o[0], 1), half(e2, o[1], 0), TDS_OREF(ec, 1));
-    if (dist2(m, a[0], mm[1]) <= dist2(m, mm[0], a[2])) {
+    new_facet(m, f, half(e2, o[0], 1), half(e2, o[1], 0), TDS_OREF(ec, 1), 2);
+    if (dist2(m, a[0], 0, mm[1], w1) <= dist2(m, mm[0], w0, a[2], w2)) {
       tds_id d = inner_edge(m, f, a[0], mm[1]);
-      new_facet(m, f, TDS_OREF(d, 0), half(e2, o[1], 1), o[2]);
+      new_facet(m, f, TDS_OREF(d, 0), half(e2, o[1], 1), o[2], 0);
       set3(m, f, half(e2, o[0], 0), TDS_OREF(ec, 0), TDS_OREF(d, 1));
     } else {
       tds_id d = inner_edge(m, f, mm[0], a[2]);
-      new_facet(m, f, TDS_OREF(ec, 0), half(e2, o[1], 1), TDS_OREF(d, 1));
+      new_facet(m, f, TDS_OREF(ec, 0), half(e2, o[1], 1), TDS_OREF(d, 1), 2);
       set3(m, f, half(e2, o[0], 0), TDS_OREF(d, 0), o[2]);
     }
   } else {
     tds_id d = inner_edge(m, f, mm[0], a[2]);
-    new_facet(m, f, half(e2, o[0], 1), o[1], TDS_OREF(d, 1));
+    new_facet(m, f, half(e2, o[0], 1), o[1], TDS_OREF(d, 1), 2);
     set3(m, f, half(e2, o[0], 0), TDS_OREF(d, 0), o[2]);
   }
 }
@@ -149,6 +162,10 @@ static tds_id split_edge(tds_surf *s, tds_id e, int32_t *e2) {
   tds_id n = tds_mesh_add_edge(m, v, h);
   m->ev[e][1] = v;
   tds_edge_inherit(m, n, e);
+  /* the midpoint is on the unwrapped edge, seen from the tail: the second
+  ** half carries the whole wrap */
+  m->ewrap[n] = m->ewrap[e];
+  m->ewrap[e] = 0;
   e2[e] = n;
   return v;
 }

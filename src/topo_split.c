@@ -1,5 +1,6 @@
 /* topo_split.c: l (edge_divide), K (skinny triangles), n (notch) and
 ** edgeswap. */
+#include "torus.h"
 #include "topo_edit.h"
 
 #include <math.h>
@@ -175,12 +176,14 @@ static int with_snap(tds_ctx *ctx, tds_surf *s, cut_fn fn, double v, int32_t *n)
 }
 
 int tds_edge_divide(tds_ctx *ctx, tds_surf *s, double len, int32_t *n) {
+  if (s->m.torus) return tds_torus_unsupported(ctx, "l (edge_divide)");
   if (n) *n = 0;
   int rc = check_cut(ctx, len, "the edge length");
   return rc != TDS_OK ? rc : with_snap(ctx, s, divide, len, n);
 }
 
 int tds_skinny(tds_ctx *ctx, tds_surf *s, double angle, int32_t *n) {
+  if (s->m.torus) return tds_torus_unsupported(ctx, "K (skinny)");
   if (n) *n = 0;
   int rc = check_cut(ctx, angle, "the angle");
   return rc != TDS_OK ? rc : with_snap(ctx, s, skinny, angle, n);
@@ -271,6 +274,7 @@ static int notch(tds_ctx *ctx, tds_surf *s, double angle, int32_t *n) {
 }
 
 int tds_notch(tds_ctx *ctx, tds_surf *s, double angle, int32_t *n) {
+  if (s->m.torus) return tds_torus_unsupported(ctx, "n (notch)");
   if (n) *n = 0;
   int rc = check_cut(ctx, angle, "the angle");
   return rc != TDS_OK ? rc : with_snap(ctx, s, notch, angle, n);
@@ -305,5 +309,12 @@ static int edgeswap(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
 }
 
 int tds_edgeswap(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  if (s->m.torus) return tds_torus_unsupported(ctx, "edgeswap");
   return tds_snap_run(ctx, s, edgeswap, sel, n);
+}
+
+int tds_split_edge_raw(tds_surf *s, tds_id e) {
+  if (room_for_split(&s->m, tds_edge_valence(&s->m, e)) != TDS_OK) return TDS_ENOMEM;
+  split_one(s, e);
+  return TDS_OK;
 }

@@ -12,6 +12,7 @@
 ** edge P-Q, where u is the far end of the triple edge at Q. Each edge is
 ** done under its own snapshot, so one that does not fit the pattern is
 ** skipped with the surface as before. */
+#include "torus.h"
 #include "topo_edit.h"
 
 #include <math.h>
@@ -430,9 +431,11 @@ static int run(tds_ctx *ctx, tds_surf *s, int kind, const uint8_t *sel, one_fn f
 }
 
 int tds_pop_edge_to_tri(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  if (s->m.torus) return tds_torus_unsupported(ctx, "pop_edge_to_tri");
   return run(ctx, s, TDS_EDGE, sel, edge_to_tri, n);
 }
 
 int tds_pop_tri_to_edge(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  if (s->m.torus) return tds_torus_unsupported(ctx, "pop_tri_to_edge");
   return run(ctx, s, TDS_FACET, sel, tri_to_edge, n);
 }

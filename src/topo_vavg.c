@@ -1,4 +1,5 @@
 /* topo_vavg.c: vertex averaging (the V command). */
+#include "torus.h"
 #include "topo.h"
 
 #include <stdlib.h>
@@ -107,6 +108,7 @@ static int vertex_average(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
 /* All or nothing: a move that makes the energy non-finite is taken back. */
 int tds_vertex_average(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
                        int32_t *nmoved) {
+  if (s->m.torus) return tds_torus_unsupported(ctx, "V (vertex_average)");
   tds_snap sn;
   int rc = tds_snap_take(ctx, s, &sn);
   if (rc != TDS_OK) return rc;

@@ -28,3 +28,9 @@ if not ok then print(why) end" 2>&1)
     echo "FAIL doc/$name: $(tail -n 2 "$dir/out" | tr '\n' ' ')"
   fi
 done
+missing=$(DOCS="README.md $(echo doc/*.md)" "$TDS" -q tests/doccover.lua 2>&1)
+if [ -z "$missing" ]; then
+  echo "PASS doc/coverage"
+else
+  echo "FAIL doc/coverage: undocumented: $(echo $missing)"
+fi

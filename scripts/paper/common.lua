@@ -16,6 +16,7 @@
 --                        printed into `file` and measure it
 --   PAPER_PLAIN=1        run plain pg (no acceleration)
 --   PAPER_S, PAPER_DEPTH pg's s and depth (defaults: pg's)
+--   PAPER_NEWTON=0       pg{ newton = false } (no Newton preconditioning)
 --   PAPER_ANALYSE=1      also print where the curvature error sits
 --                        (C.breakdown)
 -- and prints the metrics and one machine-readable line starting RESULT.
@@ -203,7 +204,7 @@ function C.run(exp)
   else
     print("input:")
     quality()
-    res = pg{ plain = env("PAPER_PLAIN") ~= nil, every = tonumber(env("PAPER_EVERY") or 500), depth = tonumber(env("PAPER_DEPTH") or ""), s = tonumber(env("PAPER_S") or "") }
+    res = pg{ plain = env("PAPER_PLAIN") ~= nil, every = tonumber(env("PAPER_EVERY") or 500), depth = tonumber(env("PAPER_DEPTH") or ""), s = tonumber(env("PAPER_S") or ""), newton = env("PAPER_NEWTON") ~= "0" }
   end
   print("result:")
   local q = quality()
@@ -227,6 +228,7 @@ function C.run(exp)
   }
   if res.reached then out[#out + 1] = "reached=" .. fmt(res.reached) end
   if res.status then out[#out + 1] = "status=" .. res.status end
+  if res.newton_builds then out[#out + 1] = "builds=" .. fmt(res.newton_builds) end
   print(table.concat(out, " "))
   if env("PAPER_ANALYSE") then C.breakdown(c) end
   return res, q, c

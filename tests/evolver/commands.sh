@@ -27,7 +27,7 @@ for f in cube mound qmound cat catman catbody column quad octa sphere tankex; do
 done
 
 # -- gogo: runs to the end, or stops at a command tds does not have (named)
-UNSUPPORTED="octa:o"
+UNSUPPORTED=""
 for f in cube mound qmound cat catman catbody column quad octa sphere; do
   want=$(for u in $UNSUPPORTED; do [ "${u%%:*}" = "$f" ] && echo "${u#*:}"; done)
   printf 'gogo\n' > "$tmp/gogo.cmd"

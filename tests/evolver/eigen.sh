@@ -57,11 +57,44 @@ report('eigen/square/normal-off-counts', c0 == counts[#counts] and e == 50, c0, 
 " 2>&1 | grep -v '^Eigencounts\|^ *[0-9]*\.  \|^Iterations' || echo "FAIL eigen/square: tds exited with an error"
 
 # the cube of the tutorial: Evolver's state after r; r; g 5
-ev=$(evolver_run "$EXAMPLES/cube.fe" "r; r; g 5; dump \"$tmp/cube.dmp\"; eigenprobe 1")
+# eigenprobe(c, n), inverse iteration towards the eigenvalue nearest c,
+# from the same state: the converged value (Evolver's last "k  ev = ..."
+# line) agrees to 1e-9 relative (both converge to about 1e-13; the starts
+# differ, so the iteration counts do), with the identity and the linear
+# metric; with a limit of 3 iterations both print the lines of iterations
+# 0 and 3 (the values there depend on the start vector).
+ev=$(evolver_run "$EXAMPLES/cube.fe" "r; r; g 5; dump \"$tmp/cube.dmp\"; eigenprobe 1;
+eigenprobe(1, 20); eigenprobe(0.3, 100); eigenprobe(0.3, 3); linear_metric; eigenprobe(0.3, 100)")
 counts=$(echo "$ev" | grep '^Eigencounts' | head -n 1 | tr -dc '0-9 ' | tr -s ' ' | sed 's/^ //; s/ $//')
+# per eigenprobe(c, n): the last ev value and the iteration numbers printed
+echo "$ev" | awk '/^Eigencounts/ { if (n++ > 1) print last, its; its = ""; last = "" }
+  / ev = / { last = $4; its = its $1 "," } END { print last, its }' > "$tmp/invit"
 "$TDS" -q "$tmp/cube.dmp" -e "
 dofile('$ROOT/tests/evolver/compare.lua')
 local b, e, a = tds.eigenprobe(1)
 local c = ('%d %d %d'):format(b, e, a)
 report('eigen/cube/eigenprobe-1', c == '$counts' and b == 18, c, '$counts (tutorial: 18 0 175)')
-" 2>&1 | grep -v '^Eigencounts\|^Gravity' || echo "FAIL eigen/cube: tds exited with an error"
+local want = {}
+for l in io.lines('$tmp/invit') do
+  local v, its = l:match('^(%S+) (%S*)')
+  want[#want + 1] = { v = tonumber(v), its = its }
+end
+local function probe(c, n)
+  local b, e, a, v = tds.eigenprobe(c, n)
+  return v
+end
+local v = probe(1, 20)
+same('eigen/cube/invit-1', v, want[1].v, 1e-9)
+same('eigen/cube/invit-last-eigenvalue', tds.hessian_setting('last_eigenvalue'), v, 0)
+local r = tds.ritz(1, 1)
+same('eigen/cube/invit-ritz', v, r[1], 1e-10)
+v = probe(0.3, 100)
+same('eigen/cube/invit-0.3', v, want[2].v, 1e-9)
+tds.hessian_setting('linear_metric', true)
+v = probe(0.3, 100)
+same('eigen/cube/invit-linear-metric', v, want[4].v, 1e-9)
+" 2>&1 | grep -v '^Eigencounts\|^Gravity\|ev = \|^ *[0-9]*\.  \|^Iterations\|^Linear' || echo "FAIL eigen/cube: tds exited with an error"
+its=$("$TDS" -q "$tmp/cube.dmp" -e "tds.quiet(false) eigenprobe(0.3, 3)" 2>&1 | awk '/ ev = /{ printf "%s,", $1 }')
+want=$(sed -n 3p "$tmp/invit" | cut -d' ' -f2)
+if [ "$its" = "$want" ] && [ "$its" = "0,3," ]; then echo "PASS eigen/cube/invit-limit"
+else echo "FAIL eigen/cube/invit-limit: iterations printed $its, Evolver $want"; fi

@@ -4,14 +4,19 @@
 # agree (numbers to 1e-10 relative: they are printed with %.12g or less
 # and involve no iteration, so only the last printed digit may differ).
 # errors.cmd stops at a run-time error in both programs (tds: exit 1);
-# histogram.cmd's lines are the histograms' (bins and counts).
+# histogram.cmd's lines are the histograms' (bins and counts); model.cmd's
+# also the messages of linear, lagrange 1 and M 1; view.cmd's those of
+# the transforms toggle. Files in data/ (views.fe) are used before the
+# examples of that name.
 . "$(dirname "$0")/lib.sh"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-for run in flow:cube elements:cube elements:catbody errors:cube histogram:cube define:cube matrix:cube facetedge:cube facetedge:catbody named:cube; do
+for run in flow:cube elements:cube elements:catbody errors:cube histogram:cube define:cube matrix:cube facetedge:cube facetedge:catbody named:cube model:cube feattr:cube feattr:catbody view:views resize:cube defcmd:cube; do
   c=${run%%:*} fe=${run#*:}
-  evolver_run "$EXAMPLES/$fe.fe" "$(cat "$ROOT/tests/evolver/lang/$c.cmd")" > "$tmp/ev.out"
-  cp "$EXAMPLES/$fe.fe" "$tmp/in.fe"
+  src=$EXAMPLES/$fe.fe
+  [ -f "$ROOT/tests/evolver/data/$fe.fe" ] && src=$ROOT/tests/evolver/data/$fe.fe
+  evolver_run "$src" "$(cat "$ROOT/tests/evolver/lang/$c.cmd")" > "$tmp/ev.out"
+  cp "$src" "$tmp/in.fe"
   cp "$ROOT/tests/evolver/lang/$c.cmd" "$tmp/c.cmd"
   (cd "$tmp" && "$TDS" -q in.fe -f c.cmd) > "$tmp/tds.out" 2> "$tmp/tds.err"
   rc=$?
@@ -27,6 +32,8 @@ for run in flow:cube elements:cube elements:catbody errors:cube histogram:cube d
   fi
   pat='^K'
   [ "$c" = histogram ] && pat='^ *[-.0-9e]+ %- +[-.0-9e]+ +%d+$|^No qualifying'
+  [ "$c" = model ] && pat='^K|^Changing|^Model already|^Converting'
+  [ "$c" = view ] && pat='^K|^Transform showing|^ +%d+$'
   "$TDS" -q -e "
 dofile('$ROOT/tests/evolver/numcmp.lua')
 local function grab(p) local t = {} for l in io.lines(p) do

@@ -266,6 +266,10 @@ static void hess_example_slidestr(void) { example_fd(EX "slidestr.fe", 2, 10); }
 static void hess_example_metric(void) { example_fd(EX "metric.fe", 2, 10); }
 static void hess_example_catbody(void) { example_fd(EX "catbody.fe", 2, 10); }
 static void hess_example_column(void) { example_fd(EX "column.fe", 2, 10); }
+/* the torus model: wrapped facets and the volumes' lattice translations
+** (TORUS_FILLED: one body's constraint dropped) */
+static void hess_example_twointor(void) { example_fd(EX "twointor.fe", 1, 10); }
+static void hess_example_phelanc(void) { example_fd(EX "phelanc.fe", 0, 10); }
 
 /* (d) Exact: a flat unit square (two right triangles, diagonal 1-3) in
 ** z = 0, tension 1. To second order A = 1 + (1/2) int |grad z|^2, so the
@@ -619,6 +623,8 @@ int main(void) {
   RUN(hess_example_metric);
   RUN(hess_example_catbody);
   RUN(hess_example_column);
+  RUN(hess_example_twointor);
+  RUN(hess_example_phelanc);
   RUN(hess_reduced_levelset);
   RUN(hess_reduced_catbody);
   RUN(hess_reduced_column);

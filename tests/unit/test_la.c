@@ -27,7 +27,7 @@ static int factor_check(int n, const double *a, int neg, int zero, int pos, int 
   tds_spmat A = {0};
   to_sp(n, a, &A);
   tds_la *f = NULL;
-  int rc = tds_la_factor(&ctx, &A, &f);
+  int rc = tds_la_factor(&ctx, &A, 0, &f);
   CHECK(rc == TDS_OK);
   if (rc != TDS_OK) return tds_spmat_free(&A), 0;
   tds_inertia in = tds_la_inertia(f);
@@ -149,7 +149,7 @@ static void la_bad_input(void) {
   tds_spmat A = {0};
   to_sp(2, a, &A);
   tds_la *f = (tds_la *)&ctx;
-  CHECK(tds_la_factor(&ctx, &A, &f) == TDS_ENUM);
+  CHECK(tds_la_factor(&ctx, &A, 0, &f) == TDS_ENUM);
   CHECK(f == NULL);
   CHECK(strstr(ctx.errmsg, "not finite") != NULL);
   tds_spmat_free(&A);
@@ -157,7 +157,7 @@ static void la_bad_input(void) {
   tds_spmat E = {.nrow = 0, .ncol = 0, .upper = 1};
   int32_t cp = 0;
   E.colptr = &cp;
-  CHECK(tds_la_factor(&ctx, &E, &f) == TDS_OK);
+  CHECK(tds_la_factor(&ctx, &E, 0, &f) == TDS_OK);
   CHECK(tds_la_inertia(f).neg + tds_la_inertia(f).zero + tds_la_inertia(f).pos == 0);
   tds_la_free(f);
 }

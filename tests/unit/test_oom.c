@@ -40,6 +40,7 @@
 #include "newton.h"
 #include "pg.h"
 #include "topo.h"
+#include "topo_edit.h"
 
 #define EX "/usr/share/doc/evolver/examples/"
 #define DENSE 600   /* every allocation up to this one is failed */
@@ -262,6 +263,10 @@ static int same_surf(const tds_surf *a, const tds_surf *b) {
              b->energy, b->area, b->scale, (long long)b->iterations);
     return 0;
   }
+  if (a->view_transforms != b->view_transforms || a->nvgen != b->nvgen) {
+    snprintf(why, sizeof why, "view transforms differ");
+    return 0;
+  }
   if (a->npar != b->npar || a->nquant != b->nquant || a->nbdry != b->nbdry ||
       (a->npar && memcmp(a->parval, b->parval, (size_t)a->npar * sizeof *a->parval))) {
     snprintf(why, sizeof why, "parameters, quantities or boundaries differ");
@@ -292,11 +297,14 @@ typedef struct opcase {
   const char *file;  /* datafile loaded by the set-up (or by the op) */
   int refine, steps; /* set-up after the load: r's, then g steps */
   char op;           /* 'L' load, 'r', 'g', 'u', 'V', 'd' dump, 'p' pg,
-                        'h' Hessian (assembly, KKT, reduction), 'x' export,
+                        'h' Hessian (assembly, KKT, reduction), 'x' export, 'O' pop edges, 'o' pop edges and vertices, 'N' renumber_all, 'B' rebody,
                         'q' and 'c' run-time define of a quantity and of a
                         global constraint with an energy integrand, 'n' a
                         Newton step (hessian), 's' hessian_seek, 'e'
-                        eigenvalues (ritz: 3 lowest), 'S' saddle */
+                        eigenvalues (ritz: 3 lowest), 'S' saddle, 'i'
+                        inverse iteration (eigenprobe(0.5, 20)), 'A'
+                        addload of the same file, 'R' replace_load, 'T'
+                        replacing the view transforms */
 } opcase;
 
 static int prepare(tds_ctx *ctx, tds_surf *s, const opcase *c) {
@@ -353,6 +361,13 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
     tds_inertia in;
     return tds_newton_ritz(ctx, s, &no, NAN, 3, vals, &got, &in, NULL, &iters, NULL);
   }
+  case 'i': {
+    tds_newton_opts no = {.normal = 1, .linear_metric = 1, .metric_mix = 0.5};
+    double val;
+    int iters;
+    tds_inertia in;
+    return tds_newton_invit(ctx, s, &no, 0.5, 20, &val, &in, NULL, &iters);
+  }
   case 'S': {
     tds_newton_opts no = {.normal = 1, .metric_mix = 0.5};
     double lowest;
@@ -372,10 +387,25 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
   }
   case 'x': return tds_export(ctx, s, dump_path, &xo);
   case 'L': return tds_datafile_load(ctx, s, c->file);
+  case 'A': return tds_datafile_addload(ctx, s, c->file);
+  case 'T': {
+    static const double mm[2][16] = {{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1},
+                                     {-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}};
+    static const uint8_t sw[2] = {0, 1};
+    return tds_surf_set_view(ctx, s, 0, 2, mm, sw);
+  }
+  case 'R': return tds_datafile_replace_load(ctx, s, c->file);
   case 'r': return tds_refine(ctx, s, NULL, &n);
   case 'g': return tds_iterate(ctx, s, 2);
   case 'u': return tds_equiangulate(ctx, s, NULL, &n);
   case 'V': return tds_vertex_average(ctx, s, NULL, &n);
+  case 'O': return tds_pop_edges(ctx, s, NULL, &n);
+  case 'N': return tds_renumber_all(ctx, s, &n);
+  case 'B': return tds_rebody(ctx, s, &n);
+  case 'o': {
+    int32_t nv;
+    return tds_pop(ctx, s, &n, &nv);
+  }
   default: return tds_datafile_dump(ctx, s, dump_path);
   }
 }
@@ -565,6 +595,27 @@ static void oom_newton(void) {
   sweep_all('s', 1, 5);
   sweep_all('e', 1, 5);
   sweep_all('S', 1, 5);
+  sweep_all('i', 1, 5);
+}
+/* O on octa.fe (six runs of one edge: split, then pulled) and refined
+** once (runs of two edges). */
+static void oom_pop_edges(void) {
+  for (int r = 0; r < 2 && !check_failed_; r++) {
+    opcase c = {EX "octa.fe", r, 0, 'O'};
+    sweep(&c);
+    opcase c2 = {EX "octa.fe", r, 0, 'o'}; /* and the sphere at the centre */
+    sweep(&c2);
+  }
+  /* renumber_all and rebody on a double bubble (two bodies, ids dense) */
+  opcase c3 = {bubble_path, 1, 0, 'N'};
+  sweep(&c3);
+  opcase c4 = {bubble_path, 1, 0, 'B'};
+  sweep(&c4);
+}
+static void oom_addload(void) {
+  sweep_all('A', 1, 0);
+  sweep_all('R', 0, 1);
+  sweep_all('T', 0, 0);
 }
 static void oom_define(void) {
   sweep_all('q', 0, 0);
@@ -614,6 +665,8 @@ int main(void) {
   RUN(oom_hessian);
   RUN(oom_export);
   RUN(oom_define);
+  RUN(oom_pop_edges);
+  RUN(oom_addload);
   RUN(oom_newton);
   unlink(bubble_path);
   unlink(pbubble_path);

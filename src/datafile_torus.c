@@ -1,0 +1,160 @@
+/*
+** datafile_torus.c: the torus model's datafile words (torus.h): TORUS,
+** TORUS_FILLED, PERIODS (three rows of three expressions, each row on its
+** own line; parameters allowed, re-evaluated by recalc), the display modes
+** CLIPPED, CONNECTED and RAW_CELLS, DISPLAY_PERIODS and DISPLAY_ORIGIN
+** (display only), and the wrap signs of an edge line (* + -, one per
+** period). Contracts in datafile_int.h.
+*/
+#include "datafile_int.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "expr.h"
+#include "torus.h"
+
+static void unit_periods(tds_mesh *m) {
+  memset(m->period, 0, sizeof m->period);
+  for (int i = 0; i < 3; i++) m->period[i][i] = 1;
+}
+
+int df_torus(df *d, int filled) {
+  if (d->string_model)
+    return df_not_supported(d, NULL, "torus"); /* the string model's torus */
+  if (d->s->m.torus)
+    return df_err(d, NULL, TDS_ESYNTAX, "%s: the torus model is already declared",
+                  filled ? "TORUS_FILLED" : "TORUS");
+  d->s->m.torus = filled ? 2 : 1;
+  if (!d->periods_line) unit_periods(&d->s->m); /* Evolver's default */
+  d->torus_line = df_line_of(d, NULL);
+  return TDS_OK;
+}
+
+int df_periods(df *d) {
+  tds_surf *s = d->s;
+  if (d->periods_line)
+    return df_err(d, NULL, TDS_ESYNTAX, "PERIODS given twice (first at line %d)",
+                  d->periods_line);
+  d->periods_line = df_line_of(d, NULL);
+  if (d->space_dim == 2)
+    return df_err(d, NULL, TDS_ESYNTAX, "PERIODS in SPACE_DIMENSION 2 is not supported yet");
+  double p[3][3];
+  tds_expr *e[3][3] = {{NULL}};
+  int rc = TDS_OK;
+  d->split = 1;
+  for (int i = 0; i < 3 && !rc; i++) {
+    int line = 0;
+    for (int j = 0; j < 3 && !rc; j++) {
+      char what[64];
+      snprintf(what, sizeof what, "PERIODS row %d", i + 1);
+      rc = df_header_expr(d, TDS_EXPR_NOCOORD, &e[i][j], what);
+      if (rc) break;
+      int l = df_line_of(d, d->p);
+      if (j == 0) line = l;
+      else if (l != line) {
+        rc = df_err_line(d, line, TDS_ESYNTAX,
+                    "PERIODS row %d has %d values; a period vector needs 3 on one line",
+                    i + 1, j);
+        break;
+      }
+      double vars[TDS_NVARS] = {0};
+      vars[TDS_G] = s->gravity;
+      p[i][j] = tds_expr_eval(e[i][j], s->parval, vars);
+      if (!isfinite(p[i][j]))
+        rc = df_err(d, NULL, TDS_ESYNTAX, "%s: value of '%s' is not finite", what,
+                    tds_expr_text(e[i][j]));
+    }
+    if (!rc && !df_at_eol(d) && df_looks_value(d))
+      rc = df_err(d, d->p, TDS_ESYNTAX,
+                  "PERIODS row %d has more than 3 values (the torus model is 3-dimensional)",
+                  i + 1);
+  }
+  d->split = 0;
+  if (!rc) {
+    tds_mesh tmp;
+    memcpy(tmp.period, p, sizeof p);
+    if (!(tds_torus_cell_volume(&tmp) > 0))
+      rc = df_err(d, NULL, TDS_ESYNTAX, "PERIODS: the period vectors span no volume");
+  }
+  if (rc) {
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) tds_expr_free(e[i][j]);
+    return rc;
+  }
+  memcpy(s->m.period, p, sizeof p);
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      if (tds_expr_uses_params(e[i][j])) {
+        s->period_expr[i][j] = e[i][j];
+      } else {
+        tds_expr_free(e[i][j]);
+      }
+    }
+  return TDS_OK;
+}
+
+int df_torus_start(df *d, const char *at) {
+  if (d->periods_line && !d->s->m.torus)
+    return df_err_line(d, d->periods_line, TDS_ESYNTAX,
+                       "PERIODS without TORUS or TORUS_FILLED");
+  (void)at;
+  return TDS_OK;
+}
+
+int df_edge_wrap(df *d, const char *what, int32_t *wrap) {
+  *wrap = 0;
+  df_ws(d);
+  if (*d->p != '*' && !((*d->p == '+' || *d->p == '-') &&
+                        (d->p[1] == ' ' || d->p[1] == '\t' || d->p[1] == 0)))
+    return TDS_OK;
+  if (!d->s->m.torus)
+    return df_err(d, d->p, TDS_ESYNTAX,
+                  "%s: wrap signs (* + -) need TORUS or TORUS_FILLED in the top section",
+                  what);
+  int k[3];
+  for (int i = 0; i < 3; i++) {
+    df_ws(d);
+    char c = *d->p;
+    int end = d->p[0] && (d->p[1] == ' ' || d->p[1] == '\t' || d->p[1] == 0);
+    if ((c != '*' && c != '+' && c != '-') || !end) {
+      char b[64];
+      return df_err(d, d->p, TDS_ESYNTAX,
+                    "%s: expected 3 wrap signs (* + -), one per period; found %s as sign %d",
+                    what, df_describe(d->p, b, sizeof b), i + 1);
+    }
+    k[i] = c == '+' ? 1 : c == '-' ? -1 : 0;
+    d->p++;
+  }
+  df_ws(d);
+  if (*d->p == '*' || ((*d->p == '+' || *d->p == '-') &&
+                       (d->p[1] == ' ' || d->p[1] == '\t' || d->p[1] == 0)))
+    return df_err(d, d->p, TDS_ESYNTAX,
+                  "%s: more than 3 wrap signs (the torus has 3 periods)", what);
+  *wrap = tds_wrap_pack(k);
+  return TDS_OK;
+}
+
+int df_torus_finish(df *d) {
+  tds_surf *s = d->s;
+  if (tds_torus_check(d->ctx, &s->m) != TDS_OK) {
+    char msg[sizeof d->ctx->errmsg];
+    memcpy(msg, d->ctx->errmsg, sizeof msg);
+    msg[sizeof msg - 1] = 0;
+    return tds_seterr(d->ctx, TDS_ETOPO, "%s: %.900s", d->name, msg);
+  }
+  s->m.topo_gen++;
+  int bad = tds_torus_lifts(d->ctx, s);
+  if (bad < 0) return -bad;
+  if (bad > 0)
+    tds_warnf(d->ctx,
+              "%s: %d bodies wrap round the torus (their facets do not close up in "
+              "space): their volumes are not exact\n", d->name, bad);
+  if (s->m.nb > 0) {
+    int rc = tds_surf_update(d->ctx, s);
+    if (rc) return rc;
+    tds_torus_settle(s);
+  }
+  return TDS_OK;
+}

@@ -1,0 +1,93 @@
+/*
+** torus.h: the torus model (Evolver's TORUS and TORUS_FILLED).
+**
+** The domain is R^3 modulo the lattice of the three period vectors
+** (m->period, rows of the datafile's PERIODS). Vertices keep their stored
+** coordinates; each edge carries a wrap (wrap.h) saying which lattice
+** translation takes its stored head to its true head. gather.h unwraps
+** every element from its first corner, so lengths, areas, their gradients
+** and Hessians need nothing else.
+**
+** Body volumes need more: a facet's own integral depends on where its
+** corners are put, and the facets of a body, each unwrapped from its own
+** first corner, do not form a closed surface. tds_torus_lifts finds, per
+** body, a lattice translation of every facet of the body so that the
+** translated facets join up edge to edge (a walk over the body's facets);
+** for a body that is a closed cell in the torus (every foam cell) that is a
+** closed polyhedron in space, whose volume is exact. eval.c adds each
+** facet's translation as the facet_flux row (method_torus.c) weighted by
+** the translation. A body that wraps round the torus itself (a layer) has
+** no such lift; its volume is then right only up to whole cell volumes and
+** to the fluxes through the cut, and tds warns at load.
+**
+** Volumes are defined up to whole cell volumes: at load each body's
+** volconst gets the multiple of the cell volume that brings its volume
+** nearest its target (or, without one, into [0, cell volume)), as
+** Evolver adjusts volconst (tds_torus_settle).
+*/
+#ifndef TDS_TORUS_H
+#define TDS_TORUS_H
+
+#include "surf.h"
+#include "wrap.h"
+
+/* Volume of the unit cell: |det(period)|. */
+double tds_torus_cell_volume(const tds_mesh *m);
+
+/* Make s->tlift current for the mesh's topology (see above). Returns the
+** number of bodies whose facets do not close up (wrap round the torus),
+** or a negative status (-TDS_ENOMEM) after setting ctx's message. */
+int tds_torus_lifts(tds_ctx *ctx, tds_surf *s);
+
+/* Re-evaluate the PERIODS expressions (recalc). TDS_OK or TDS_ENUM (a
+** period not finite, or a degenerate cell), the periods unchanged. */
+int tds_torus_periods(tds_ctx *ctx, tds_surf *s);
+
+/* Adjust every body's volconst by whole cell volumes (see above); the
+** volumes must be current (tds_surf_update). */
+void tds_torus_settle(tds_surf *s);
+
+/* Check that the wraps of every live facet's edges add up to zero (a
+** facet lies in one copy of the cell). TDS_OK or TDS_ETOPO with a message
+** naming the facet. */
+int tds_torus_check(tds_ctx *ctx, const tds_mesh *m);
+
+/* The body whose volume constraint TORUS_FILLED drops (the first body with
+** a target volume, as Evolver 2.70 does: its pressure stays 0), or
+** TDS_NONE. */
+tds_id tds_torus_dropped_body(const tds_mesh *m);
+
+/* Position of corner k of facet f unwrapped from its first corner, into
+** out (the same points tds_gather_facet gives). */
+void tds_torus_facet_corner(const tds_mesh *m, tds_id f, int k, double out[3]);
+
+/* The packed lattice offset of corner k of facet f from its first corner
+** (0, the wrap of the first edge, minus the wrap of the third). */
+int32_t tds_torus_corner_wrap(const tds_mesh *m, tds_id f, int k);
+
+/* Give the edge on side k of facet f the wrap that makes the facet's
+** wraps add up to zero (a new edge inside a facet whose other two edges
+** already have theirs). */
+void tds_torus_close(tds_mesh *m, tds_id f, int k);
+
+/* Evolver's wrap code of a packed wrap (the `wrap` edge attribute): 6 bits
+** per period from the lowest, each count in 5-bit two's complement
+** (+1 = 1, -1 = 31), so "* * +" is 4096. */
+double tds_torus_wrap_code(int32_t w);
+/* The packed wrap of an Evolver wrap code; TDS_ERANGE if it is not one. */
+int tds_torus_wrap_from_code(double code, int32_t *w);
+/* Set edge e's wrap from an Evolver code: the torus model only, and every
+** facet on e must still close. All or nothing (ctx says what is wrong). */
+int tds_torus_set_wrap(tds_ctx *ctx, tds_surf *s, tds_id e, double code);
+
+/* "WHAT is not supported yet in the torus model" in ctx; TDS_ESYNTAX.
+** Commands that would need wraps they do not maintain call it first. */
+int tds_torus_unsupported(tds_ctx *ctx, const char *what);
+
+/* Evolver's wrap_vertex: move vertex v by the lattice translation of wrap
+** w and change the wraps of its edges so that the surface is the same
+** (only the stored copy of v changes). TDS_ERANGE (no torus, no such
+** vertex, a wrap out of range) leaves everything unchanged. */
+int tds_torus_wrap_vertex(tds_ctx *ctx, tds_surf *s, tds_id v, int32_t w);
+
+#endif

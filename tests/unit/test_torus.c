@@ -1,0 +1,166 @@
+/* test_torus.c: the torus model (torus.h, wrap.h) from plain C: wrap
+** packing, the gradient of energy and volumes with wraps against central
+** differences, the wrap attribute's codes and rules, the cell volume. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "attr.h"
+#include "check.h"
+#include "datafile.h"
+#include "eval.h"
+#include "helpers.h"
+#include "torus.h"
+
+#define EX "/usr/share/doc/evolver/examples/"
+
+/* pack/unpack/add/neg are exact over the whole range */
+static void wrap_packing(void) {
+  uint64_t st = 7;
+  for (int t = 0; t < 1000; t++) {
+    int a[3], b[3], k[3];
+    for (int i = 0; i < 3; i++) {
+      a[i] = (int)floor(h_uniform(&st, -255, 256));
+      b[i] = (int)floor(h_uniform(&st, -255, 256));
+    }
+    int32_t wa = tds_wrap_pack(a), wb = tds_wrap_pack(b);
+    tds_wrap_unpack(wa, k);
+    CHECK(k[0] == a[0] && k[1] == a[1] && k[2] == a[2]);
+    tds_wrap_unpack(tds_wrap_add(wa, wb), k);
+    CHECK(k[0] == a[0] + b[0] && k[1] == a[1] + b[1] && k[2] == a[2] + b[2]);
+    CHECK(tds_wrap_add(wa, tds_wrap_neg(wa)) == 0);
+  }
+  int z[3] = {0, 0, 0};
+  CHECK(tds_wrap_pack(z) == 0);
+}
+
+/* Evolver's codes: "* - *" 1984, "- + *" 95, "* + -" 127040, "* * +" 4096
+** (printed by evolver-nox-d for twointor.fe's edges 6, 14, 19 and 7) */
+static void wrap_codes(void) {
+  tds_ctx ctx;
+  tds_surf s;
+  h_setup(&ctx, &s);
+  REQUIRE_OK(&ctx, tds_datafile_load(&ctx, &s, EX "twointor.fe"));
+  tds_attr a;
+  CHECK(tds_attr_find(&s.m, TDS_EDGE, "wrap", &a));
+  const int id[4] = {6, 14, 19, 7};
+  const double code[4] = {1984, 95, 127040, 4096};
+  for (int i = 0; i < 4; i++) {
+    double v[1];
+    int n;
+    REQUIRE_OK(&ctx, tds_attr_read(&ctx, &s, &a, id[i] - 1, v, &n));
+    CHECK(n == 1 && v[0] == code[i]);
+    int32_t w;
+    CHECK(tds_torus_wrap_from_code(code[i], &w) == TDS_OK && w == s.m.ewrap[id[i] - 1]);
+  }
+  /* a wrap that opens a facet is refused, the edge unchanged */
+  int32_t keep = s.m.ewrap[0];
+  double one = 1;
+  CHECK(tds_attr_write(&ctx, &s, &a, 0, &one, 1) == TDS_ETOPO);
+  CHECK(s.m.ewrap[0] == keep);
+  CHECK(strstr(ctx.errmsg, "would not close") != NULL);
+  /* not a code: a count of 32 spills into the next field */
+  double bad = 32;
+  CHECK(tds_attr_write(&ctx, &s, &a, 0, &bad, 1) == TDS_ERANGE);
+  CHECK_NEAR(tds_torus_cell_volume(&s.m), 1, 0);
+  tds_surf_free(&s);
+  /* no torus: refused */
+  h_setup(&ctx, &s);
+  REQUIRE_OK(&ctx, h_cube(&ctx, &s, 0));
+  CHECK(tds_attr_find(&s.m, TDS_EDGE, "wrap", &a));
+  double zero = 0;
+  CHECK(tds_attr_write(&ctx, &s, &a, 0, &zero, 1) == TDS_ERANGE);
+  CHECK(strstr(ctx.errmsg, "torus") != NULL);
+  tds_surf_free(&s);
+}
+
+static double energy_at(tds_ctx *ctx, tds_surf *s) {
+  tds_eval_out out = {0};
+  CHECK(tds_eval(ctx, s, &out) == TDS_OK);
+  return out.energy;
+}
+
+/* The energy with a prescribed pressure on every body (so -p V, with the
+** volumes' lattice translations, is in it) against central differences,
+** after a seeded jitter; relative to the largest gradient component. The
+** step 1e-6 and tolerance 1e-7: the energy is a polynomial of degree 3
+** in the coordinates, so the central difference errs by h^2 times third
+** derivatives of order 1, and rounding by 1e-16 / 1e-6. */
+static void gradient_fd(const char *file) {
+  tds_ctx ctx;
+  tds_surf s;
+  h_setup(&ctx, &s);
+  REQUIRE_OK(&ctx, tds_datafile_load(&ctx, &s, file));
+  tds_mesh *m = &s.m;
+  uint64_t st = 99;
+  for (tds_id v = 0; v < m->nv; v++)
+    for (int i = 0; i < 3; i++) m->x[v][i] += h_uniform(&st, -0.02, 0.02);
+  for (tds_id b = 0; b < m->nb; b++) {
+    m->bflags[b] = (m->bflags[b] & ~TDS_TARGET) | TDS_PRESSURE;
+    m->bpressure[b] = h_uniform(&st, -2, 2);
+  }
+  m->coord_gen++;
+  double (*g)[3] = calloc((size_t)m->nv, sizeof *g);
+  tds_eval_out out = {.grad = g};
+  REQUIRE_OK(&ctx, tds_eval(&ctx, &s, &out));
+  double scale = 0, worst = 0, h = 1e-6;
+  for (tds_id v = 0; v < m->nv; v++)
+    for (int i = 0; i < 3; i++) scale = fmax(scale, fabs(g[v][i]));
+  for (tds_id v = 0; v < m->nv; v++)
+    for (int i = 0; i < 3; i++) {
+      double x0 = m->x[v][i];
+      m->x[v][i] = x0 + h;
+      m->coord_gen++;
+      double ep = energy_at(&ctx, &s);
+      m->x[v][i] = x0 - h;
+      m->coord_gen++;
+      double em = energy_at(&ctx, &s);
+      m->x[v][i] = x0;
+      m->coord_gen++;
+      worst = fmax(worst, fabs((ep - em) / (2 * h) - g[v][i]) / scale);
+    }
+  if (!(worst < 1e-7)) printf("  %s: worst relative error %g\n", file, worst);
+  CHECK(worst < 1e-7);
+  CHECK(scale > 0.1);
+  free(g);
+  tds_surf_free(&s);
+}
+static void gradient_fd_twointor(void) { gradient_fd(EX "twointor.fe"); }
+static void gradient_fd_phelanc(void) { gradient_fd(EX "phelanc.fe"); }
+
+/* A body's volume does not depend on which copy of the cell a vertex is
+** stored in: move a vertex by a period and give its edges the opposite
+** wraps (what wrap_vertex does); every volume and the energy stay (1e-14:
+** the same sums of other numbers). */
+static void copy_invariance(void) {
+  tds_ctx ctx;
+  tds_surf s;
+  h_setup(&ctx, &s);
+  REQUIRE_OK(&ctx, tds_datafile_load(&ctx, &s, EX "phelanc.fe"));
+  tds_mesh *m = &s.m;
+  REQUIRE_OK(&ctx, tds_surf_update(&ctx, &s));
+  double e0 = s.energy, v0[8];
+  for (tds_id b = 0; b < 8; b++) v0[b] = m->bvol[b];
+  uint64_t st = 5;
+  for (int t = 0; t < 20; t++) {
+    tds_id v = (tds_id)floor(h_uniform(&st, 0, m->nv));
+    int k[3];
+    for (int i = 0; i < 3; i++) k[i] = (int)floor(h_uniform(&st, -2, 3));
+    REQUIRE_OK(&ctx, tds_torus_wrap_vertex(&ctx, &s, v, tds_wrap_pack(k)));
+  }
+  CHECK_MESH(&ctx, m);
+  REQUIRE_OK(&ctx, tds_surf_update(&ctx, &s));
+  CHECK_NEAR(s.energy, e0, 1e-14 * e0);
+  for (tds_id b = 0; b < 8; b++) CHECK_NEAR(m->bvol[b], v0[b], 1e-14);
+  tds_surf_free(&s);
+}
+
+int main(void) {
+  RUN(wrap_packing);
+  RUN(wrap_codes);
+  RUN(gradient_fd_twointor);
+  RUN(gradient_fd_phelanc);
+  RUN(copy_invariance);
+  return check_done();
+}
