@@ -208,9 +208,9 @@ const tds_method tds_methods[TDS_M_NROWS] = {
     [TDS_M_STRING_GRAVITY] = {"string_gravity", TDS_EL_EDGE, 0, tds_mk_string_gravity},
     [TDS_M_VERTEX_HEAD] = {"vertex_scalar_head", TDS_EL_EDGE, TDS_MF_SCALAR, tds_mk_vertex_head},
     [TDS_M_VERTEX_TAIL] = {"vertex_scalar_tail", TDS_EL_EDGE, TDS_MF_SCALAR, tds_mk_vertex_tail},
-    [TDS_M_FACET_FLUX] = {"facet_flux", TDS_EL_FACET, 0, tds_mk_facet_flux},
     [TDS_M_METRIC_LENGTH] = {"metric_edge_length", TDS_EL_EDGE, TDS_MF_HESS_FD | TDS_MF_METRIC,
                              tds_mk_metric_length},
+    [TDS_M_FACET_FLUX] = {"facet_flux", TDS_EL_FACET, 0, tds_mk_facet_flux},
 };
 
 int tds_method_by_name(const char *name) {

@@ -75,10 +75,10 @@ enum {
   TDS_M_STRING_GRAVITY,             /* string model: -int y^2/2 dx */
   TDS_M_VERTEX_HEAD,                /* string model: scalar ig[0] at the head */
   TDS_M_VERTEX_TAIL,                /* ... and at the tail */
-  TDS_M_FACET_FLUX,                 /* torus: (N . e_k) / 2, k the row
-                                       constant (method_torus.c) */
   TDS_M_METRIC_LENGTH,              /* string model: edge length in a
                                        Riemannian metric ig[0..8] */
+  TDS_M_FACET_FLUX,                 /* torus: (N . e_k) / 2, k the row
+                                       constant (method_torus.c) */
   TDS_M_NROWS
 };
 
@@ -133,9 +133,9 @@ double tds_mk_edge_area(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_string_gravity(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_vertex_head(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_vertex_tail(const tds_mlocal *L, double g[3][3], double h[9][9]);
+double tds_mk_metric_length(const tds_mlocal *L, double g[3][3], double h[9][9]);
 /* The torus model's row (method_torus.c). */
 double tds_mk_facet_flux(const tds_mlocal *L, double g[3][3], double h[9][9]);
-double tds_mk_metric_length(const tds_mlocal *L, double g[3][3], double h[9][9]);
 
 /* Knot, curvature and Hooke rows (method_knot.c). */
 double tds_mk_knot(const tds_mlocal *L, double g[3][3], double h[9][9]);

@@ -51,9 +51,9 @@ void tds_surf_free(tds_surf *s) {
     tds_free(&a, s->quant[i].inst);
   }
   tds_free(&a, s->quant);
+  free_exprs(s->metric, 9);
   for (int i = 0; i < 3; i++) free_exprs(s->period_expr[i], 3);
   tds_free(&a, s->tlift);
-  free_exprs(s->metric, 9);
   tds_free(&a, s->read_text);
   tds_free(&a, s->orig_start);
   tds_free(&a, s->orig_facets);
