@@ -790,7 +790,7 @@ function P:statement1()
       local ok = pcall(self.expr, self)
       local whole = ok and self:atend()
       -- (new_body alone is a value: the new body's id, `bd := new_body`)
-      local lone = self.i == save + 1 and not self:lookup(c.s) and c.s ~= "new_body" and
+      local lone = self.i == save + 1 and not self:lookup(c.s) and
         (#c.raw == 1 and LETTERS[c.raw] or STMT[c.s] or type(rawget(_G, c.s)) == "function")
         and c.s ~= "new_body" -- Evolver's value without parentheses: bd := new_body
       self.i, self.depth = save, saved_depth
