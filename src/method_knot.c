@@ -228,7 +228,8 @@ static double pair_eval(pairfn f, const double *const y[4], double pw, double g[
     const double h = 1e-30;
     for (int c = 0; c < 4; c++)
       for (int i = 0; i < 3; i++) {
-        z[c][i] = CMPLX(y[c][i], h);
+        ((double *)&z[c][i])[1] = h; /* y + i h (C11 6.2.5: a complex is an array of two
+                                        reals; clang's headers lack CMPLX) */
         g[c][i] = cimag(f((const cplx(*)[3])z, pw)) / h;
         z[c][i] = y[c][i];
       }
