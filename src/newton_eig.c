@@ -96,6 +96,17 @@ static int factor_at(tds_ctx *ctx, const tds_nsys *n, double eps, double *shift,
   }
 }
 
+/* The start of ritz and eigenprobe's inverse iteration: a snapshot of s,
+** s recalculated if stale, the system built. On failure the snapshot is
+** ended (s as before) and the error returned. */
+static int begin(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_snap *sn,
+                 tds_nsys *n) {
+  int rc = tds_snap_take(ctx, s, sn);
+  if (rc != TDS_OK) return rc;
+  if ((rc = tds_recalc_if_stale(ctx, s)) == TDS_OK) rc = tds_nsys_build(ctx, s, o, n);
+  return rc == TDS_OK ? TDS_OK : tds_snap_end(ctx, s, sn, rc);
+}
+
 int tds_newton_ritz(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double shift,
                     int32_t nwant, double *vals, int32_t *got, tds_inertia *in_out,
                     double (*vec)[3], int *iters, double *change_out) {
@@ -104,12 +115,9 @@ int tds_newton_ritz(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
   if (nwant < 0) return tds_seterr(ctx, TDS_ERANGE, "ritz: the count must not be negative");
   if (isinf(shift)) return tds_seterr(ctx, TDS_ERANGE, "ritz: the shift must be finite");
   tds_snap sn;
-  int rc = tds_snap_take(ctx, s, &sn);
-  if (rc != TDS_OK) return rc;
-  if ((rc = tds_recalc_if_stale(ctx, s)) != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
   tds_nsys n;
-  rc = tds_nsys_build(ctx, s, o, &n);
-  if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
+  int rc = begin(ctx, s, o, &sn, &n);
+  if (rc != TDS_OK) return rc;
   tds_la *f = NULL;
   double *X = NULL, *Y = NULL, *MX = NULL, *rhs = NULL, *G = NULL, *th = NULL, *work = NULL,
          *prev = NULL, *row = NULL, *lam = NULL;
@@ -244,12 +252,9 @@ int tds_newton_invit(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double
   if (!isfinite(c)) return tds_seterr(ctx, TDS_ERANGE, "eigenprobe: the probe value is not finite");
   if (maxit < 0) return tds_seterr(ctx, TDS_ERANGE, "eigenprobe: the iteration count must not be negative");
   tds_snap sn;
-  int rc = tds_snap_take(ctx, s, &sn);
-  if (rc != TDS_OK) return rc;
-  if ((rc = tds_recalc_if_stale(ctx, s)) != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
   tds_nsys n;
-  rc = tds_nsys_build(ctx, s, o, &n);
-  if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
+  int rc = begin(ctx, s, o, &sn, &n);
+  if (rc != TDS_OK) return rc;
   tds_la *f = NULL;
   int32_t m = n.m;
   double *x = tds_malloc(&ctx->alloc, ((size_t)m + 1) * sizeof *x);

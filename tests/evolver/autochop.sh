@@ -11,23 +11,8 @@
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-mkdump() {
-  cp "$2" "$tmp/in.fe"
-  printf '%s\ndump "%s.dmp"\nq\n' "$3" "$1" > "$tmp/mk.cmd"
-  (cd "$tmp" && $EVOLVER -f mk.cmd in.fe < /dev/null > /dev/null 2>&1)
-  [ -s "$tmp/$1.dmp" ] || echo "FAIL autochop/$1: Evolver did not dump"
-}
-run() {
-  name=$1 dmp=$tmp/$2.dmp tol=$3 cmds=$4
-  evolver_run "$dmp" "$cmds" | grep '^K' > "$tmp/ev.k"
-  printf '%s\n' "$cmds" > "$tmp/c.cmd"
-  cp "$dmp" "$tmp/run.fe"
-  (cd "$tmp" && "$TDS" -q run.fe -f c.cmd) > "$tmp/tds.out" 2>&1
-  grep '^K' "$tmp/tds.out" > "$tmp/tds.k"
-  "$TDS" -q -e "
-dofile('$ROOT/tests/evolver/numcmp.lua')
-numcmp('autochop/$name', lines_of('$tmp/ev.k', '^K'), lines_of('$tmp/tds.k', '^K'), $tol)"
-}
+mkdump() { evolver_dump autochop "$@"; }
+run() { kcompare "autochop/$1" "$tmp/$2.dmp" "$3" "$4"; }
 P='recalc; printf "K %d %d %d %.15g\n", vertex_count, edge_count, facet_count, total_energy'
 
 mkdump catg "$EXAMPLES/cat.fe" 'r; u; g 120'

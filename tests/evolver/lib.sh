@@ -28,3 +28,27 @@ evolver_run() {
 
 # Lines "KEY v1 v2 ..." printed by the Evolver commands, as "v1 v2 ...".
 grab() { grep "^$1 " | head -n 1 | cut -d' ' -f2-; }
+
+# The two helpers below work in the caller's scratch directory $tmp.
+# evolver_dump TEST NAME FE CMDS: Evolver runs CMDS on FE and dumps
+# $tmp/NAME.dmp (a FAIL line for TEST/NAME when it did not).
+evolver_dump() {
+  cp "$3" "$tmp/in.fe"
+  printf '%s\ndump "%s.dmp"\nq\n' "$4" "$2" > "$tmp/mk.cmd"
+  (cd "$tmp" && $EVOLVER -f mk.cmd in.fe < /dev/null > /dev/null 2>&1)
+  [ -s "$tmp/$2.dmp" ] || echo "FAIL $1/$2: Evolver did not dump"
+}
+
+# kcompare NAME FE TOL CMDS: CMDS (printing lines "K...") run on FE in
+# Evolver and in tds; the K lines must agree (numcmp.lua: integers
+# exactly, reals to TOL relative), reported as NAME.
+kcompare() {
+  evolver_run "$2" "$4" | grep '^K' > "$tmp/ev.k"
+  printf '%s\n' "$4" > "$tmp/c.cmd"
+  cp "$2" "$tmp/run.fe"
+  (cd "$tmp" && "$TDS" -q run.fe -f c.cmd) > "$tmp/tds.out" 2>&1
+  grep '^K' "$tmp/tds.out" > "$tmp/tds.k"
+  "$TDS" -q -e "
+dofile('$ROOT/tests/evolver/numcmp.lua')
+numcmp('$1', lines_of('$tmp/ev.k', '^K'), lines_of('$tmp/tds.k', '^K'), $3)"
+}

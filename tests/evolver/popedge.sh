@@ -12,17 +12,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 DATA=$ROOT/tests/evolver/data
 
-run() {
-  name=$1 fe=$2 tol=$3 cmds=$4
-  evolver_run "$fe" "$cmds" | grep '^K' > "$tmp/ev.k"
-  printf '%s\n' "$cmds" > "$tmp/c.cmd"
-  cp "$fe" "$tmp/run.fe"
-  (cd "$tmp" && "$TDS" -q run.fe -f c.cmd) > "$tmp/tds.out" 2>&1
-  grep '^K' "$tmp/tds.out" > "$tmp/tds.k"
-  "$TDS" -q -e "
-dofile('$ROOT/tests/evolver/numcmp.lua')
-numcmp('popedge/$name', lines_of('$tmp/ev.k', '^K'), lines_of('$tmp/tds.k', '^K'), $tol)"
-}
+run() { kcompare "popedge/$1" "$2" "$3" "$4"; }
 
 P='recalc; printf "K %d %d %d %d %.15g\n", vertex_count, edge_count, facet_count, body_count, total_energy; foreach vertex vv do printf "KV %d %.15g %.15g %.15g\n", vv.id, vv.x, vv.y, vv.z'
 LOOP='ii := 0; do { e0 := total_energy; g 1; ii := ii + 1 } while (abs(total_energy - e0) > 1e-13*abs(e0) and ii < 20000);'

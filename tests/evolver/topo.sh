@@ -15,25 +15,13 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
 # dump NAME FE CMDS: Evolver evolves FE with CMDS and dumps NAME.dmp.
-mkdump() {
-  cp "$2" "$tmp/in.fe"
-  printf '%s\ndump "%s.dmp"\nq\n' "$3" "$1" > "$tmp/mk.cmd"
-  (cd "$tmp" && $EVOLVER -f mk.cmd in.fe < /dev/null > /dev/null 2>&1)
-  [ -s "$tmp/$1.dmp" ] || echo "FAIL topo/$1: Evolver did not dump"
-}
+mkdump() { evolver_dump topo "$@"; }
 
 # run NAME DUMP TOL CMDS: CMDS (printing K lines) in both from DUMP.
 run() {
-  name=$1 dmp=$tmp/$2.dmp tol=$3 cmds=$4
+  dmp=$tmp/$2.dmp
   case $2 in /*) dmp=$2 ;; esac
-  evolver_run "$dmp" "$cmds" | grep '^K' > "$tmp/ev.k"
-  printf '%s\n' "$cmds" > "$tmp/c.cmd"
-  cp "$dmp" "$tmp/run.fe"
-  (cd "$tmp" && "$TDS" -q run.fe -f c.cmd) > "$tmp/tds.out" 2>&1
-  grep '^K' "$tmp/tds.out" > "$tmp/tds.k"
-  "$TDS" -q -e "
-dofile('$ROOT/tests/evolver/numcmp.lua')
-numcmp('topo/$name', lines_of('$tmp/ev.k', '^K'), lines_of('$tmp/tds.k', '^K'), $tol)"
+  kcompare "topo/$1" "$dmp" "$3" "$4"
 }
 
 P='recalc; printf "K %d %d %d %d %.15g\n", vertex_count, edge_count, facet_count, body_count, total_energy'

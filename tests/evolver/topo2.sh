@@ -8,23 +8,11 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 DATA=$ROOT/tests/evolver/data
 
-mkdump() {
-  cp "$2" "$tmp/in.fe"
-  printf '%s\ndump "%s.dmp"\nq\n' "$3" "$1" > "$tmp/mk.cmd"
-  (cd "$tmp" && $EVOLVER -f mk.cmd in.fe < /dev/null > /dev/null 2>&1)
-  [ -s "$tmp/$1.dmp" ] || echo "FAIL topo2/$1: Evolver did not dump"
-}
+mkdump() { evolver_dump topo2 "$@"; }
 run() {
-  name=$1 fe=$2 tol=$3 cmds=$4
+  fe=$2
   case $fe in /*) ;; *) fe=$tmp/$fe.dmp ;; esac
-  evolver_run "$fe" "$cmds" | grep '^K' > "$tmp/ev.k"
-  printf '%s\n' "$cmds" > "$tmp/c.cmd"
-  cp "$fe" "$tmp/run.fe"
-  (cd "$tmp" && "$TDS" -q run.fe -f c.cmd) > "$tmp/tds.out" 2>&1
-  grep '^K' "$tmp/tds.out" > "$tmp/tds.k"
-  "$TDS" -q -e "
-dofile('$ROOT/tests/evolver/numcmp.lua')
-numcmp('topo2/$name', lines_of('$tmp/ev.k', '^K'), lines_of('$tmp/tds.k', '^K'), $tol)"
+  kcompare "topo2/$1" "$fe" "$3" "$4"
 }
 
 # Everything about the elements, by id.
