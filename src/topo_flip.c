@@ -17,6 +17,20 @@ static int side_of(const tds_mesh *m, tds_id f, tds_id e) {
   return -1;
 }
 
+/* Flip edge e (between f1 and f2) unless its new ends are already joined
+** by an edge (ps: the set of joined vertex pairs, kept up to date).
+** Returns 1 when it flipped. */
+static int flip_kept(tds_surf *s, tds_pairset *ps, tds_id e, tds_id f1, tds_id f2) {
+  const tds_mesh *m = &s->m;
+  int k1 = side_of(m, f1, e), k2 = side_of(m, f2, e);
+  tds_id c = m->fv[f1][(k1 + 2) % 3], d = m->fv[f2][(k2 + 2) % 3];
+  if (tds_pairset_has(ps, c, d)) return 0;
+  tds_pairset_remove(ps, m->ev[e][0], m->ev[e][1]);
+  tds_flip(s, e, f1, f2);
+  tds_pairset_add(ps, c, d);
+  return 1;
+}
+
 int tds_flip_ok(const tds_surf *s, tds_id e, tds_id *f1, tds_id *f2) {
   const tds_mesh *m = &s->m;
   if (!tds_alive(m->eflags, e)) return 0;
@@ -126,12 +140,7 @@ static int equiangulate_pass(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
     if (sel && !sel[e]) continue;
     if (!tds_flip_ok(s, e, &f1, &f2)) continue;
     if (!(opposite_cos(m, e, f1, f2) < -TDS_U_COS)) continue;
-    int k1 = side_of(m, f1, e), k2 = side_of(m, f2, e);
-    tds_id c = m->fv[f1][(k1 + 2) % 3], d = m->fv[f2][(k2 + 2) % 3];
-    if (tds_pairset_has(&ps, c, d)) continue;
-    tds_pairset_remove(&ps, m->ev[e][0], m->ev[e][1]);
-    tds_flip(s, e, f1, f2);
-    tds_pairset_add(&ps, c, d);
+    if (!flip_kept(s, &ps, e, f1, f2)) continue;
     flips++;
   }
   tds_pairset_free(&ps);
@@ -171,12 +180,7 @@ static int equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
     queued[e] = 0;
     if (!tds_flip_ok(s, e, &f1, &f2)) continue;
     if (opposite_sum(m, e, f1, f2) <= TDS_PI + 1e-12) continue;
-    int k1 = side_of(m, f1, e), k2 = side_of(m, f2, e);
-    tds_id c = m->fv[f1][(k1 + 2) % 3], d = m->fv[f2][(k2 + 2) % 3];
-    if (tds_pairset_has(&ps, c, d)) continue;
-    tds_pairset_remove(&ps, m->ev[e][0], m->ev[e][1]);
-    tds_flip(s, e, f1, f2);
-    tds_pairset_add(&ps, c, d);
+    if (!flip_kept(s, &ps, e, f1, f2)) continue;
     flips++;
     for (int k = 0; k < 3; k++) {
       tds_id q1 = TDS_OID(m->fe[f1][k]), q2 = TDS_OID(m->fe[f2][k]);
