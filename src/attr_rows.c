@@ -279,7 +279,7 @@ static int econ_set(SETTER_ARGS) {
 static int e_wrap_get(GETTER_ARGS) {
   UNUSED(ctx);
   UNUSED(a);
-  return one(v, n, tds_torus_wrap_code(s->m.ewrap[id]));
+  return one(v, n, s->m.ewrap ? tds_torus_wrap_code(s->m.ewrap[id]) : 0);
 }
 static int e_wrap_set(SETTER_ARGS) {
   UNUSED(a);
@@ -288,6 +288,7 @@ static int e_wrap_set(SETTER_ARGS) {
 }
 static int e_wrap_dumped(const tds_surf *s, tds_id id) {
   int k[3];
+  if (!s->m.ewrap) return 0;
   tds_wrap_unpack(s->m.ewrap[id], k);
   return k[0] * k[0] > 1 || k[1] * k[1] > 1 || k[2] * k[2] > 1;
 }

@@ -423,7 +423,7 @@ static int edge_line(df *d) {
                      d->s->str ? 1 : 0, 0); /* strings carry tension by default */
   if (rc) return df_core(d, line, rc, NULL);
   d->s->m.efile[id] = line_file_id(d);
-  d->s->m.ewrap[id] = wrap;
+  if (d->s->m.ewrap) d->s->m.ewrap[id] = wrap;
   return apply_attrs(d, TDS_EDGE, id, pv0, d->npv, line);
 }
 

@@ -29,7 +29,7 @@ int df_torus(df *d, int filled) {
   if (d->s->m.torus)
     return df_err(d, NULL, TDS_ESYNTAX, "%s: the torus model is already declared",
                   filled ? "TORUS_FILLED" : "TORUS");
-  d->s->m.torus = filled ? 2 : 1;
+  if (tds_mesh_set_torus(&d->s->m, filled ? 2 : 1)) return df_core(d, df_line_of(d, NULL), TDS_ENOMEM, NULL);
   if (!d->periods_line) unit_periods(&d->s->m); /* Evolver's default */
   d->torus_line = df_line_of(d, NULL);
   return TDS_OK;

@@ -45,7 +45,7 @@ typedef struct tds_corners {
 
 /* The wrap of oriented edge oe (0 without a torus). */
 static inline int32_t tds_oe_wrap(const tds_mesh *m, int32_t oe) {
-  int32_t w = m->ewrap[TDS_OID(oe)];
+  int32_t w = m->ewrap ? m->ewrap[TDS_OID(oe)] : 0;
   return TDS_OREV(oe) && w ? tds_wrap_neg(w) : w;
 }
 

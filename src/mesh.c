@@ -7,13 +7,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* A column is a pointer field of tds_mesh and the size of one element. */
+/* A column is a pointer field of tds_mesh and the size of one element;
+** a torus column is allocated only while the mesh is periodic (NULL
+** otherwise), so the soapfilm model does not pay for it. */
 typedef struct {
   size_t off;
   size_t size;
+  int torus;
 } column;
 
-#define COL(field, sz) {offsetof(tds_mesh, field), sz}
+#define COL(field, sz) {offsetof(tds_mesh, field), sz, 0}
+#define TORUS_COL(field, sz) {offsetof(tds_mesh, field), sz, 1}
 static const column vcols[] = {
     COL(x, sizeof(double[3])),  COL(vflags, sizeof(uint32_t)),
     COL(vcon, sizeof(tds_cmask)), COL(vbdry, sizeof(int32_t)),
@@ -24,7 +28,7 @@ static const column ecols[] = {
     COL(econ, sizeof(tds_cmask)), COL(ebdry, sizeof(int32_t)),
     COL(eten, sizeof(double)),    COL(ecolor, sizeof(int16_t)),
     COL(eside, sizeof(int32_t)), COL(efile, sizeof(int32_t)),
-    COL(ewrap, sizeof(int32_t)),
+    TORUS_COL(ewrap, sizeof(int32_t)),
 };
 static const column fcols[] = {
     COL(fv, sizeof(tds_id[3])),   COL(fe, sizeof(int32_t[3])),
@@ -40,6 +44,7 @@ static const column bcols[] = {
     COL(bfile, sizeof(int32_t)),
 };
 #undef COL
+#undef TORUS_COL
 
 static const struct {
   const column *cols;
@@ -62,6 +67,8 @@ static const size_t flag_off[TDS_NKINDS] = {
 
 #define FIELD(m, off, type) (*(type *)((char *)(m) + (off)))
 #define CFIELD(m, off, type) (*(type const *)((const char *)(m) + (off)))
+
+static int live(const tds_mesh *m, const column *c) { return !c->torus || m->torus; }
 
 void tds_mesh_init(tds_mesh *m) {
   memset(m, 0, sizeof *m);
@@ -94,6 +101,7 @@ int tds_mesh_reserve(tds_mesh *m, int kind, int32_t n) {
   ** a column that grew before a later failure is merely larger. */
   for (int c = 0; c < kinds[kind].ncols; c++) {
     const column *col = &kinds[kind].cols[c];
+    if (!live(m, col)) continue;
     void **p = &FIELD(m, col->off, void *);
     void *q = tds_realloc(&m->alloc, *p, (size_t)n * col->size);
     if (!q) return TDS_ENOMEM;
@@ -110,6 +118,18 @@ int tds_mesh_reserve(tds_mesh *m, int kind, int32_t n) {
     u->v = q;
   }
   *cap = n;
+  return TDS_OK;
+}
+
+int tds_mesh_set_torus(tds_mesh *m, int torus) {
+  if (torus && !m->torus) {
+    if (m->cape && !(m->ewrap = tds_calloc(&m->alloc, (size_t)m->cape, sizeof *m->ewrap)))
+      return TDS_ENOMEM;
+  } else if (!torus) {
+    tds_free(&m->alloc, m->ewrap);
+    m->ewrap = NULL;
+  }
+  m->torus = torus;
   return TDS_OK;
 }
 
@@ -148,7 +168,7 @@ static void set_defaults(tds_mesh *m, int kind, tds_id i) {
     m->ecolor[i] = 0;
     m->eside[i] = TDS_NONE;
     m->efile[i] = 0;
-    m->ewrap[i] = 0;
+    if (m->ewrap) m->ewrap[i] = 0;
     break;
   case TDS_FACET:
     for (int k = 0; k < 3; k++) {
@@ -355,6 +375,7 @@ static int copy_ucols(tds_mesh *dst, const tds_mesh *src) {
 int tds_mesh_copy(tds_mesh *dst, const tds_mesh *src) {
   tds_mesh_init(dst);
   dst->alloc = src->alloc;
+  dst->torus = src->torus;
   if (copy_ucols(dst, src) != TDS_OK) {
     tds_mesh_free(dst);
     return TDS_ENOMEM;
@@ -367,7 +388,7 @@ int tds_mesh_copy(tds_mesh *dst, const tds_mesh *src) {
     }
     for (int c = 0; c < kinds[k].ncols; c++) {
       const column *col = &kinds[k].cols[c];
-      if (cap)
+      if (cap && live(src, col))
         memcpy(FIELD(dst, col->off, void *), CFIELD(src, col->off, void *),
                (size_t)cap * col->size);
     }
@@ -376,7 +397,6 @@ int tds_mesh_copy(tds_mesh *dst, const tds_mesh *src) {
              (size_t)cap * (size_t)src->ucol[k][c].size * sizeof(double));
     FIELD(dst, kinds[k].n_off, int32_t) = CFIELD(src, kinds[k].n_off, int32_t);
   }
-  dst->torus = src->torus;
   memcpy(dst->period, src->period, sizeof dst->period);
   dst->topo_gen = src->topo_gen + 1;
   dst->coord_gen = src->coord_gen;
@@ -389,7 +409,7 @@ size_t tds_mesh_bytes(const tds_mesh *m) {
   for (int k = 0; k < TDS_NKINDS; k++) {
     int32_t cap = CFIELD(m, kinds[k].cap_off, int32_t);
     for (int c = 0; c < kinds[k].ncols; c++)
-      b += (size_t)cap * kinds[k].cols[c].size;
+      if (live(m, &kinds[k].cols[c])) b += (size_t)cap * kinds[k].cols[c].size;
     for (int c = 0; c < m->nucol[k]; c++)
       b += (size_t)cap * (size_t)m->ucol[k][c].size * sizeof(double);
   }
@@ -402,6 +422,7 @@ void tds_mesh_move_slot(tds_mesh *m, int kind, tds_id dst, tds_id src) {
   if (dst == src) return;
   for (int c = 0; c < kinds[kind].ncols; c++) {
     const column *col = &kinds[kind].cols[c];
+    if (!live(m, col)) continue;
     char *p = FIELD(m, col->off, char *);
     memmove(p + (size_t)dst * col->size, p + (size_t)src * col->size, col->size);
   }

@@ -61,9 +61,10 @@ typedef struct tds_mesh {
   int16_t *ecolor;
   int32_t *eside;           /* one facet side on the edge or TDS_NONE */
   int32_t *efile;
-  int32_t *ewrap;           /* torus model: how the edge crosses the unit
-                               cell, packed lattice counts (torus.h); the
-                               true head is x[head] + wrap . periods */
+  int32_t *ewrap;           /* torus model only (NULL otherwise): how the
+                               edge crosses the unit cell, packed lattice
+                               counts (torus.h); the true head is
+                               x[head] + wrap . periods */
   /* facets */
   int32_t nf, capf;
   tds_id (*fv)[3];
@@ -130,6 +131,9 @@ int tds_mesh_reserve(tds_mesh *m, int kind, int32_t n);
 /* Like tds_mesh_reserve, but grows by at least half the capacity, so
 ** that many small requests cost amortised constant time. */
 int tds_mesh_room(tds_mesh *m, int kind, int32_t n);
+/* Turn the torus model on (1 TORUS, 2 TORUS_FILLED) or off (0): allocates
+** ewrap (all wraps 0) or frees it. TDS_ENOMEM leaves the mesh unchanged. */
+int tds_mesh_set_torus(tds_mesh *m, int torus);
 
 /* Append a vertex at x; returns its index or TDS_NONE (out of memory). */
 tds_id tds_mesh_add_vertex(tds_mesh *m, const double x[3]);

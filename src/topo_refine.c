@@ -164,8 +164,10 @@ static tds_id split_edge(tds_surf *s, tds_id e, int32_t *e2) {
   tds_edge_inherit(m, n, e);
   /* the midpoint is on the unwrapped edge, seen from the tail: the second
   ** half carries the whole wrap */
-  m->ewrap[n] = m->ewrap[e];
-  m->ewrap[e] = 0;
+  if (m->ewrap) {
+    m->ewrap[n] = m->ewrap[e];
+    m->ewrap[e] = 0;
+  }
   e2[e] = n;
   return v;
 }

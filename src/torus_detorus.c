@@ -132,7 +132,7 @@ int tds_torus_detorus(tds_ctx *ctx, tds_mesh *m) {
   tds_free(a, bare);
   copies_free(a, &cv);
   copies_free(a, &ce);
-  m->torus = 0;
+  tds_mesh_set_torus(m, 0);
   m->topo_gen++;
   m->coord_gen++;
   return TDS_OK;
