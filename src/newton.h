@@ -5,10 +5,10 @@
 ** The system. The Hessian of the Lagrangian (hess.h) restricted to the
 ** vertices' motion spaces (tds_hess_reduce) and, with `normal` on
 ** (Evolver's hessian_normal, the default), further to each vertex's
-** normal space: a free or constrained vertex moves along its normal (the
-** area-weighted sum of its facets' unit normals, each signed to agree
-** with the vertex's dominant normal direction: the volume gradient on a
-** smooth closed sheet), projected into its motion space and scaled to
+** normal space: a free or constrained vertex moves along its normal
+** (Evolver's: the sum of its facets' area vectors, each signed to agree
+** with the sum so far in Evolver's order, newton_int.h; the volume
+** gradient on a smooth sheet), projected into its motion space and scaled to
 ** unit length in space; a vertex on one triple
 ** junction line (edges with three or more facets) moves in the plane
 ** perpendicular to the line; a vertex where several such lines meet, or

@@ -25,16 +25,17 @@ typedef struct tds_nsys {
 ** normal, the number of triple-junction edges at it and their direction
 ** (each signed to agree with the first).
 **
-** The normal is the area-weighted sum of the facets' unit normals, each
-** facet's sign chosen to agree with the vertex's dominant normal
-** direction (the leading eigenvector of sum area n n^T). On a smooth,
-** consistently oriented surface this is the plain sum of the facets'
-** area vectors, which is the volume gradient; where the facets around a
-** vertex fold over (a crumpled mesh, inconsistent orientations) it still
-** points across the sheet, as Evolver's hessian normal does. */
+** The normal is Evolver's (its vertex_normal attribute): the running sum
+** of the facets' area vectors, each added with the sign that agrees with
+** the sum so far, over the vertex's facets in Evolver's order (by their
+** edges leaving the vertex: the lowest edge id first, then decreasing
+** ids, the order of a surface Evolver has just read). On a smooth,
+** consistently oriented surface this is the plain sum of the area
+** vectors, the volume gradient, whatever the order; where the facets
+** around a vertex fold over (a crumpled mesh) the signs, and so the
+** normal, depend on the order. */
 typedef struct vnorm {
   double an[3];
-  double P[3][3];       /* sum area n n^T (only where the normals spread) */
   double td[3];
   int nt, nf, bent;     /* bent: two triple edges not along one line */
 } vnorm;

@@ -19,6 +19,11 @@ static void facet_vec(const tds_mesh *m, tds_id f, double c[3]) {
   v3_scale(c, 0.5);
 }
 
+/* A facet at a bad vertex with its place in Evolver's order there. */
+typedef struct fkey {
+  int32_t key, f;
+} fkey;
+
 /* TDS_OK or TDS_ENOMEM (then vn is incomplete: an answer that depends on
 ** memory would make a command's result depend on it). */
 int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
@@ -34,11 +39,9 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
     }
   }
   /* Where every facet's normal is within 30 degrees of the plain sum's,
-  ** each agrees in sign with the dominant direction too (that lies
-  ** within 60 degrees of the sum: its Rayleigh quotient is at least the
-  ** sum's), so the plain sum is the answer; elsewhere the dominant
-  ** direction by power iteration from the plain sum, and the facets
-  ** added again with their signs. */
+  ** no facet disagrees with a partial sum (any two are within 60
+  ** degrees), so the plain sum is Evolver's running sum below; elsewhere
+  ** ("bad" vertices) the running sum in Evolver's order. */
   double (*ref)[3] = tds_malloc(al, ((size_t)m->nv + 1) * sizeof *ref);
   unsigned char *bad = tds_calloc(al, (size_t)m->nv + 1, 1);
   if (!ref || !bad) {
@@ -54,7 +57,7 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
       bad[v] = 1;
     }
   }
-  int nbad = 0;
+  int32_t nbad = 0, nfk = 0;
   for (tds_id f = 0; f < m->nf; f++) {
     if (m->fflags[f] & TDS_DEAD) continue;
     double c[3];
@@ -65,55 +68,76 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
       if (!bad[v] && !(v3_dot(c, ref[v]) >= lim)) bad[v] = 1;
     }
   }
-  for (tds_id v = 0; v < m->nv; v++) nbad += bad[v];
-  for (tds_id f = 0; f < m->nf && nbad; f++) { /* sum area n n^T where needed */
-    if (m->fflags[f] & TDS_DEAD) continue;
-    double c[3];
-    facet_vec(m, f, c);
-    double A = v3_norm(c);
-    for (int k = 0; k < 3; k++) {
-      vnorm *w = &vn[m->fv[f][k]];
-      if (bad[m->fv[f][k]] && A > 0)
-        for (int i = 0; i < 3; i++)
-          for (int j = 0; j < 3; j++) w->P[i][j] += c[i] * c[j] / A;
+  tds_free(al, ref);
+  for (tds_id v = 0; v < m->nv; v++)
+    if (bad[v] && vn[v].nf) {
+      nbad++;
+      nfk += vn[v].nf;
     }
-  }
-  for (tds_id v = 0; v < m->nv; v++) {
-    if (!bad[v]) continue;
-    vnorm *w = &vn[v];
-    double r[3];
-    v3_copy(r, w->an);
-    if (!(v3_norm(r) > 1e-12 * (w->P[0][0] + w->P[1][1] + w->P[2][2]))) {
-      int big = 0;
-      for (int i = 1; i < 3; i++)
-        if (w->P[i][i] > w->P[big][big]) big = i;
-      for (int i = 0; i < 3; i++) r[i] = w->P[i][big];
+  if (nbad) {
+    /* Evolver's order at a vertex: its facets by their leading edge (the
+    ** one leaving the vertex along the facet's orientation) in the
+    ** vertex's edge list, which is the edge with the lowest id, then the
+    ** others by decreasing id (each edge read is inserted right after
+    ** the first: the order of a surface loaded from a file) */
+    int32_t *emin = tds_malloc(al, ((size_t)m->nv + 1) * sizeof *emin);
+    int32_t *at = tds_malloc(al, ((size_t)m->nv + 2) * sizeof *at);
+    fkey *fk = tds_malloc(al, ((size_t)nfk + 1) * sizeof *fk);
+    if (!emin || !at || !fk) {
+      tds_free(al, emin);
+      tds_free(al, at);
+      tds_free(al, fk);
+      tds_free(al, bad);
+      return TDS_ENOMEM;
     }
-    for (int it = 0; it < 100; it++) {
-      double t[3];
-      for (int i = 0; i < 3; i++) t[i] = w->P[i][0] * r[0] + w->P[i][1] * r[1] + w->P[i][2] * r[2];
-      double l = v3_norm(t);
-      if (!(l > 0)) break;
-      v3_scale(t, 1 / l);
-      double dr[3];
-      v3_sub(dr, t, r);
-      v3_copy(r, t);
-      if (it > 0 && v3_dot(dr, dr) < 1e-30) break; /* converged */
+    for (tds_id v = 0; v < m->nv; v++) emin[v] = INT32_MAX;
+    for (tds_id e = 0; e < m->ne; e++) {
+      if (m->eflags[e] & TDS_DEAD) continue;
+      for (int k = 0; k < 2; k++)
+        if (e < emin[m->ev[e][k]]) emin[m->ev[e][k]] = e;
     }
-    v3_copy(ref[v], r);
-    memset(w->an, 0, sizeof w->an);
-  }
-  for (tds_id f = 0; f < m->nf && nbad; f++) {
-    if (m->fflags[f] & TDS_DEAD) continue;
-    double c[3];
-    facet_vec(m, f, c);
-    for (int k = 0; k < 3; k++) {
-      tds_id v = m->fv[f][k];
-      if (bad[v]) v3_axpy(vn[v].an, v3_dot(c, ref[v]) < 0 ? -1 : 1, c);
+    at[0] = 0;
+    for (tds_id v = 0; v < m->nv; v++) at[v + 1] = at[v] + (bad[v] ? vn[v].nf : 0);
+    for (tds_id f = 0; f < m->nf; f++) {
+      if (m->fflags[f] & TDS_DEAD) continue;
+      for (int k = 0; k < 3; k++) {
+        tds_id v = m->fv[f][k];
+        if (!bad[v]) continue;
+        int32_t e = TDS_OID(m->fe[f][k]);
+        fkey x = {e == emin[v] ? INT32_MIN : -e, f};
+        fk[at[v]++] = x;
+      }
     }
+    for (tds_id v = m->nv; v > 0; v--) at[v] = at[v - 1]; /* back to starts */
+    at[0] = 0;
+    for (tds_id v = 0; v < m->nv; v++) {
+      if (!bad[v] || !vn[v].nf) continue;
+      fkey *a = fk + at[v];
+      int32_t n = at[v + 1] - at[v];
+      for (int32_t i = 1; i < n; i++) { /* a few facets: insertion sort */
+        fkey x = a[i];
+        int32_t j = i;
+        while (j > 0 && (a[j - 1].key > x.key || (a[j - 1].key == x.key && a[j - 1].f > x.f))) {
+          a[j] = a[j - 1];
+          j--;
+        }
+        a[j] = x;
+      }
+      /* the running sum: each facet's area vector added with the sign
+      ** that agrees with the sum so far */
+      double S[3] = {0, 0, 0};
+      for (int32_t i = 0; i < n; i++) {
+        double c[3];
+        facet_vec(m, a[i].f, c);
+        v3_axpy(S, v3_dot(S, c) < 0 ? -1 : 1, c);
+      }
+      v3_copy(vn[v].an, S);
+    }
+    tds_free(al, emin);
+    tds_free(al, at);
+    tds_free(al, fk);
   }
   tds_free(al, bad);
-  tds_free(al, ref);
   for (tds_id e = 0; e < m->ne; e++) {
     if (m->eflags[e] & TDS_DEAD) continue;
     if (tds_edge_valence(m, e) < 3) continue;

@@ -37,9 +37,9 @@ printf \"E1 %.17g\\n\", total_energy
 hessian
 printf \"E2 %.17g\\n\", total_energy
 eigenprobe 0
-ritz(0,4)
+ritz(0,${RITZN:-4})
 linear_metric
-ritz(0,4)")
+ritz(0,${RITZN:-4})")
   e1=$(echo "$ev" | grab E1) e2=$(echo "$ev" | grab E2)
   counts=$(echo "$ev" | grep '^Eigencounts' | head -n 1 | tr -dc '0-9 ' | tr -s ' ')
   vals=$(echo "$ev" | grep -E '^ +[0-9]+\. +-?[0-9][0-9.]*(e[-+]?[0-9]+)? *$' | awk '{print $2}' | tr '\n' ' ')
@@ -70,7 +70,7 @@ end
 if '$evtog' ~= '' then return end
 cmp('ritz', vals, 1)
 tds.hessian_setting('linear_metric', true)
-cmp('ritz-linear-metric', tds.ritz(0, 4), 5)
+cmp('ritz-linear-metric', tds.ritz(0, 4), ${RITZN:-4} + 1)
 " 2>&1 || echo "FAIL hessian/$name: tds exited with an error"
 }
 
@@ -81,6 +81,19 @@ case_ qmound "$E/qmound.fe" "g 5; r; g 10"
 case_ column "$E/column.fe" "g 5; r; g 10"
 case_ catbody "$E/catbody.fe" "u; g 5; r; g 5; set body target 2; g 5; r; set body target 3; g 5"
 case_ twocubes "$DATA/twocubes.fe" "g 5; r; g 10"
+# catbody squeezed until the facets around some vertices fold by up to
+# 155 degrees (r; r; set body target 0.5; g 10): there the normal depends
+# on Evolver's rule (each facet's area vector added with the sign that
+# agrees with the sum so far, in its order of the vertex's facets), at 48
+# of the 204 free vertices the plain or dominant-direction sums differ
+# from it, and the lowest eigenvalue was 0.364 instead of Evolver's
+# 0.436. Evolver's order is that of a surface just read, so Evolver reads
+# its own dump before the comparison, as tds does. Evolver's ritz(0,4)
+# stops at its 1000 iterations with the fourth eigenvalue 4e-4 high
+# (0.61996; 0.6197083930726 with 8 vectors, as tds finds with 4), so
+# Evolver's lowest four come from ritz(0,8) here.
+evolver_dump hessian catfold "$E/catbody.fe" "r; r; set body target 0.5; g 10"
+[ -f "$tmp/catfold.dmp" ] && RITZN=8 case_ catfold "$tmp/catfold.dmp" ""
 case_ cube-normal-off "$E/cube.fe" "g 5; r; g 10" "hessian_normal off" "tds.hessian_setting('hessian_normal', false)"
 case_ mound-normal-off "$E/mound.fe" "g 5; r; g 10" "hessian_normal off" "tds.hessian_setting('hessian_normal', false)"
 # hessian_special_normal: each vertex moves along the datafile's
