@@ -210,12 +210,13 @@ static int l_eigenvector(lua_State *L) {
 
 /* tds.hessian_setting(name [, value]) -> value: hessian_normal,
 ** linear_metric, linear_metric_mix, hessian_diff, hessian_epsilon,
-** hessian_special_normal;
+** hessian_special_normal, hessian_normal_one, hessian_normal_perp;
 ** last_eigenvalue (read) */
 static int l_setting(lua_State *L) {
   static const char *const names[] = {"hessian_normal", "linear_metric", "linear_metric_mix",
                                       "hessian_diff", "last_eigenvalue", "hessian_epsilon",
-                                      "hessian_special_normal", NULL};
+                                      "hessian_special_normal", "hessian_normal_one",
+                                      "hessian_normal_perp", NULL};
   nstate *ns = get_ns(L);
   int which = luaL_checkoption(L, 1, NULL, names);
   int set = !lua_isnone(L, 2);
@@ -243,6 +244,14 @@ static int l_setting(lua_State *L) {
   case 6:
     if (set) ns->o.special_normal = lua_toboolean(L, 2);
     lua_pushboolean(L, ns->o.special_normal);
+    break;
+  case 7:
+    if (set) ns->o.normal_one = lua_toboolean(L, 2);
+    lua_pushboolean(L, ns->o.normal_one);
+    break;
+  case 8:
+    if (set) ns->o.normal_perp = lua_toboolean(L, 2);
+    lua_pushboolean(L, ns->o.normal_perp);
     break;
   case 4: /* read-only */
     if (set) return tds_lua_error(L, "last_eigenvalue is read-only");

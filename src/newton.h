@@ -54,6 +54,13 @@ typedef struct tds_newton_opts {
   int diff;             /* hessian_diff: H by central differences */
   int special_normal;   /* hessian_special_normal: the normal is the
                            datafile's HESSIAN_SPECIAL_NORMAL_VECTOR */
+  int normal_one;       /* hessian_normal_one: with normal, every vertex
+                           with facets moves along one direction, the
+                           leading eigenvector of the sum of its facets'
+                           n n^T (also on triple junctions) */
+  int normal_perp;      /* hessian_normal_perp: linear_metric takes only
+                           each unit motion's component along the facet's
+                           normal */
   double epsilon;       /* hessian_epsilon: a pivot below epsilon x the
                            largest entry counts as zero (la.h); <= 0: 1e-10 */
   int general;          /* assemble through the xyz Hessian (hess.h) and

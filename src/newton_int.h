@@ -43,6 +43,13 @@ typedef struct vnorm {
 /* vn: m->nv slots. TDS_OK or TDS_ENOMEM (then vn is incomplete). */
 int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn);
 
+/* hessian_normal_one: every vertex with facets gets a one-dimensional
+** normal space, the leading eigenvector of sum n n^T over its facets'
+** unit normals (signed to agree with its normal from
+** tds_vertex_normals), also on triple junctions. TDS_OK or TDS_ENOMEM
+** (vn unchanged). */
+int tds_normals_one(const tds_alloc *al, const tds_mesh *m, vnorm *vn);
+
 /* hessian_special_normal: the normal of every vertex off triple
 ** junctions becomes the datafile's HESSIAN_SPECIAL_NORMAL_VECTOR there
 ** (a function of the coordinates and parameters). TDS_OK, TDS_ERANGE
@@ -63,8 +70,8 @@ void tds_nsys_free(tds_nsys *n);
 /* The linear_metric matrix out->M (out->m, out->dx set): vk maps a vertex
 ** slot to its movable index (or -1), ustart a movable index to its first
 ** unknown. TDS_OK or TDS_ENOMEM. */
-int tds_nsys_build_metric(tds_ctx *ctx, const tds_mesh *m, double mix, const int32_t *vk,
-                          const int32_t *ustart, tds_nsys *out);
+int tds_nsys_build_metric(tds_ctx *ctx, const tds_mesh *m, double mix, int perp,
+                          const int32_t *vk, const int32_t *ustart, tds_nsys *out);
 
 /* tds_nsys_build's fast path (newton_asm.c): the same system assembled
 ** straight into the unknowns on a pattern from the edges. *miss set (and

@@ -161,6 +161,41 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
   return TDS_OK;
 }
 
+void dsyev_(const char *jobz, const char *uplo, const int *n, double *a, const int *lda,
+            double *w, double *work, const int *lwork, int *info);
+
+int tds_normals_one(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
+  double (*P)[6] = tds_calloc(al, (size_t)m->nv + 1, sizeof *P); /* upper xx xy xz yy yz zz */
+  if (!P) return TDS_ENOMEM;
+  for (tds_id f = 0; f < m->nf; f++) {
+    if (m->fflags[f] & TDS_DEAD) continue;
+    double c[3];
+    facet_vec(m, f, c);
+    double l = v3_norm(c);
+    if (!(l > 0)) continue;
+    double wgt = 1 / (l * l); /* unit normals, unweighted (as Evolver) */
+    double q[6] = {c[0] * c[0] * wgt, c[0] * c[1] * wgt, c[0] * c[2] * wgt,
+                   c[1] * c[1] * wgt, c[1] * c[2] * wgt, c[2] * c[2] * wgt};
+    for (int k = 0; k < 3; k++)
+      for (int i = 0; i < 6; i++) P[m->fv[f][k]][i] += q[i];
+  }
+  for (tds_id v = 0; v < m->nv; v++) {
+    if ((m->vflags[v] & TDS_DEAD) || !vn[v].nf) continue;
+    double a[9] = {P[v][0], P[v][1], P[v][2], P[v][1], P[v][3], P[v][4], P[v][2], P[v][4], P[v][5]};
+    double w[3], work[16];
+    int n = 3, lwork = 16, info = 0;
+    dsyev_("V", "U", &n, a, &n, w, work, &lwork, &info);
+    if (info != 0 || !(w[2] > 0)) continue; /* no facet with an area */
+    double *e = a + 6; /* the eigenvector of the largest eigenvalue */
+    double sg = v3_dot(e, vn[v].an) < 0 ? -1 : 1;
+    for (int i = 0; i < 3; i++) vn[v].an[i] = sg * e[i];
+    vn[v].nt = 0;
+    vn[v].bent = 0;
+  }
+  tds_free(al, P);
+  return TDS_OK;
+}
+
 /* Columns W (d x c) of the unknowns of a vertex with motion basis B
 ** (3 x d, dx = B u): the normal space's directions pulled back into u
 ** (least squares) and made orthonormal in space (|B w| = 1). c = d (the

@@ -362,8 +362,9 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
     tds_inertia in;
     return tds_newton_ritz(ctx, s, &no, NAN, 3, vals, &got, &in, NULL, &iters, NULL);
   }
-  case 'i': {
-    tds_newton_opts no = {.normal = 1, .linear_metric = 1, .metric_mix = 0.5};
+  case 'i': { /* also hessian_normal_one and hessian_normal_perp */
+    tds_newton_opts no = {.normal = 1, .normal_one = 1, .normal_perp = 1, .linear_metric = 1,
+                          .metric_mix = 0.5};
     double val;
     int iters;
     tds_inertia in;
