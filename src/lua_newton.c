@@ -1,6 +1,6 @@
 /* lua_newton.c: Newton steps and eigenvalues (newton.h) for Lua:
 ** tds.hessian, tds.hessian_seek, tds.saddle, tds.eigenprobe, tds.ritz,
-** tds.move, tds.eigenvector, tds.hessian_setting. The settings and the
+** tds.move, tds.eigenvector, tds.vertex_normal, tds.hessian_setting. The settings and the
 ** last ritz eigenvector live in a userdata in the registry (no globals). */
 #include <math.h>
 #include <stdlib.h>
@@ -208,6 +208,18 @@ static int l_eigenvector(lua_State *L) {
   return 3;
 }
 
+/* tds.vertex_normal(v) -> x, y, z: Evolver's vertex_normal (newton.h,
+** tds_vertex_normal_at) with the current hessian settings */
+static int l_vertex_normal(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  nstate *ns = get_ns(L);
+  tds_id v = tds_check_elem(L, st, 1, TDS_VERTEX, NULL);
+  double n[3];
+  check_rc(L, st, tds_vertex_normal_at(&st->ctx, &st->s, &ns->o, v, n));
+  for (int i = 0; i < 3; i++) lua_pushnumber(L, n[i]);
+  return 3;
+}
+
 /* tds.hessian_setting(name [, value]) -> value: hessian_normal,
 ** linear_metric, linear_metric_mix, hessian_diff, hessian_epsilon,
 ** hessian_special_normal, hessian_normal_one, hessian_normal_perp;
@@ -284,6 +296,7 @@ void tds_open_newton(lua_State *L, tds_state *st) {
       {"saddle", l_saddle},         {"eigenprobe", l_eigenprobe},
       {"ritz", l_ritz},             {"move", l_move},
       {"eigenvector", l_eigenvector}, {"hessian_setting", l_setting},
+      {"vertex_normal", l_vertex_normal},
       {NULL, NULL}};
   tds_lua_register(L, st, fns);
 }

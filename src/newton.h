@@ -130,4 +130,13 @@ int tds_newton_move(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, const d
 int tds_newton_saddle(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double maxscale,
                       double *lowest, int *moved);
 
+/* Evolver's vertex_normal of live vertex v: the unit direction
+** hessian_normal moves it along (newton_int.h's rule, with o's
+** normal_one and special_normal), on a triple junction line the first
+** direction of its normal plane, where several lines meet (1, 0, 0);
+** (0, 0, 0) for a vertex with no facets. TDS_OK, TDS_ENOMEM, TDS_ERANGE
+** or TDS_ENUM (the special normal vector missing or not finite). */
+int tds_vertex_normal_at(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_id v,
+                         double n[3]);
+
 #endif

@@ -43,6 +43,25 @@ typedef struct vnorm {
 /* vn: m->nv slots. TDS_OK or TDS_ENOMEM (then vn is incomplete). */
 int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn);
 
+/* The pieces of tds_vertex_normals that tds_vertex_normal_at
+** (newton_vnorm.c) shares. A facet at a vertex with its place in
+** Evolver's order there: key INT32_MIN for the facet whose leading edge
+** (the side leaving the vertex) is the vertex's lowest edge, else minus
+** that edge's index. tds_evolver_sum sorts a[0..n) by key (then facet)
+** and sets S to the running sum of their area vectors, each signed to
+** agree with the sum so far. */
+typedef struct tds_fkey {
+  int32_t key, f;
+} tds_fkey;
+void tds_evolver_sum(const tds_mesh *m, tds_fkey *a, int32_t n, double S[3]);
+/* P (upper: xx xy xz yy yz zz) += c c^T / |c|^2 (nothing when c = 0). */
+void tds_unit_nnt(const double c[3], double P[6]);
+/* e = the unit eigenvector of P's largest eigenvalue, signed to agree
+** with ref; 0 when that eigenvalue is not positive (e untouched). */
+int tds_lead_eig(const double P[6], const double ref[3], double e[3]);
+/* The HESSIAN_SPECIAL_NORMAL_VECTOR at vertex v. TDS_OK or TDS_ENUM. */
+int tds_special_at(tds_ctx *ctx, const tds_surf *s, tds_id v, double an[3]);
+
 /* hessian_normal_one: every vertex with facets gets a one-dimensional
 ** normal space, the leading eigenvector of sum n n^T over its facets'
 ** unit normals (signed to agree with its normal from

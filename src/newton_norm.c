@@ -19,10 +19,25 @@ static void facet_vec(const tds_mesh *m, tds_id f, double c[3]) {
   v3_scale(c, 0.5);
 }
 
-/* A facet at a bad vertex with its place in Evolver's order there. */
-typedef struct fkey {
-  int32_t key, f;
-} fkey;
+void tds_evolver_sum(const tds_mesh *m, tds_fkey *a, int32_t n, double S[3]) {
+  for (int32_t i = 1; i < n; i++) { /* a few facets: insertion sort */
+    tds_fkey x = a[i];
+    int32_t j = i;
+    while (j > 0 && (a[j - 1].key > x.key || (a[j - 1].key == x.key && a[j - 1].f > x.f))) {
+      a[j] = a[j - 1];
+      j--;
+    }
+    a[j] = x;
+  }
+  /* the running sum: each facet's area vector added with the sign that
+  ** agrees with the sum so far */
+  S[0] = S[1] = S[2] = 0;
+  for (int32_t i = 0; i < n; i++) {
+    double c[3];
+    facet_vec(m, a[i].f, c);
+    v3_axpy(S, v3_dot(S, c) < 0 ? -1 : 1, c);
+  }
+}
 
 /* TDS_OK or TDS_ENOMEM (then vn is incomplete: an answer that depends on
 ** memory would make a command's result depend on it). */
@@ -82,7 +97,7 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
     ** the first: the order of a surface loaded from a file) */
     int32_t *emin = tds_malloc(al, ((size_t)m->nv + 1) * sizeof *emin);
     int32_t *at = tds_malloc(al, ((size_t)m->nv + 2) * sizeof *at);
-    fkey *fk = tds_malloc(al, ((size_t)nfk + 1) * sizeof *fk);
+    tds_fkey *fk = tds_malloc(al, ((size_t)nfk + 1) * sizeof *fk);
     if (!emin || !at || !fk) {
       tds_free(al, emin);
       tds_free(al, at);
@@ -104,7 +119,7 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
         tds_id v = m->fv[f][k];
         if (!bad[v]) continue;
         int32_t e = TDS_OID(m->fe[f][k]);
-        fkey x = {e == emin[v] ? INT32_MIN : -e, f};
+        tds_fkey x = {e == emin[v] ? INT32_MIN : -e, f};
         fk[at[v]++] = x;
       }
     }
@@ -112,26 +127,7 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
     at[0] = 0;
     for (tds_id v = 0; v < m->nv; v++) {
       if (!bad[v] || !vn[v].nf) continue;
-      fkey *a = fk + at[v];
-      int32_t n = at[v + 1] - at[v];
-      for (int32_t i = 1; i < n; i++) { /* a few facets: insertion sort */
-        fkey x = a[i];
-        int32_t j = i;
-        while (j > 0 && (a[j - 1].key > x.key || (a[j - 1].key == x.key && a[j - 1].f > x.f))) {
-          a[j] = a[j - 1];
-          j--;
-        }
-        a[j] = x;
-      }
-      /* the running sum: each facet's area vector added with the sign
-      ** that agrees with the sum so far */
-      double S[3] = {0, 0, 0};
-      for (int32_t i = 0; i < n; i++) {
-        double c[3];
-        facet_vec(m, a[i].f, c);
-        v3_axpy(S, v3_dot(S, c) < 0 ? -1 : 1, c);
-      }
-      v3_copy(vn[v].an, S);
+      tds_evolver_sum(m, fk + at[v], at[v + 1] - at[v], vn[v].an);
     }
     tds_free(al, emin);
     tds_free(al, at);
@@ -164,6 +160,28 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
 void dsyev_(const char *jobz, const char *uplo, const int *n, double *a, const int *lda,
             double *w, double *work, const int *lwork, int *info);
 
+int tds_lead_eig(const double P[6], const double ref[3], double e[3]) {
+  double a[9] = {P[0], P[1], P[2], P[1], P[3], P[4], P[2], P[4], P[5]};
+  double w[3], work[16];
+  int n = 3, lwork = 16, info = 0;
+  dsyev_("V", "U", &n, a, &n, w, work, &lwork, &info);
+  if (info != 0 || !(w[2] > 0)) return 0;
+  double sg = v3_dot(a + 6, ref) < 0 ? -1 : 1; /* a + 6: the largest's vector */
+  for (int i = 0; i < 3; i++) e[i] = sg * a[6 + i];
+  return 1;
+}
+
+void tds_unit_nnt(const double c[3], double P[6]) {
+  double l2 = v3_dot(c, c);
+  if (!(l2 > 0)) return;
+  P[0] += c[0] * c[0] / l2;
+  P[1] += c[0] * c[1] / l2;
+  P[2] += c[0] * c[2] / l2;
+  P[3] += c[1] * c[1] / l2;
+  P[4] += c[1] * c[2] / l2;
+  P[5] += c[2] * c[2] / l2;
+}
+
 int tds_normals_one(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
   double (*P)[6] = tds_calloc(al, (size_t)m->nv + 1, sizeof *P); /* upper xx xy xz yy yz zz */
   if (!P) return TDS_ENOMEM;
@@ -171,24 +189,13 @@ int tds_normals_one(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
     if (m->fflags[f] & TDS_DEAD) continue;
     double c[3];
     facet_vec(m, f, c);
-    double l = v3_norm(c);
-    if (!(l > 0)) continue;
-    double wgt = 1 / (l * l); /* unit normals, unweighted (as Evolver) */
-    double q[6] = {c[0] * c[0] * wgt, c[0] * c[1] * wgt, c[0] * c[2] * wgt,
-                   c[1] * c[1] * wgt, c[1] * c[2] * wgt, c[2] * c[2] * wgt};
-    for (int k = 0; k < 3; k++)
-      for (int i = 0; i < 6; i++) P[m->fv[f][k]][i] += q[i];
+    for (int k = 0; k < 3; k++) tds_unit_nnt(c, P[m->fv[f][k]]);
   }
   for (tds_id v = 0; v < m->nv; v++) {
     if ((m->vflags[v] & TDS_DEAD) || !vn[v].nf) continue;
-    double a[9] = {P[v][0], P[v][1], P[v][2], P[v][1], P[v][3], P[v][4], P[v][2], P[v][4], P[v][5]};
-    double w[3], work[16];
-    int n = 3, lwork = 16, info = 0;
-    dsyev_("V", "U", &n, a, &n, w, work, &lwork, &info);
-    if (info != 0 || !(w[2] > 0)) continue; /* no facet with an area */
-    double *e = a + 6; /* the eigenvector of the largest eigenvalue */
-    double sg = v3_dot(e, vn[v].an) < 0 ? -1 : 1;
-    for (int i = 0; i < 3; i++) vn[v].an[i] = sg * e[i];
+    double e[3];
+    if (!tds_lead_eig(P[v], vn[v].an, e)) continue; /* no facet with an area */
+    v3_copy(vn[v].an, e);
     vn[v].nt = 0;
     vn[v].bent = 0;
   }
@@ -274,15 +281,22 @@ int tds_special_normals(tds_ctx *ctx, const tds_surf *s, vnorm *vn) {
                       "HESSIAN_SPECIAL_NORMAL_VECTOR");
   for (tds_id v = 0; v < m->nv; v++) {
     if ((m->vflags[v] & TDS_DEAD) || vn[v].nt || !vn[v].nf) continue;
-    double vars[TDS_NVARS];
-    tds_motion_vars(s, m->x[v], m->vp[v], vars);
-    for (int i = 0; i < 3; i++) {
-      double c = tds_expr_eval(s->special_normal[i], s->parval, vars);
-      if (!isfinite(c))
-        return tds_seterr(ctx, TDS_ENUM, "HESSIAN_SPECIAL_NORMAL_VECTOR: c%d is not finite at "
-                          "vertex %d", i + 1, (int)v + 1);
-      vn[v].an[i] = c;
-    }
+    int rc = tds_special_at(ctx, s, v, vn[v].an);
+    if (rc != TDS_OK) return rc;
+  }
+  return TDS_OK;
+}
+
+int tds_special_at(tds_ctx *ctx, const tds_surf *s, tds_id v, double an[3]) {
+  const tds_mesh *m = &s->m;
+  double vars[TDS_NVARS];
+  tds_motion_vars(s, m->x[v], m->vp[v], vars);
+  for (int i = 0; i < 3; i++) {
+    double c = tds_expr_eval(s->special_normal[i], s->parval, vars);
+    if (!isfinite(c))
+      return tds_seterr(ctx, TDS_ENUM, "HESSIAN_SPECIAL_NORMAL_VECTOR: c%d is not finite at "
+                        "vertex %d", i + 1, (int)v + 1);
+    an[i] = c;
   }
   return TDS_OK;
 }
