@@ -506,6 +506,8 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
         if (res->converged && probe_x && probes < max_probes && rbest <= fine) {
           probes++;
           res->probes++;
+          res->converged = 0; /* decided by the probe */
+          res->status = TDS_PG_COUNT;
           load_best(s, &w);
           if (nt.lu) pg_newton_drop(&nt);
           accel = 0;
