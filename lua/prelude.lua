@@ -262,6 +262,10 @@ equiangulate = u
 -- vertex_average on a generator). doc/commands.md.
 function V(set, opts)
   set, opts = set_and_options(set, opts, "V", { rule = "string", sequential = "boolean" })
+  local rules = { V = true, raw = true, rawest = true, centroid = true }
+  if opts.rule ~= nil and not rules[opts.rule] then
+    error(('V: rule must be "V", "raw", "rawest" or "centroid", not "%s"'):format(opts.rule), 2)
+  end
   tds.vertex_average(set, opts.rule, opts.sequential)
 end
 function rawv(set) tds.vertex_average(set, "raw") end
