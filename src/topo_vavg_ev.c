@@ -9,7 +9,9 @@
 **    e that take part; the target is T = sum g_e^2 x_e / sum g_e^2 over
 **    the far ends x_e, and the vertex moves a quarter of the way:
 **    v + (T - v) / 4.
-**  - V and rawv use only facets with v's constraints ("like" facets). A
+**  - V and rawv average only over edges with v's constraints (g_e still
+**    counts every facet on e), and need a facet with v's constraints (a
+**    "like" facet). A
 **    vertex on exactly two triple edges (valence >= 3) takes the mean of
 **    their far ends; on other numbers of triple edges it stays. A
 **    constrained vertex without like facets takes the mean of the far ends
@@ -82,7 +84,7 @@ int tds_vavg_target(const tds_surf *s, tds_id v, int mode, double *g,
   if (deg <= 0) return 0;
   int rawest = mode == TDS_VAVG_RAWEST;
   for (int i = 0; i < deg; i++) g[i] = 0;
-  double nlike[3] = {0, 0, 0}, nall[3] = {0, 0, 0};
+  double nall[3] = {0, 0, 0};
   int cl = 0, ca = 0;
   int nf = star_order(m, v, ord);
   for (int i = 0; i < nf; i++) {
@@ -95,13 +97,13 @@ int tds_vavg_target(const tds_surf *s, tds_id v, int mode, double *g,
     v3_cross(N, ab, ac);
     /* the sum in star order, each facet signed to agree with it */
     v3_axpy(nall, ca++ && v3_dot(N, nall) < 0 ? -1 : 1, N);
-    if (!rawest && m->fcon[f] != m->vcon[v]) continue;
-    v3_axpy(nlike, cl++ && v3_dot(N, nlike) < 0 ? -1 : 1, N);
     int k = m->fv[f][0] == v ? 0 : m->fv[f][1] == v ? 1 : 2;
     double A = 0.5 * v3_norm(N);
     int a = edge_slot(m, v, m->fe[f][k]), b = edge_slot(m, v, m->fe[f][(k + 2) % 3]);
     if (a >= 0) g[a] += A;
     if (b >= 0) g[b] += A;
+    if (!rawest && m->fcon[f] != m->vcon[v]) continue;
+    cl++;
   }
   /* far ends, relative to v's own position (gathered from v) */
   double T[3] = {0, 0, 0}, d[3], dir[3] = {0, 0, 0};
@@ -146,18 +148,19 @@ int tds_vavg_target(const tds_surf *s, tds_id v, int mode, double *g,
       v3_add(T, T, E.x[1]);
     }
     v3_scale(T, 1.0 / deg);
-    if (cl >= 2) proj = nlike;
+    if (ca >= 2) proj = nall;
   } else {
     double W = 0;
     for (int i = 0; i < deg; i++) {
       if (!(g[i] > 0)) continue;
+      if (!rawest && m->econ[TDS_OID(m->ve[e0 + i])] != m->vcon[v]) continue;
       tds_gather_edge(m, m->ve[e0 + i], &E);
       v3_axpy(T, g[i] * g[i], E.x[1]);
       W += g[i] * g[i];
     }
     if (!(W > 0)) return 0;
     v3_scale(T, 1 / W);
-    proj = nlike;
+    proj = nall;
   }
   v3_sub(d, T, m->x[v]);
   v3_scale(d, 0.25);

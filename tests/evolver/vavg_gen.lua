@@ -8,7 +8,8 @@
 --   fans(path, seed): open fans of 1..5 facets (the vertex on a border);
 --   triples(path, seed): a vertex on a triple line of three fins;
 --   contact(path, seed): vertices on a plane and on a sphere constraint,
---     with their facets on it or not (a contact line).
+--     with their facets on it or not (a contact line), or some on it (a
+--     film standing on a triangulated floor).
 
 local function writer(path, top)
   local V, E, F = {}, {}, {}
@@ -140,6 +141,19 @@ function contact(path, seed)
     end
     for i = 1, n do facet(c3, rim[i], rim[i % n + 1], "constraint 2",
       { "constraint 2", "constraint 2", "constraint 2" }) end
+    -- a film standing on a floor that is triangulated on constraint 1:
+    -- the vertex at its foot has facets on the constraint and off it
+    local c4 = vertex(ox + uniform(-.2, .2), 5 + uniform(-.1, .1), 0, "constraint 1")
+    local a4 = vertex(ox - 1, 5 + uniform(-.1, .1), 0, "fixed constraint 1")
+    local b4 = vertex(ox + 1, 5 + uniform(-.1, .1), 0, "fixed constraint 1")
+    local f1 = vertex(ox - .5 + uniform(-.2, .2), 4 + uniform(-.2, .2), 0, "fixed constraint 1")
+    local f2 = vertex(ox + .5 + uniform(-.2, .2), 4 + uniform(-.2, .2), 0, "fixed constraint 1")
+    local w1 = vertex(ox - .5 + uniform(-.2, .2), 5 + uniform(0, .3), 1 + uniform(-.2, .2), "fixed")
+    local w2 = vertex(ox + .5 + uniform(-.2, .2), 5 + uniform(0, .3), 1 + uniform(-.2, .2), "fixed")
+    local on = { "constraint 1", "constraint 1", "constraint 1" }
+    facet(c4, f1, a4, "constraint 1", on); facet(c4, f2, f1, "constraint 1", on)
+    facet(c4, b4, f2, "constraint 1", on)
+    facet(c4, a4, w1); facet(c4, w1, w2); facet(c4, w2, b4)
   end
   close()
 end
