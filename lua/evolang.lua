@@ -1249,6 +1249,11 @@ for _, w in ipairs { "refine", "equiangulate", "vertex_average", "delete", "diss
                      "t1_edgeswap", "pop_edge_to_tri", "pop_tri_to_edge", "reverse_orientation" } do
   P["s_" .. w] = oncollection(w)
 end
+-- rawv / rawestv on a generator (src/topo_vavg_ev.c)
+for _, w in ipairs { "raw_vertex_average", "rawest_vertex_average" } do
+  STMT[w] = true
+  P["s_" .. w] = oncollection(w)
+end
 
 ---------------------------------------------------------------- driver
 

@@ -901,6 +901,10 @@ end
 B.j = function(t) flush(); tds.jiggle(t ~= nil and num(t, "j") or nil) end
 B.V = function(n) for _ = 1, times(n, "V") do flush(); tds.vertex_average(nil) end end
 B.vertex_average = B.V
+B.rawv = function() flush(); tds.vertex_average(nil, "raw") end
+B.rawestv = function() flush(); tds.vertex_average(nil, "rawest") end
+B.raw_vertex_average = B.rawv
+B.rawest_vertex_average = B.rawestv
 B.v = function()
   tds.totals()
   E.out("\nBody          target volume           actual volume          pressure\n")
@@ -1252,9 +1256,10 @@ function E.oncollection(name, kind, list)
   elseif name == "equiangulate" then
     if kind ~= "edge" then fail("equiangulate needs edges") end
     tds.equiangulate(list)
-  elseif name == "vertex_average" then
-    if kind ~= "vertex" then fail("vertex_average needs vertices") end
-    tds.vertex_average(list)
+  elseif name == "vertex_average" or name == "raw_vertex_average" or name == "rawest_vertex_average" then
+    if kind ~= "vertex" then fail(name .. " needs vertices") end
+    -- one vertex after another, as Evolver's vertex_average
+    tds.vertex_average(list, name == "vertex_average" and "V" or name:match("^(%a+)_"), true)
   elseif name == "delete" then
     if kind ~= "edge" and kind ~= "facet" then fail("delete needs edges or facets") end
     if #list > 0 then tds.delete(list) end

@@ -256,7 +256,20 @@ function u(set, opts)
 end
 equiangulate = u
 
-function V(set) tds.vertex_average(set) end
+-- V() is Evolver's V; V{rule = "centroid"} is tds's earlier full-step
+-- centroid rule, rule = "raw" / "rawest" Evolver's rawv / rawestv, and
+-- sequential = true moves each vertex before the next (Evolver's
+-- vertex_average on a generator). doc/commands.md.
+function V(set, opts)
+  set, opts = set_and_options(set, opts, "V", { rule = "string", sequential = "boolean" })
+  local rules = { V = true, raw = true, rawest = true, centroid = true }
+  if opts.rule ~= nil and not rules[opts.rule] then
+    error(('V: rule must be "V", "raw", "rawest" or "centroid", not "%s"'):format(opts.rule), 2)
+  end
+  tds.vertex_average(set, opts.rule, opts.sequential)
+end
+function rawv(set) tds.vertex_average(set, "raw") end
+function rawestv(set) tds.vertex_average(set, "rawest") end
 -- The torus model (doc/torus.md, src/lua_torus.c).
 function periods() return tds.periods() end
 function wrap_vertex(v, w) tds.wrap_vertex(v, w) end

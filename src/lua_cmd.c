@@ -69,10 +69,21 @@ static int l_equiangulate(lua_State *L) {
   return 1;
 }
 
-/* tds.vertex_average([vertices]) -> vertices moved */
+/* tds.vertex_average([vertices [, rule [, sequential]]]) -> vertices
+** moved. rule: "V" (Evolver's V, the default), "raw" (rawv), "rawest"
+** (rawestv) or "centroid" (tds's earlier rule); sequential moves each
+** vertex before computing the next (Evolver's vertex_average). */
 static int l_vertex_average(lua_State *L) {
   tds_state *st = TDS_STATE(L);
-  run_on_set(L, st, TDS_VERTEX, tds_vertex_average);
+  static const char *const rules[] = {"V", "raw", "rawest", "centroid", NULL};
+  int mode = luaL_checkoption(L, 2, "V", rules);
+  int seq = lua_toboolean(L, 3);
+  uint8_t *sel = tds_lua_selection(L, st, 1, TDS_VERTEX);
+  int32_t n = 0;
+  int rc = tds_vertex_average_mode(&st->ctx, &st->s, sel, mode, seq, &n);
+  free(sel);
+  check_rc(L, st, rc);
+  lua_pushinteger(L, n);
   tds_printf(&st->ctx, "Vertex averaging done.\n");
   return 1;
 }

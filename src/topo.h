@@ -68,16 +68,31 @@ int tds_flip_ok(const tds_surf *s, tds_id e, tds_id *f1, tds_id *f2);
 /* Flip edge e (tds_flip_ok must hold and the new edge must not exist). */
 void tds_flip(tds_surf *s, tds_id e, tds_id f1, tds_id f2);
 
-/* Vertex averaging (Evolver's V): every free vertex moves to the
-** area-weighted mean of the centroids of its facets, minus the normal
-** component of that move (volume kept to first order); vertices on
-** triple edges, or on constraints along border edges, are averaged along
-** those edges only, if they have exactly two such neighbours, then
-** projected back; vertices on parametric boundaries do not move. All new
-** positions are computed before any move.
+/* Vertex averaging. tds_vertex_average is Evolver's V (TDS_VAVG_V, the
+** rule measured from Evolver 2.70 and described in topo_vavg_ev.c): every
+** free vertex moves a quarter of the way to a weighted mean of its
+** neighbours, minus the normal part of that move. TDS_VAVG_RAW (rawv)
+** keeps the normal part; TDS_VAVG_RAWEST (rawestv) also ignores triple
+** edges and constraints when choosing neighbours. TDS_VAVG_CENTROID is
+** tds's earlier rule: the whole way to the area-weighted mean of the
+** centroids of its facets minus the normal component (vertices on triple
+** edges, or on constraints along border edges, averaged along those edges
+** if they have exactly two such neighbours). Vertices on parametric
+** boundaries never move; constrained ones are projected back.
+** All new positions are computed before any move, unless seq (Evolver's
+** vertex_average on a generator: one vertex after another, in id order).
 ** sel as for tds_refine but over vertices. *nmoved: vertices moved. */
+enum { TDS_VAVG_V, TDS_VAVG_RAW, TDS_VAVG_RAWEST, TDS_VAVG_CENTROID };
 int tds_vertex_average(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
                        int32_t *nmoved);
+int tds_vertex_average_mode(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
+                            int mode, int seq, int32_t *nmoved);
+
+/* Where Evolver's rule (mode TDS_VAVG_V, _RAW or _RAWEST) moves vertex v
+** of the soapfilm model, into out; g and ord are scratch for v's edge and
+** facet counts. Returns 0 if v stays. Needs the mesh adjacency. */
+int tds_vavg_target(const tds_surf *s, tds_id v, int mode, double *g,
+                    int32_t *ord, double out[3]);
 
 /* Attributes of a declared face, applied to every facet built from it. */
 typedef struct tds_face_attr {

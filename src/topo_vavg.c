@@ -1,4 +1,5 @@
-/* topo_vavg.c: vertex averaging (the V command). */
+/* topo_vavg.c: vertex averaging (the V command): the driver and tds's
+** centroid rule (Evolver's rule is in topo_vavg_ev.c). */
 #include "torus.h"
 #include "topo.h"
 
@@ -64,39 +65,57 @@ static int over_facets(const tds_mesh *m, tds_id v, double out[3]) {
   return 1;
 }
 
+/* Where vertex v goes by the chosen rule (0: it stays). g: scratch. */
+static int target(const tds_surf *s, tds_id v, int mode, double *g,
+                  int32_t *ord, double out[3]) {
+  const tds_mesh *m = &s->m;
+  if (s->str) return tds_strings_vavg(s, v, out); /* the string model's rule */
+  if (mode != TDS_VAVG_CENTROID) return tds_vavg_target(s, v, mode, g, ord, out);
+  int triple = 0, border = 0;
+  for (int32_t i = m->ve_start[v]; i < m->ve_start[v + 1]; i++) {
+    int val = tds_edge_valence(m, TDS_OID(m->ve[i]));
+    triple |= val >= 3;
+    border |= val <= 1;
+  }
+  if (triple) return along_curve(m, v, 1, out);
+  if (border) return m->vcon[v] ? along_curve(m, v, 0, out) : 0;
+  return over_facets(m, v, out);
+}
+
 static int vertex_average(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
-                          int32_t *nmoved) {
+                          int mode, int seq, int32_t *nmoved) {
   tds_mesh *m = &s->m;
   if (tds_mesh_adjacency(m) != TDS_OK)
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
-  double (*nx)[3] = tds_malloc(&s->m.alloc, (size_t)(m->nv > 0 ? m->nv : 1) * sizeof *nx);
-  uint8_t *mv = tds_calloc(&s->m.alloc, (size_t)(m->nv > 0 ? m->nv : 1), 1);
-  if (!nx || !mv) {
+  int32_t maxdeg = 1, maxf = 1;
+  for (tds_id v = 0; v < m->nv; v++) {
+    if (m->ve_start[v + 1] - m->ve_start[v] > maxdeg) maxdeg = m->ve_start[v + 1] - m->ve_start[v];
+    if (m->vf_start[v + 1] - m->vf_start[v] > maxf) maxf = m->vf_start[v + 1] - m->vf_start[v];
+  }
+  size_t nv = (size_t)(m->nv > 0 ? m->nv : 1);
+  double (*nx)[3] = tds_malloc(&s->m.alloc, nv * sizeof *nx);
+  uint8_t *mv = tds_calloc(&s->m.alloc, nv, 1);
+  double *g = tds_malloc(&s->m.alloc, (size_t)maxdeg * sizeof *g);
+  int32_t *ord = tds_malloc(&s->m.alloc, (size_t)maxf * sizeof *ord);
+  if (!nx || !mv || !g || !ord) {
     tds_free(&s->m.alloc, nx);
     tds_free(&s->m.alloc, mv);
+    tds_free(&s->m.alloc, g);
+    tds_free(&s->m.alloc, ord);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   }
+  int32_t moved = 0;
   for (tds_id v = 0; v < m->nv; v++) {
     if (!tds_vertex_free(s, v) || (sel && !sel[v]) || m->vbdry[v] != TDS_NONE)
       continue;
-    if (s->str) { /* the string model's rule */
-      mv[v] = (uint8_t)tds_strings_vavg(s, v, nx[v]);
-      continue;
+    mv[v] = (uint8_t)target(s, v, mode, g, ord, nx[v]);
+    if (seq && mv[v]) { /* Evolver's vertex_average: move it now */
+      v3_copy(m->x[v], nx[v]);
+      tds_motion_enforce(s, v);
+      mv[v] = 0;
+      moved++;
     }
-    int triple = 0, border = 0;
-    for (int32_t i = m->ve_start[v]; i < m->ve_start[v + 1]; i++) {
-      int val = tds_edge_valence(m, TDS_OID(m->ve[i]));
-      triple |= val >= 3;
-      border |= val <= 1;
-    }
-    if (triple)
-      mv[v] = (uint8_t)along_curve(m, v, 1, nx[v]);
-    else if (border)
-      mv[v] = m->vcon[v] ? (uint8_t)along_curve(m, v, 0, nx[v]) : 0;
-    else
-      mv[v] = (uint8_t)over_facets(m, v, nx[v]);
   }
-  int32_t moved = 0;
   for (tds_id v = 0; v < m->nv; v++)
     if (mv[v]) {
       v3_copy(m->x[v], nx[v]);
@@ -105,16 +124,25 @@ static int vertex_average(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
     }
   tds_free(&s->m.alloc, nx);
   tds_free(&s->m.alloc, mv);
+  tds_free(&s->m.alloc, g);
+  tds_free(&s->m.alloc, ord);
   m->coord_gen++;
   if (nmoved) *nmoved = moved;
   return tds_surf_update(ctx, s);
 }
 
 /* All or nothing: a move that makes the energy non-finite is taken back. */
-int tds_vertex_average(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
-                       int32_t *nmoved) {
+int tds_vertex_average_mode(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
+                            int mode, int seq, int32_t *nmoved) {
+  if (mode < TDS_VAVG_V || mode > TDS_VAVG_CENTROID)
+    return tds_seterr(ctx, TDS_ERANGE, "vertex_average: unknown rule %d", mode);
   tds_snap sn;
   int rc = tds_snap_take(ctx, s, &sn);
   if (rc != TDS_OK) return rc;
-  return tds_snap_end(ctx, s, &sn, vertex_average(ctx, s, sel, nmoved));
+  return tds_snap_end(ctx, s, &sn, vertex_average(ctx, s, sel, mode, seq, nmoved));
+}
+
+int tds_vertex_average(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
+                       int32_t *nmoved) {
+  return tds_vertex_average_mode(ctx, s, sel, TDS_VAVG_V, 0, nmoved);
 }

@@ -96,7 +96,7 @@ REJECT='NaN vertex|non-finite vertex' expect lua_pg_leaves_nan 0 "check:	true	tr
 REJECT='non-finite vertex' expect lua_vavg_nonfinite 0 "check after V:	true	true	0" \
   -- -q $T/lua_vavg_nonfinite.tds
 expect lua_vavg_nonfinite_message 0 \
-  "V():	false	$T/lua_vavg_nonfinite.tds:6: energy is not finite (NaN); the surface is as before the command" \
+  "V():	false	$T/lua_vavg_nonfinite.tds:6: energy is not finite (inf); the surface is as before the command" \
   -- -q $T/lua_vavg_nonfinite.tds
 
 # D4: setters, G(), gravity_constant and parameters refuse NaN and inf.

@@ -816,7 +816,7 @@ static void vertex_average_flat(void) {
   memcpy(old, m->x, sizeof old);
   double A0 = h_area(m);
   int32_t nmoved = -1;
-  CHECK_OK(&ctx, tds_vertex_average(&ctx, &s, NULL, &nmoved));
+  CHECK_OK(&ctx, tds_vertex_average_mode(&ctx, &s, NULL, TDS_VAVG_CENTROID, 0, &nmoved));
   CHECK(nmoved == 1); /* border vertices have no constraint: they stay */
   CHECK_MESH(&ctx, m);
   for (int i = 0; i < 3; i++) CHECK_NEAR(m->x[4][i], want[i], 1e-14);
@@ -829,7 +829,7 @@ static void vertex_average_flat(void) {
       for (int i = 0; i < 3; i++) CHECK(m->x[v][i] == old[v][i]);
   CHECK_NEAR(h_area(m), A0, 1e-14); /* flat: the area of the patch is kept */
   /* repeated averaging converges to the centre */
-  for (int it = 0; it < 60; it++) CHECK_OK(&ctx, tds_vertex_average(&ctx, &s, NULL, NULL));
+  for (int it = 0; it < 60; it++) CHECK_OK(&ctx, tds_vertex_average_mode(&ctx, &s, NULL, TDS_VAVG_CENTROID, 0, NULL));
   CHECK_NEAR(m->x[4][0], 1.0, 1e-9);
   CHECK_NEAR(m->x[4][1], 1.0, 1e-9);
   tds_surf_free(&s);
@@ -840,14 +840,14 @@ static void vertex_average_flat(void) {
   s.m.x[4][0] = 1.3;
   s.m.x[4][1] = 0.8;
   s.m.vflags[4] |= TDS_FIXED;
-  CHECK_OK(&ctx, tds_vertex_average(&ctx, &s, NULL, &nmoved));
+  CHECK_OK(&ctx, tds_vertex_average_mode(&ctx, &s, NULL, TDS_VAVG_CENTROID, 0, &nmoved));
   CHECK(nmoved == 0);
   CHECK(s.m.x[4][0] == 1.3 && s.m.x[4][1] == 0.8 && s.m.x[4][2] == 0);
   CHECK_MESH(&ctx, &s.m);
   /* nor one left out of the selection */
   s.m.vflags[4] &= ~(uint32_t)TDS_FIXED;
   uint8_t sel[9] = {1, 1, 1, 1, 0, 1, 1, 1, 1};
-  CHECK_OK(&ctx, tds_vertex_average(&ctx, &s, sel, &nmoved));
+  CHECK_OK(&ctx, tds_vertex_average_mode(&ctx, &s, sel, TDS_VAVG_CENTROID, 0, &nmoved));
   CHECK(nmoved == 0);
   CHECK(s.m.x[4][0] == 1.3 && s.m.x[4][1] == 0.8);
   tds_surf_free(&s);
@@ -876,7 +876,7 @@ static void vertex_average_tent(void) {
     v3_add(nsum, nsum, N);
   }
   int32_t nmoved;
-  CHECK_OK(&ctx, tds_vertex_average(&ctx, &s, NULL, &nmoved));
+  CHECK_OK(&ctx, tds_vertex_average_mode(&ctx, &s, NULL, TDS_VAVG_CENTROID, 0, &nmoved));
   CHECK(nmoved == 1);
   CHECK_MESH(&ctx, m);
   double d[3];
@@ -924,8 +924,56 @@ static int triple_line(tds_ctx *ctx, tds_surf *s, double z1) {
   return TDS_OK;
 }
 
-/* A vertex on a triple line moves along it, to the mean of its two
-** neighbours on the line; the line's ends and the fins' borders stay. */
+/* Evolver's rule (topo_vavg_ev.c) on the 3 x 3 grid with its middle vertex
+** lifted and moved off-centre, the others fixed: rawv moves it a quarter
+** of the way to sum g_e^2 x_e / sum g_e^2 (g_e: the area of the facets on
+** edge e), computed here from the facets directly; V moves it by that
+** move minus its component along the summed area vector (to rounding). */
+static void vertex_average_evolver(void) {
+  for (int mode = TDS_VAVG_V; mode <= TDS_VAVG_RAWEST; mode++) {
+    tds_ctx ctx;
+    tds_surf s;
+    h_setup(&ctx, &s);
+    REQUIRE_OK(&ctx, h_grid(&ctx, &s, 2, 0, 1));
+    tds_mesh *m = &s.m;
+    const double x0[3] = {1.3, 0.8, 0.4};
+    v3_copy(m->x[4], x0);
+    for (tds_id v = 0; v < m->nv; v++)
+      if (v != 4) m->vflags[v] |= TDS_FIXED;
+    double g[9] = {0}, nsum[3] = {0, 0, 0};
+    for (tds_id f = 0; f < m->nf; f++) {
+      const tds_id *fv = m->fv[f];
+      if (fv[0] != 4 && fv[1] != 4 && fv[2] != 4) continue;
+      double ab[3], ac[3], N[3];
+      v3_sub(ab, m->x[fv[1]], m->x[fv[0]]);
+      v3_sub(ac, m->x[fv[2]], m->x[fv[0]]);
+      v3_cross(N, ab, ac);
+      v3_add(nsum, nsum, N);
+      for (int k = 0; k < 3; k++)
+        if (fv[k] != 4) g[fv[k]] += 0.5 * v3_norm(N);
+    }
+    double T[3] = {0, 0, 0}, W = 0, d[3];
+    for (tds_id v = 0; v < 9; v++) {
+      v3_axpy(T, g[v] * g[v], m->x[v]);
+      W += g[v] * g[v];
+    }
+    v3_scale(T, 1 / W);
+    v3_sub(d, T, x0);
+    v3_scale(d, 0.25);
+    if (mode == TDS_VAVG_V) v3_axpy(d, -v3_dot(d, nsum) / v3_dot(nsum, nsum), nsum);
+    int32_t nmoved = -1;
+    CHECK_OK(&ctx, tds_vertex_average_mode(&ctx, &s, NULL, mode, 0, &nmoved));
+    CHECK(nmoved == 1);
+    CHECK_MESH(&ctx, m);
+    for (int i = 0; i < 3; i++) CHECK_NEAR(m->x[4][i], x0[i] + d[i], 1e-15);
+    if (mode == TDS_VAVG_V) CHECK_NEAR(m->x[4][2], 0.4, 1e-15); /* nsum is (0, 0, 4) */
+    tds_surf_free(&s);
+  }
+}
+
+/* With tds's centroid rule a vertex on a triple line moves along it, to
+** the mean of its two neighbours on the line; the line's ends and the
+** fins' borders stay. */
 static void vertex_average_triple_line(void) {
   tds_ctx ctx;
   tds_surf s;
@@ -942,7 +990,7 @@ static void vertex_average_triple_line(void) {
   }
   CHECK(tds_edge_valence(m, e01) == 3 && tds_edge_valence(m, e12) == 3);
   int32_t nmoved = -1;
-  CHECK_OK(&ctx, tds_vertex_average(&ctx, &s, NULL, &nmoved));
+  CHECK_OK(&ctx, tds_vertex_average_mode(&ctx, &s, NULL, TDS_VAVG_CENTROID, 0, &nmoved));
   CHECK(nmoved == 1);
   CHECK_MESH(&ctx, m);
   CHECK_NEAR(m->x[1][0], 0, 1e-15);
@@ -1036,6 +1084,7 @@ int main(void) {
   RUN(flip_grid_adjacency);
   RUN(vertex_average_flat);
   RUN(vertex_average_tent);
+  RUN(vertex_average_evolver);
   RUN(vertex_average_triple_line);
   RUN(dead_elements_skipped);
   RUN(vertex_average_closed);
