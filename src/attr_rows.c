@@ -275,7 +275,8 @@ static int econ_set(SETTER_ARGS) {
 }
 
 /* wrap (torus model, torus.h): Evolver's wrap code. Dumps write wraps as
-** * + - signs after the vertices; the word only for counts beyond 1. */
+** * + - signs after the vertices; the word only for counts beyond 1, and
+** for every wrap of a SYMMETRY_GROUP (as Evolver writes them). */
 static int e_wrap_get(GETTER_ARGS) {
   UNUSED(ctx);
   UNUSED(a);
@@ -289,6 +290,7 @@ static int e_wrap_set(SETTER_ARGS) {
 static int e_wrap_dumped(const tds_surf *s, tds_id id) {
   int k[3];
   if (!s->m.ewrap) return 0;
+  if (s->m.sym) return s->m.ewrap[id] != 0;
   tds_wrap_unpack(s->m.ewrap[id], k);
   return k[0] * k[0] > 1 || k[1] * k[1] > 1 || k[2] * k[2] > 1;
 }

@@ -368,7 +368,9 @@ static int facet_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
                     tds_mk_volume, s_volume);
   out->energy += ten.total + vol.total;
   out->area += ten.sum;
-  if (rc == TDS_OK && s->m.torus && s->m.nb > 0) {
+  /* SYMMETRY_GROUP: Evolver's Euclidean volumes, each facet's integral
+  ** where its corners are gathered (no lifts; model.htm) */
+  if (rc == TDS_OK && s->m.torus && !s->m.sym && s->m.nb > 0) {
     int bad = tds_torus_lifts(ctx, s);
     if (bad < 0) return -bad;
     for (int d = sym ? 0 : 2; d < 3 && rc == TDS_OK; d++) {

@@ -1,15 +1,24 @@
 /* lua_torus.c: Lua bindings of the torus model (torus.h):
 **   tds.torus() -> 0 (none), 1 (TORUS) or 2 (TORUS_FILLED)
+**   tds.symmetry_group() -> the SYMMETRY_GROUP's name, or nil
 **   tds.periods() -> {{x, y, z}, {x, y, z}, {x, y, z}} or nil
 **   tds.wrap_vertex(v, code)   Evolver's wrap_vertex (code: a wrap code)
 **   tds.rewrap() -> n          vertices moved into the unit cell
 **   tds.detorus()              the surface as drawn, no torus any more */
 #include "lua_tds.h"
 #include "snap.h"
+#include "symgroup.h"
 #include "torus.h"
 
 static int l_torus(lua_State *L) {
   lua_pushinteger(L, TDS_STATE(L)->s.m.torus);
+  return 1;
+}
+
+static int l_symmetry_group(lua_State *L) {
+  int id = TDS_STATE(L)->s.m.sym;
+  if (!id) return 0;
+  lua_pushstring(L, tds_sym_name(id));
   return 1;
 }
 
@@ -65,6 +74,7 @@ static int l_detorus(lua_State *L) {
 void tds_open_torus(lua_State *L, tds_state *st) {
   static const luaL_Reg fns[] = {{"torus", l_torus},
                                  {"periods", l_periods},
+                                 {"symmetry_group", l_symmetry_group},
                                  {"wrap_vertex", l_wrap_vertex},
                                  {"rewrap", l_rewrap},
                                  {"detorus", l_detorus},
