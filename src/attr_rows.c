@@ -10,6 +10,7 @@
 #include "method.h"
 #include "geom.h"
 #include "motion.h"
+#include "symgroup.h"
 #include "torus.h"
 #include "vec3.h"
 
@@ -280,7 +281,9 @@ static int econ_set(SETTER_ARGS) {
 static int e_wrap_get(GETTER_ARGS) {
   UNUSED(ctx);
   UNUSED(a);
-  return one(v, n, s->m.ewrap ? tds_torus_wrap_code(s->m.ewrap[id]) : 0);
+  if (!s->m.ewrap) return one(v, n, 0);
+  if (s->m.sym > TDS_SYM_TORUS) return one(v, n, tds_sym_code(s->m.sym, s->m.ewrap[id]));
+  return one(v, n, tds_torus_wrap_code(s->m.ewrap[id]));
 }
 static int e_wrap_set(SETTER_ARGS) {
   UNUSED(a);

@@ -13,7 +13,9 @@
 #include <string.h>
 
 #include "expr.h"
+#include "gather.h"
 #include "symgroup.h"
+#include "symmetry.h"
 #include "torus.h"
 
 static void unit_periods(tds_mesh *m) {
@@ -64,12 +66,12 @@ int df_symmetry_group(df *d) {
                   "SYMMETRY_GROUP: unknown group \"%s\" (Evolver's built-in groups: torus, "
                   "rotate, flip_rotate, cubocta, cubelat, xyz, genus2, dodecahedron, "
                   "central_symmetry, screw_symmetry, quarter_turn)", name);
-  if (id != TDS_SYM_TORUS)
+  if (id < 0)
     return df_err(d, at, TDS_ESYNTAX,
-                  "SYMMETRY_GROUP \"%s\" is not supported yet (tds has the group \"torus\")",
-                  name);
+                  "SYMMETRY_GROUP \"%s\" is not supported yet (it needs KLEIN_METRIC)", name);
   if (tds_mesh_set_torus(&d->s->m, 1)) return df_core(d, df_line_of(d, at), TDS_ENOMEM, NULL);
   d->s->m.sym = id;
+  for (int k = 0; k < 2; k++) d->s->m.symp[k] = tds_sym_param_default(id, k);
   if (!d->periods_line) unit_periods(&d->s->m); /* Evolver's default */
   d->torus_line = df_line_of(d, at);
   d->p = q + 1;
@@ -143,6 +145,13 @@ int df_torus_start(df *d, const char *at) {
   if (d->periods_line && !d->s->m.torus)
     return df_err_line(d, d->periods_line, TDS_ESYNTAX,
                        "PERIODS without TORUS or TORUS_FILLED");
+  if (d->periods_line && tds_mesh_rotates(&d->s->m))
+    return df_err_line(d, d->periods_line, TDS_ESYNTAX,
+                       "PERIODS with SYMMETRY_GROUP \"%s\" (only the torus group has periods)",
+                       tds_sym_name(d->s->m.sym));
+  /* the group's parameters (rotation_order, ...) as the top section left them */
+  if (d->s->m.sym && tds_sym_read_params(d->ctx, d->s) != TDS_OK)
+    return df_core(d, d->torus_line, TDS_ERANGE, NULL);
   (void)at;
   return TDS_OK;
 }
@@ -157,6 +166,10 @@ int df_edge_wrap(df *d, const char *what, int32_t *wrap) {
     return df_err(d, d->p, TDS_ESYNTAX,
                   "%s: wrap signs (* + -) need TORUS or TORUS_FILLED in the top section",
                   what);
+  if (tds_mesh_rotates(&d->s->m))
+    return df_err(d, d->p, TDS_ESYNTAX,
+                  "%s: wrap signs (* + -) are the torus's; SYMMETRY_GROUP \"%s\" takes "
+                  "wrap N (the group element's code)", what, tds_sym_name(d->s->m.sym));
   int k[3];
   for (int i = 0; i < 3; i++) {
     df_ws(d);

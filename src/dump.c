@@ -230,10 +230,14 @@ static void header(out *o, const tds_surf *s) {
   if (s->m.torus) {
     /* the period formulas as given (parameters stay live), one row a line */
     if (s->m.sym) /* the group's name; its wraps are `wrap` words (attr_rows.c) */
-      fprintf(f, "SYMMETRY_GROUP \"%s\"\nPERIODS\n", tds_sym_name(s->m.sym));
+      fprintf(f, "SYMMETRY_GROUP \"%s\"\n", tds_sym_name(s->m.sym));
+    if (s->m.sym > TDS_SYM_TORUS) /* no periods; parameters are written above */
+      ;
+    else if (s->m.sym)
+      fputs("PERIODS\n", f);
     else
       fputs(s->m.torus == 2 ? "TORUS_FILLED\nPERIODS\n" : "TORUS\nPERIODS\n", f);
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 3 && s->m.sym <= TDS_SYM_TORUS; i++) {
       for (int j = 0; j < 3; j++) {
         if (s->period_expr[i][j]) {
           fputs(j ? " (" : "(", f);

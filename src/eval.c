@@ -29,6 +29,7 @@
 #include "gather.h"
 #include "method.h"
 #include "string_model.h"
+#include "symmetry.h"
 #include "torus.h"
 #include "vec3.h"
 
@@ -152,11 +153,13 @@ assemble_k(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int kind, term *t0,
     if (n0) {
       int want = want_grad(out, t0, sk0, n0);
       double v = k0(&L, want ? g : NULL, hp);
+      if (want && tds_mesh_rotates(m)) tds_sym_pullback(m, kind, el, g, hp);
       scatter(s, out, t0, vs, kind, sk0, n0, v, g, hp);
     }
     if (n1) {
       int want = want_grad(out, t1, sk1, n1);
       double v = k1(&L, want ? g : NULL, hp);
+      if (want && tds_mesh_rotates(m)) tds_sym_pullback(m, kind, el, g, hp);
       scatter(s, out, t1, vs, kind, sk1, n1, v, g, hp);
     }
   }

@@ -24,7 +24,7 @@ static int l_symmetry_group(lua_State *L) {
 
 static int l_periods(lua_State *L) {
   tds_state *st = TDS_STATE(L);
-  if (!st->s.m.torus) return 0;
+  if (!st->s.m.torus || st->s.m.sym > TDS_SYM_TORUS) return 0; /* no periods */
   lua_createtable(L, 3, 0);
   for (int i = 0; i < 3; i++) {
     lua_createtable(L, 3, 0);

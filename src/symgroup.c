@@ -116,12 +116,6 @@ static int32_t sp_code(const sperm *M) {
   return code | (c << 3);
 }
 
-static int sp_det(const sperm *P) {
-  return P->m[0][0] * (P->m[1][1] * P->m[2][2] - P->m[1][2] * P->m[2][1]) -
-         P->m[0][1] * (P->m[1][0] * P->m[2][2] - P->m[1][2] * P->m[2][0]) +
-         P->m[0][2] * (P->m[1][0] * P->m[2][1] - P->m[1][1] * P->m[2][0]);
-}
-
 /* CUBELAT's translation counts (signed 8 bits each from bit 6). */
 static void lat_unpack(int32_t w, int k[3]) {
   for (int i = 0; i < 3; i++) {
@@ -158,8 +152,8 @@ int32_t tds_sym_mul(int id, const double p[2], int32_t a, int32_t b) {
   case TDS_SYM_TORUS: return tds_wrap_add(a, b);
   case TDS_SYM_ROTATE:
   case TDS_SYM_FLIP_ROTATE: return mod_n((int64_t)a + b, p);
-  case TDS_SYM_CUBOCTA:
-  case TDS_SYM_XYZ: {
+  case TDS_SYM_XYZ: return (a + b) % 3;
+  case TDS_SYM_CUBOCTA: {
     sperm A = sp_of(a), B = sp_of(b), r = sp_mul(&A, &B);
     return sp_code(&r);
   }
@@ -191,8 +185,8 @@ int32_t tds_sym_inv(int id, const double p[2], int32_t a) {
   case TDS_SYM_TORUS: return a ? tds_wrap_neg(a) : 0;
   case TDS_SYM_ROTATE:
   case TDS_SYM_FLIP_ROTATE: return mod_n(-(int64_t)a, p);
-  case TDS_SYM_CUBOCTA:
-  case TDS_SYM_XYZ: {
+  case TDS_SYM_XYZ: return (3 - a) % 3;
+  case TDS_SYM_CUBOCTA: {
     sperm A = sp_of(a), T;
     for (int i = 0; i < 3; i++)
       for (int j = 0; j < 3; j++) T.m[i][j] = A.m[j][i];
@@ -249,8 +243,11 @@ void tds_sym_affine(int id, const double p[2], const double (*period)[3], int32_
     if (id == TDS_SYM_FLIP_ROTATE && (w & 1)) R[2][2] = -1;
     return;
   }
+  case TDS_SYM_XYZ: /* C^w, C (x, y, z) -> (z, x, y) */
+    memset(R, 0, 9 * sizeof(double));
+    for (int i = 0; i < 3; i++) R[i][(i + 3 - w % 3) % 3] = 1;
+    return;
   case TDS_SYM_CUBOCTA:
-  case TDS_SYM_XYZ:
   case TDS_SYM_CUBELAT: {
     sperm A = sp_of(w);
     for (int i = 0; i < 3; i++)
@@ -314,11 +311,10 @@ int tds_sym_from_code(int id, const double p[2], double code, int32_t *w) {
   case TDS_SYM_QUARTER_TURN: return tds_torus_wrap_from_code(code, w);
   case TDS_SYM_ROTATE:
   case TDS_SYM_FLIP_ROTATE: *w = mod_n((int64_t)code, p); return TDS_OK;
-  case TDS_SYM_CUBOCTA:
-  case TDS_SYM_XYZ: {
+  case TDS_SYM_XYZ: *w = (int32_t)(((int64_t)code % 3 + 3) % 3); return TDS_OK;
+  case TDS_SYM_CUBOCTA: {
     if (code < 0 || code >= 64) return TDS_ERANGE;
     sperm A = sp_of((int32_t)code);
-    if (id == TDS_SYM_XYZ && sp_det(&A) < 0) return TDS_ERANGE;
     *w = sp_code(&A);
     return TDS_OK;
   }

@@ -17,10 +17,15 @@
 **                -2 pi k p[1] / n (p[1] = generator_power; Evolver's sense,
 **                measured: power 1 of order 6 takes (1,0,0) to (0.5,-0.87,0));
 **   FLIP_ROTATE  as ROTATE, with z -> -z for odd k (n even);
-**   CUBOCTA, XYZ Evolver's code: bits 1,2,4 change the signs of x, y, z
+**   CUBOCTA      Evolver's code: bits 1,2,4 change the signs of x, y, z
 **                first, (code&24)/8 = c (0..2) powers of the cycle
-**                (x,y,z) -> (z,x,y), then bit 32 swaps x and y; XYZ only
-**                the orientation-preserving elements;
+**                (x,y,z) -> (z,x,y), then bit 32 swaps x and y (measured
+**                against Evolver 2.70 on all 48 elements);
+**   XYZ          power k (0..2) of the cycle C (x,y,z) -> (z,x,y): the
+**                point (x,y,z) goes to (z,x,y); any integer code counts
+**                mod 3. Evolver's manual calls xyz the orientation-
+**                preserving subgroup of cubocta, but Evolver 2.70 does
+**                this (measured on codes 0..63); tds does as Evolver;
 **   CUBELAT      the CUBOCTA code in bits 0..5 and then a lattice
 **                translation, three signed 8-bit counts from bit 6 (Evolver
 **                writes them in 6-bit fields: tds_sym_code);
@@ -76,8 +81,7 @@ void tds_sym_affine(int id, const double p[2], const double (*period)[3], int32_
 
 /* Evolver's integer code of internal code w (datafile, dump, the wrap
 ** attribute), and back: TDS_OK, or TDS_ERANGE when code is no element of
-** the group (not an integer, a bit Evolver does not use, an element
-** outside XYZ). */
+** the group (not an integer, a bit Evolver does not use). */
 double tds_sym_code(int id, int32_t w);
 int tds_sym_from_code(int id, const double p[2], double code, int32_t *w);
 
