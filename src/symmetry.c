@@ -77,3 +77,7 @@ int tds_sym_unsupported(tds_ctx *ctx, const tds_mesh *m, const char *what) {
   return tds_seterr(ctx, TDS_ESYNTAX, "%s is not supported yet with SYMMETRY_GROUP \"%s\"", what,
                     tds_sym_name(m->sym));
 }
+
+int tds_sym_content_ok(const tds_mesh *m) {
+  return m->sym == TDS_SYM_NONE || m->sym == TDS_SYM_ROTATE;
+}

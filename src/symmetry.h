@@ -39,4 +39,9 @@ int tds_sym_read_params(tds_ctx *ctx, tds_surf *s);
 ** commands that treat wraps as translations call it first. */
 int tds_sym_unsupported(tds_ctx *ctx, const tds_mesh *m, const char *what);
 
+/* Whether SYMMETRIC_CONTENT volumes are Evolver's under the mesh's group:
+** yes without a group and under "rotate" (measured); the others differ
+** from Evolver 2.70's and are refused. */
+int tds_sym_content_ok(const tds_mesh *m);
+
 #endif

@@ -169,6 +169,9 @@ SPRINT='printf "K0 %d %d %d %d\n", vertex_count, edge_count, facet_count, body_c
 for f in rotate flip_rotate central screw cubocta cubelat rotbody; do
   kcompare "symmetry/sector/$f/load" "$tmp/$f.fe" 1e-12 "$SPRINT r; $SPRINT r; $SPRINT"
 done
+# SYMMETRIC_CONTENT under rotate (the one group where tds has it)
+sed '0,/^SYMMETRY_GROUP/s//SYMMETRIC_CONTENT\nSYMMETRY_GROUP/' "$tmp/rotbody.fe" > "$tmp/rotbody_sc.fe"
+kcompare "symmetry/sector/rotbody/symmetric-content" "$tmp/rotbody_sc.fe" 1e-12 "$SPRINT r; $SPRINT"
 for f in rotate flip_rotate central screw cubocta cubelat; do
   kcompare "symmetry/sector/$f/converged" "$tmp/$f.fe" 1e-10 'g 2000; hessian; hessian; printf "K3 %.15g\n", total_energy;'
 done
