@@ -169,6 +169,15 @@ SPRINT='printf "K0 %d %d %d %d\n", vertex_count, edge_count, facet_count, body_c
 for f in rotate flip_rotate central screw cubocta cubelat rotbody; do
   kcompare "symmetry/sector/$f/load" "$tmp/$f.fe" 1e-12 "$SPRINT r; $SPRINT r; $SPRINT"
 done
+# Dumps under groups that rotate (after r: wraps the file did not give):
+# tds's read by Evolver and by tds, Evolver's read by tds (counts, energy
+# 1e-12).
+for f in rotate flip_rotate cubelat; do
+  "$TDS" -q "$tmp/$f.fe" -e "r() dump('$tmp/$f.tds.dmp')" || echo "FAIL symmetry/sector/$f/dump: tds exited with an error"
+  kcompare "symmetry/sector/$f/tds-dump-in-evolver" "$tmp/$f.tds.dmp" 1e-12 "$SPRINT"
+  evolver_dump "symmetry/sector/$f" "$f.ev" "$tmp/$f.fe" "r"
+  kcompare "symmetry/sector/$f/evolver-dump-in-tds" "$tmp/$f.ev.dmp" 1e-12 "$SPRINT"
+done
 # SYMMETRIC_CONTENT under rotate (the one group where tds has it)
 sed '0,/^SYMMETRY_GROUP/s//SYMMETRIC_CONTENT\nSYMMETRY_GROUP/' "$tmp/rotbody.fe" > "$tmp/rotbody_sc.fe"
 kcompare "symmetry/sector/rotbody/symmetric-content" "$tmp/rotbody_sc.fe" 1e-12 "$SPRINT r; $SPRINT"
