@@ -461,6 +461,8 @@ static int maintain(tds_ctx *ctx, tds_surf *s, work *w) {
         }
         tds_free(&al, old);
         w->keep_vel = 1;
+        w->slope = 0; /* the line search's slope along the kept motion */
+        for (tds_id v = 0; v < s->m.nv; v++) w->slope -= v3_dot(w->vel[v], w->vel[v]);
       }
       tds_free(&s->m.alloc, ends);
     }
