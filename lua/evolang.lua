@@ -114,7 +114,9 @@ for w in ([[id oid x y z fixed valence length area volume target pressure densit
 local MATH1 = {}
 for w in ("abs sqr sqrt sin cos tan asin acos atan log exp sinh cosh tanh asinh acosh atanh ceil floor ellipticK ellipticE"):gmatch("%S+") do MATH1[w:lower()] = true end
 local MATH2 = { atan2 = true, pow = true, minimum = true, maximum = true,
-                incompleteelliptice = true, incompleteellipticf = true }
+                incompleteelliptice = true, incompleteellipticf = true,
+                wrap_compose = true } -- wrap_inverse is in MATH1 (doc/torus.md)
+MATH1.wrap_inverse = true
 local AGG = { max = true, min = true, sum = true, avg = true, count = true }
 
 -- Words that begin a statement of their own kind.

@@ -245,6 +245,17 @@ E.fn = {
     local ok = pcall(E.getv, name)
     return (ok or E.B[name:lower()] or type(rawget(_G, name:lower())) == "function") and 1 or 0
   end,
+  -- the surface's group (doc/torus.md); errors without the Lua position
+  wrap_inverse = function(w)
+    local ok, v = pcall(tds.wrap_inverse, w)
+    if not ok then fail((tostring(v):gsub("^%[.-%]:%d+: ", ""))) end
+    return v
+  end,
+  wrap_compose = function(a, b)
+    local ok, v = pcall(tds.wrap_compose, a, b)
+    if not ok then fail((tostring(v):gsub("^%[.-%]:%d+: ", ""))) end
+    return v
+  end,
   sizeof = function(v)
     if type(v) == "string" then return #v end
     if type(v) == "table" then return #v end
@@ -1116,7 +1127,7 @@ for w in ([[deturck diffusion hessian_special_normal
   pop_enjoin pop_to_edge pop_to_face septum_flag force_deletion star_finagling
   force_edgeswap k_altitude_mode assume_oriented calculate_in_3d self_similar
   immediate_autopop autopop_quartic longj simplex_to_fe ooglfile geompipe reorder_storage
-  free_discards dump_memlist wrap_inverse wrap_compose]]):gmatch("%S+") do
+  free_discards dump_memlist]]):gmatch("%S+") do
   UNSUPPORTED[w] = true
 end
 E.UNSUPPORTED = UNSUPPORTED

@@ -10,6 +10,7 @@
 #include "method.h"
 #include "geom.h"
 #include "motion.h"
+#include "symgroup.h"
 #include "torus.h"
 #include "vec3.h"
 
@@ -275,11 +276,14 @@ static int econ_set(SETTER_ARGS) {
 }
 
 /* wrap (torus model, torus.h): Evolver's wrap code. Dumps write wraps as
-** * + - signs after the vertices; the word only for counts beyond 1. */
+** * + - signs after the vertices; the word only for counts beyond 1, and
+** for every wrap of a SYMMETRY_GROUP (as Evolver writes them). */
 static int e_wrap_get(GETTER_ARGS) {
   UNUSED(ctx);
   UNUSED(a);
-  return one(v, n, s->m.ewrap ? tds_torus_wrap_code(s->m.ewrap[id]) : 0);
+  if (!s->m.ewrap) return one(v, n, 0);
+  if (s->m.sym > TDS_SYM_TORUS) return one(v, n, tds_sym_code(s->m.sym, s->m.ewrap[id]));
+  return one(v, n, tds_torus_wrap_code(s->m.ewrap[id]));
 }
 static int e_wrap_set(SETTER_ARGS) {
   UNUSED(a);
@@ -289,6 +293,7 @@ static int e_wrap_set(SETTER_ARGS) {
 static int e_wrap_dumped(const tds_surf *s, tds_id id) {
   int k[3];
   if (!s->m.ewrap) return 0;
+  if (s->m.sym) return s->m.ewrap[id] != 0;
   tds_wrap_unpack(s->m.ewrap[id], k);
   return k[0] * k[0] > 1 || k[1] * k[1] > 1 || k[2] * k[2] > 1;
 }

@@ -42,14 +42,18 @@ int tds_build_face(tds_ctx *ctx, tds_surf *s, tds_id f, int n,
   int32_t wsum = 0;
   if (m->torus) {
     for (int k = 0; k < n; k++) {
-      if (tds_wrap_overflows(wsum, tds_oe_wrap(m, oe[k])))
+      if (!tds_mesh_rotates(m) && tds_wrap_overflows(wsum, tds_oe_wrap(m, oe[k])))
         return tds_seterr(ctx, TDS_ERANGE, "face %d: wraps out of range", f + 1);
-      wsum = tds_wrap_add(wsum, tds_oe_wrap(m, oe[k]));
+      wsum = tds_wrap_mul(m, wsum, tds_oe_wrap(m, oe[k])); /* in order: groups need not commute */
     }
     if (wsum != 0)
       return tds_seterr(ctx, TDS_ETOPO,
-                        "face %d: the wraps of its edges do not add up to zero (the "
-                        "face does not close in the torus)", f + 1);
+                        tds_mesh_rotates(m)
+                            ? "face %d: the product of its edges' wraps is not the identity "
+                              "(the face does not close in the quotient space)"
+                            : "face %d: the wraps of its edges do not add up to zero (the "
+                              "face does not close in the torus)",
+                        f + 1);
   }
   /* Reserve everything first: nothing below may fail. */
   if (tds_mesh_extend_dead(m, TDS_FACET, f + 1) ||
@@ -67,7 +71,7 @@ int tds_build_face(tds_ctx *ctx, tds_surf *s, tds_id f, int n,
   for (int k = 0, w = 0; k < n; k++) {
     double p[3];
     v3_add(c, c, tds_wrap_point(m, m->x[tds_oe_tail(m, oe[k])], w, p));
-    if (m->torus) w = tds_wrap_add(w, tds_oe_wrap(m, oe[k]));
+    if (m->torus) w = tds_wrap_mul(m, w, tds_oe_wrap(m, oe[k]));
   }
   v3_scale(c, 1.0 / n);
   tds_id cv = tds_mesh_add_vertex(m, c);
@@ -80,8 +84,8 @@ int tds_build_face(tds_ctx *ctx, tds_surf *s, tds_id f, int n,
     m->econ[e] = at->con;
     /* the centre is where the face's first vertex sees it */
     if (m->torus) {
-      m->ewrap[e] = w ? tds_wrap_neg(w) : 0;
-      w = tds_wrap_add(w, tds_oe_wrap(m, oe[k]));
+      m->ewrap[e] = tds_wrap_inv(m, w);
+      w = tds_wrap_mul(m, w, tds_oe_wrap(m, oe[k]));
     }
   }
   for (int k = 0; k < n; k++) {

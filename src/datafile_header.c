@@ -20,7 +20,7 @@
 /* Evolver keywords whose features the core does not have yet. */
 static const char *const unsupported[] = {
     "quadratic", "lagrange", "lagrange_order", "simplex_representation",
-    "symmetry_group", "conformal_metric", "klein_metric",
+    "conformal_metric", "klein_metric",
     "method_instance", "optimizing_parameter", "optimising_parameter", "wulff",
     "phasefile", "diffusion", "pressure", "squared_curvature",
     "square_curvature", "mean_curvature_integral", "gauss_curvature",
@@ -615,6 +615,10 @@ static int h_periods(df *d, const hdr_kw *k) {
   if (d->app) return df_err(d, NULL, TDS_ESYNTAX, "addload of a torus datafile is not supported yet");
   return df_periods(d);
 }
+static int h_symmetry_group(df *d, const hdr_kw *k) {
+  (void)k;
+  return df_symmetry_group(d);
+}
 /* DISPLAY_PERIODS (3 rows of 3) and DISPLAY_ORIGIN (3): display only. */
 static int h_display_periods(df *d, const hdr_kw *k) {
   (void)k;
@@ -685,6 +689,7 @@ static const hdr_kw header_kw[] = {
     {"torus_filled", h_torus, 0, 0},
     {"periods", h_periods, 0, 0},
     {"torus_periods", h_periods, 0, 0},
+    {"symmetry_group", h_symmetry_group, 0, 0},
     {"display_periods", h_display_periods, 0, 0},
     {"display_origin", h_display_origin, 0, 0},
     {"clipped", h_display_mode, 0, 0},

@@ -178,6 +178,9 @@ int df_string_finish(df *d);
 int df_torus(df *d, int filled);
 /* PERIODS: three rows of three expressions, each row on one line. */
 int df_periods(df *d);
+/* SYMMETRY_GROUP "name" (symgroup.h): the group's wraps through the torus
+** model's machinery (m->torus 1, m->sym the group). */
+int df_symmetry_group(df *d);
 /* When the VERTICES section starts: PERIODS needs TORUS. */
 int df_torus_start(df *d, const char *at);
 /* The wrap signs after an edge's vertices (none: *wrap = 0): three of

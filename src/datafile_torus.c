@@ -13,6 +13,9 @@
 #include <string.h>
 
 #include "expr.h"
+#include "gather.h"
+#include "symgroup.h"
+#include "symmetry.h"
 #include "torus.h"
 
 static void unit_periods(tds_mesh *m) {
@@ -27,11 +30,51 @@ int df_torus(df *d, int filled) {
     return df_err(d, NULL, TDS_ESYNTAX, "%s in a file added by addload is not supported yet",
                   filled ? "TORUS_FILLED" : "TORUS");
   if (d->s->m.torus)
-    return df_err(d, NULL, TDS_ESYNTAX, "%s: the torus model is already declared",
-                  filled ? "TORUS_FILLED" : "TORUS");
+    return df_err(d, NULL, TDS_ESYNTAX, "%s: %s is already declared (line %d)",
+                  filled ? "TORUS_FILLED" : "TORUS",
+                  d->s->m.sym ? "SYMMETRY_GROUP" : "the torus model", d->torus_line);
   if (tds_mesh_set_torus(&d->s->m, filled ? 2 : 1)) return df_core(d, df_line_of(d, NULL), TDS_ENOMEM, NULL);
   if (!d->periods_line) unit_periods(&d->s->m); /* Evolver's default */
   d->torus_line = df_line_of(d, NULL);
+  return TDS_OK;
+}
+
+int df_symmetry_group(df *d) {
+  char name[64];
+  int have, rc = df_more(d, &have);
+  if (rc) return rc;
+  const char *at = d->p;
+  const char *q = have && *at == '"' ? strchr(at + 1, '"') : NULL;
+  if (!q || q - at - 1 >= (long)sizeof name) {
+    char b[64];
+    return df_err(d, at, TDS_ESYNTAX,
+                  "SYMMETRY_GROUP: expected a group name in double quotes, found %s",
+                  df_describe(at, b, sizeof b));
+  }
+  memcpy(name, at + 1, (size_t)(q - at - 1));
+  name[q - at - 1] = 0;
+  if (d->string_model)
+    return df_err(d, at, TDS_ESYNTAX, "SYMMETRY_GROUP in the string model is not supported yet");
+  if (d->app)
+    return df_err(d, at, TDS_ESYNTAX, "SYMMETRY_GROUP in a file added by addload is not supported yet");
+  if (d->s->m.torus)
+    return df_err(d, at, TDS_ESYNTAX, "SYMMETRY_GROUP: %s is already declared (line %d)",
+                  d->s->m.sym ? "SYMMETRY_GROUP" : "the torus model", d->torus_line);
+  int id = tds_sym_lookup(name);
+  if (id == 0)
+    return df_err(d, at, TDS_ESYNTAX,
+                  "SYMMETRY_GROUP: unknown group \"%s\" (Evolver's built-in groups: torus, "
+                  "rotate, flip_rotate, cubocta, cubelat, xyz, genus2, dodecahedron, "
+                  "central_symmetry, screw_symmetry, quarter_turn)", name);
+  if (id < 0)
+    return df_err(d, at, TDS_ESYNTAX,
+                  "SYMMETRY_GROUP \"%s\" is not supported yet (it needs KLEIN_METRIC)", name);
+  if (tds_mesh_set_torus(&d->s->m, 1)) return df_core(d, df_line_of(d, at), TDS_ENOMEM, NULL);
+  d->s->m.sym = id;
+  for (int k = 0; k < 2; k++) d->s->m.symp[k] = tds_sym_param_default(id, k);
+  if (!d->periods_line) unit_periods(&d->s->m); /* Evolver's default */
+  d->torus_line = df_line_of(d, at);
+  d->p = q + 1;
   return TDS_OK;
 }
 
@@ -102,6 +145,17 @@ int df_torus_start(df *d, const char *at) {
   if (d->periods_line && !d->s->m.torus)
     return df_err_line(d, d->periods_line, TDS_ESYNTAX,
                        "PERIODS without TORUS or TORUS_FILLED");
+  if (d->periods_line && tds_mesh_rotates(&d->s->m))
+    return df_err_line(d, d->periods_line, TDS_ESYNTAX,
+                       "PERIODS with SYMMETRY_GROUP \"%s\" (only the torus group has periods)",
+                       tds_sym_name(d->s->m.sym));
+  if (d->s->symmetric_content && !tds_sym_content_ok(&d->s->m))
+    return df_err_line(d, d->torus_line, TDS_ESYNTAX,
+                       "SYMMETRIC_CONTENT with SYMMETRY_GROUP \"%s\" is not supported yet",
+                       tds_sym_name(d->s->m.sym));
+  /* the group's parameters (rotation_order, ...) as the top section left them */
+  if (d->s->m.sym && tds_sym_read_params(d->ctx, d->s) != TDS_OK)
+    return df_core(d, d->torus_line, TDS_ERANGE, NULL);
   (void)at;
   return TDS_OK;
 }
@@ -116,6 +170,10 @@ int df_edge_wrap(df *d, const char *what, int32_t *wrap) {
     return df_err(d, d->p, TDS_ESYNTAX,
                   "%s: wrap signs (* + -) need TORUS or TORUS_FILLED in the top section",
                   what);
+  if (tds_mesh_rotates(&d->s->m))
+    return df_err(d, d->p, TDS_ESYNTAX,
+                  "%s: wrap signs (* + -) are the torus's; SYMMETRY_GROUP \"%s\" takes "
+                  "wrap N (the group element's code)", what, tds_sym_name(d->s->m.sym));
   int k[3];
   for (int i = 0; i < 3; i++) {
     df_ws(d);
@@ -148,6 +206,7 @@ int df_torus_finish(df *d) {
     return tds_seterr(d->ctx, TDS_ETOPO, "%s: %.900s", d->name, msg);
   }
   s->m.topo_gen++;
+  if (s->m.sym) return TDS_OK; /* Euclidean volumes: no lifts, no settling */
   int bad = tds_torus_lifts(d->ctx, s);
   if (bad < 0) return -bad;
   if (bad > 0)

@@ -20,6 +20,7 @@
 #include "datafile.h"
 #include "model.h"
 #include "string_model.h"
+#include "symgroup.h"
 #include "wfile.h"
 #include "wrap.h"
 
@@ -228,8 +229,15 @@ static void header(out *o, const tds_surf *s) {
   if (s->npar) fputc('\n', f);
   if (s->m.torus) {
     /* the period formulas as given (parameters stay live), one row a line */
-    fputs(s->m.torus == 2 ? "TORUS_FILLED\nPERIODS\n" : "TORUS\nPERIODS\n", f);
-    for (int i = 0; i < 3; i++) {
+    if (s->m.sym) /* the group's name; its wraps are `wrap` words (attr_rows.c) */
+      fprintf(f, "SYMMETRY_GROUP \"%s\"\n", tds_sym_name(s->m.sym));
+    if (s->m.sym > TDS_SYM_TORUS) /* no periods; parameters are written above */
+      ;
+    else if (s->m.sym)
+      fputs("PERIODS\n", f);
+    else
+      fputs(s->m.torus == 2 ? "TORUS_FILLED\nPERIODS\n" : "TORUS\nPERIODS\n", f);
+    for (int i = 0; i < 3 && s->m.sym <= TDS_SYM_TORUS; i++) {
       for (int j = 0; j < 3; j++) {
         if (s->period_expr[i][j]) {
           fputs(j ? " (" : "(", f);
@@ -423,7 +431,7 @@ static void elements(out *o, tds_surf *s) {
   for (tds_id e = 0; e < m->ne; e++) {
     if (!tds_alive(m->eflags, e)) continue;
     fprintf(f, "%d %d %d", e + 1, m->ev[e][0] + 1, m->ev[e][1] + 1);
-    if (m->torus) { /* Evolver's signs; larger counts by the wrap word */
+    if (m->torus && !m->sym) { /* Evolver's signs; larger counts by the wrap word */
       int k[3];
       tds_wrap_unpack(m->ewrap[e], k);
       if (k[0] * k[0] <= 1 && k[1] * k[1] <= 1 && k[2] * k[2] <= 1)

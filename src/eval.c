@@ -29,6 +29,7 @@
 #include "gather.h"
 #include "method.h"
 #include "string_model.h"
+#include "symmetry.h"
 #include "torus.h"
 #include "vec3.h"
 
@@ -152,11 +153,13 @@ assemble_k(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int kind, term *t0,
     if (n0) {
       int want = want_grad(out, t0, sk0, n0);
       double v = k0(&L, want ? g : NULL, hp);
+      if (want && tds_mesh_rotates(m)) tds_sym_pullback(m, kind, el, g, hp);
       scatter(s, out, t0, vs, kind, sk0, n0, v, g, hp);
     }
     if (n1) {
       int want = want_grad(out, t1, sk1, n1);
       double v = k1(&L, want ? g : NULL, hp);
+      if (want && tds_mesh_rotates(m)) tds_sym_pullback(m, kind, el, g, hp);
       scatter(s, out, t1, vs, kind, sk1, n1, v, g, hp);
     }
   }
@@ -368,7 +371,9 @@ static int facet_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
                     tds_mk_volume, s_volume);
   out->energy += ten.total + vol.total;
   out->area += ten.sum;
-  if (rc == TDS_OK && s->m.torus && s->m.nb > 0) {
+  /* SYMMETRY_GROUP: Evolver's Euclidean volumes, each facet's integral
+  ** where its corners are gathered (no lifts; model.htm) */
+  if (rc == TDS_OK && s->m.torus && !s->m.sym && s->m.nb > 0) {
     int bad = tds_torus_lifts(ctx, s);
     if (bad < 0) return -bad;
     for (int d = sym ? 0 : 2; d < 3 && rc == TDS_OK; d++) {

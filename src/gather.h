@@ -33,6 +33,7 @@
 #define TDS_GATHER_H
 
 #include "mesh.h"
+#include "symgroup.h"
 #include "wrap.h"
 
 /* Gathered corners of one element: x[0..2] (facet) or x[0..1] (edge:
@@ -43,18 +44,44 @@ typedef struct tds_corners {
   double tmp[3][3];
 } tds_corners;
 
+/* Whether the mesh's wraps are elements of a group other than the torus's
+** translations (symgroup.h): then they compose in order and act by
+** isometries that may rotate. */
+static inline int tds_mesh_rotates(const tds_mesh *m) {
+  return m->sym > TDS_SYM_TORUS;
+}
+
+/* Wrap products and inverses in the mesh's group: a b (b first, then a;
+** lattice counts added in the torus), a^-1. */
+static inline int32_t tds_wrap_mul(const tds_mesh *m, int32_t a, int32_t b) {
+  if (__builtin_expect(tds_mesh_rotates(m), 0)) return tds_sym_mul(m->sym, m->symp, a, b);
+  return tds_wrap_add(a, b);
+}
+static inline int32_t tds_wrap_inv(const tds_mesh *m, int32_t a) {
+  if (!a) return 0;
+  if (__builtin_expect(tds_mesh_rotates(m), 0)) return tds_sym_inv(m->sym, m->symp, a);
+  return tds_wrap_neg(a);
+}
+
 /* The wrap of oriented edge oe (0 without a torus). */
 static inline int32_t tds_oe_wrap(const tds_mesh *m, int32_t oe) {
   int32_t w = m->ewrap ? m->ewrap[TDS_OID(oe)] : 0;
-  return TDS_OREV(oe) && w ? tds_wrap_neg(w) : w;
+  return TDS_OREV(oe) && w ? tds_wrap_inv(m, w) : w;
 }
 
-/* Point x of the mesh translated by wrap w, into out (or x itself when w is
+/* Point x of the mesh moved by wrap w (translated in the torus, the
+** group element's isometry otherwise), into out (or x itself when w is
 ** 0); returns the pointer to use. */
 static inline const double *tds_wrap_point(const tds_mesh *m, const double *x, int32_t w,
                                            double out[3]) {
   if (!w) return x;
   double d[3];
+  if (__builtin_expect(tds_mesh_rotates(m), 0)) {
+    double R[3][3];
+    tds_sym_affine(m->sym, m->symp, m->period, w, R, d);
+    for (int i = 0; i < 3; i++) out[i] = R[i][0] * x[0] + R[i][1] * x[1] + R[i][2] * x[2] + d[i];
+    return out;
+  }
   tds_wrap_vec(m->period, w, d);
   out[0] = x[0] + d[0];
   out[1] = x[1] + d[1];
@@ -74,8 +101,7 @@ tds_gather_facet(const tds_mesh *m, tds_id f, tds_corners *c) {
     const int32_t *fe = m->fe[f];
     c->x[0] = m->x[fv[0]];
     c->x[1] = tds_wrap_point(m, m->x[fv[1]], tds_oe_wrap(m, fe[0]), c->tmp[1]);
-    int32_t w2 = tds_oe_wrap(m, fe[2]);
-    c->x[2] = tds_wrap_point(m, m->x[fv[2]], w2 ? tds_wrap_neg(w2) : 0, c->tmp[2]);
+    c->x[2] = tds_wrap_point(m, m->x[fv[2]], tds_wrap_inv(m, tds_oe_wrap(m, fe[2])), c->tmp[2]);
     return;
   }
   c->x[0] = m->x[fv[0]];

@@ -1,11 +1,16 @@
 /* lua_torus.c: Lua bindings of the torus model (torus.h):
 **   tds.torus() -> 0 (none), 1 (TORUS) or 2 (TORUS_FILLED)
+**   tds.symmetry_group() -> the SYMMETRY_GROUP's name, or nil
+**   tds.wrap_compose(a, b) -> code   Evolver's wrap_compose: a first, then b
+**   tds.wrap_inverse(a) -> code      Evolver's wrap_inverse
 **   tds.periods() -> {{x, y, z}, {x, y, z}, {x, y, z}} or nil
 **   tds.wrap_vertex(v, code)   Evolver's wrap_vertex (code: a wrap code)
 **   tds.rewrap() -> n          vertices moved into the unit cell
 **   tds.detorus()              the surface as drawn, no torus any more */
 #include "lua_tds.h"
 #include "snap.h"
+#include "gather.h"
+#include "symgroup.h"
 #include "torus.h"
 
 static int l_torus(lua_State *L) {
@@ -13,9 +18,47 @@ static int l_torus(lua_State *L) {
   return 1;
 }
 
+static int l_symmetry_group(lua_State *L) {
+  int id = TDS_STATE(L)->s.m.sym;
+  if (!id) return 0;
+  lua_pushstring(L, tds_sym_name(id));
+  return 1;
+}
+
+/* The internal wrap of Evolver code argument i of fn in the surface's
+** group (the torus model's translations without SYMMETRY_GROUP). */
+static int32_t check_wrap(lua_State *L, const tds_mesh *m, int i, const char *fn) {
+  double code = tds_lua_checkfinite(L, i, "wrap code");
+  int32_t w = 0;
+  if (!m->torus) return luaL_error(L, "%s needs the torus model or a SYMMETRY_GROUP", fn);
+  int rc = m->sym > TDS_SYM_TORUS ? tds_sym_from_code(m->sym, m->symp, code, &w)
+                                  : tds_torus_wrap_from_code(code, &w);
+  if (rc != TDS_OK) return luaL_error(L, "%s: %f is no wrap code of the surface's group", fn, code);
+  return w;
+}
+
+static double code_of(const tds_mesh *m, int32_t w) {
+  return m->sym > TDS_SYM_TORUS ? tds_sym_code(m->sym, w) : tds_torus_wrap_code(w);
+}
+
+static int l_wrap_compose(lua_State *L) {
+  const tds_mesh *m = &TDS_STATE(L)->s.m;
+  int32_t a = check_wrap(L, m, 1, "wrap_compose"), b = check_wrap(L, m, 2, "wrap_compose");
+  if (!tds_mesh_rotates(m) && tds_wrap_overflows(a, b))
+    return luaL_error(L, "wrap_compose: the sum leaves the range of wrap codes");
+  lua_pushnumber(L, code_of(m, tds_wrap_mul(m, b, a))); /* a first, then b */
+  return 1;
+}
+
+static int l_wrap_inverse(lua_State *L) {
+  const tds_mesh *m = &TDS_STATE(L)->s.m;
+  lua_pushnumber(L, code_of(m, tds_wrap_inv(m, check_wrap(L, m, 1, "wrap_inverse"))));
+  return 1;
+}
+
 static int l_periods(lua_State *L) {
   tds_state *st = TDS_STATE(L);
-  if (!st->s.m.torus) return 0;
+  if (!st->s.m.torus || st->s.m.sym > TDS_SYM_TORUS) return 0; /* no periods */
   lua_createtable(L, 3, 0);
   for (int i = 0; i < 3; i++) {
     lua_createtable(L, 3, 0);
@@ -65,6 +108,9 @@ static int l_detorus(lua_State *L) {
 void tds_open_torus(lua_State *L, tds_state *st) {
   static const luaL_Reg fns[] = {{"torus", l_torus},
                                  {"periods", l_periods},
+                                 {"symmetry_group", l_symmetry_group},
+                                 {"wrap_compose", l_wrap_compose},
+                                 {"wrap_inverse", l_wrap_inverse},
                                  {"wrap_vertex", l_wrap_vertex},
                                  {"rewrap", l_rewrap},
                                  {"detorus", l_detorus},

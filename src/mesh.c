@@ -128,6 +128,7 @@ int tds_mesh_set_torus(tds_mesh *m, int torus) {
   } else if (!torus) {
     tds_free(&m->alloc, m->ewrap);
     m->ewrap = NULL;
+    m->sym = 0; /* a symmetry group ends with its wraps */
   }
   m->torus = torus;
   return TDS_OK;
@@ -398,6 +399,8 @@ int tds_mesh_copy(tds_mesh *dst, const tds_mesh *src) {
     FIELD(dst, kinds[k].n_off, int32_t) = CFIELD(src, kinds[k].n_off, int32_t);
   }
   memcpy(dst->period, src->period, sizeof dst->period);
+  dst->sym = src->sym;
+  memcpy(dst->symp, src->symp, sizeof dst->symp);
   dst->topo_gen = src->topo_gen + 1;
   dst->coord_gen = src->coord_gen;
   dst->adj_gen = 0;

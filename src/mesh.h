@@ -96,6 +96,12 @@ typedef struct tds_mesh {
   ** is the i-th period vector (rows of the datafile's PERIODS) */
   int torus;
   double period[3][3];
+  /* a symmetry group (symgroup.h; SYMMETRY_GROUP): its TDS_SYM_* id, 0
+  ** none; torus is then 1 too, so commands that do not handle wraps refuse.
+  ** Beyond TDS_SYM_TORUS the wraps are group elements, not lattice counts
+  ** (gather.h applies their isometries); symp: the group's parameters */
+  int sym;
+  double symp[2];
 
   uint64_t topo_gen;        /* bumped by every topology change */
   uint64_t coord_gen;       /* bumped by every coordinate change */

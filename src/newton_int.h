@@ -52,6 +52,8 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn);
 ** agree with the sum so far. */
 typedef struct tds_fkey {
   int32_t key, f;
+  int32_t k; /* the vertex's corner in f (0 will do without a symmetry
+             ** group that rotates: the facet's vector is seen from it) */
 } tds_fkey;
 void tds_evolver_sum(const tds_mesh *m, tds_fkey *a, int32_t n, double S[3]);
 /* P (upper: xx xy xz yy yz zz) += c c^T / |c|^2 (nothing when c = 0). */

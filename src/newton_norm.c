@@ -5,18 +5,36 @@
 
 #include "expr.h"
 #include "fixq.h"
+#include "gather.h"
 #include "motion.h"
 #include "newton_int.h"
+#include "torus.h"
 #include "vec3.h"
 
-/* Area vector (length = area) of live facet f. */
+/* Area vector (length = area) of live facet f, gathered (wraps applied:
+** gather.h). */
 static void facet_vec(const tds_mesh *m, tds_id f, double c[3]) {
-  const tds_id *fv = m->fv[f];
+  tds_corners C;
+  tds_gather_facet(m, f, &C);
   double a[3], b[3];
-  v3_sub(a, m->x[fv[1]], m->x[fv[0]]);
-  v3_sub(b, m->x[fv[2]], m->x[fv[0]]);
+  v3_sub(a, C.x[1], C.x[0]);
+  v3_sub(b, C.x[2], C.x[0]);
   v3_cross(c, a, b);
   v3_scale(c, 0.5);
+}
+
+/* Vector c of facet f's (or edge e's, f TDS_NONE) gathered frame as its
+** corner k sees it: under a symmetry group that rotates, the corner's
+** element's rotation undone (symmetry.h); c itself otherwise. */
+static const double *seen_from(const tds_mesh *m, tds_id f, tds_id e, int k, const double c[3],
+                               double out[3]) {
+  if (!k || !tds_mesh_rotates(m)) return c;
+  int32_t w = f != TDS_NONE ? tds_torus_corner_wrap(m, f, k) : m->ewrap[e];
+  if (!w) return c;
+  double R[3][3], t[3];
+  tds_sym_affine(m->sym, m->symp, (const double(*)[3])m->period, w, R, t);
+  for (int i = 0; i < 3; i++) out[i] = R[0][i] * c[0] + R[1][i] * c[1] + R[2][i] * c[2];
+  return out;
 }
 
 void tds_evolver_sum(const tds_mesh *m, tds_fkey *a, int32_t n, double S[3]) {
@@ -33,8 +51,9 @@ void tds_evolver_sum(const tds_mesh *m, tds_fkey *a, int32_t n, double S[3]) {
   ** agrees with the sum so far */
   S[0] = S[1] = S[2] = 0;
   for (int32_t i = 0; i < n; i++) {
-    double c[3];
-    facet_vec(m, a[i].f, c);
+    double c0[3], ck[3];
+    facet_vec(m, a[i].f, c0);
+    const double *c = seen_from(m, a[i].f, TDS_NONE, a[i].k, c0, ck);
     v3_axpy(S, v3_dot(S, c) < 0 ? -1 : 1, c);
   }
 }
@@ -45,11 +64,11 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
   memset(vn, 0, (size_t)m->nv * sizeof *vn);
   for (tds_id f = 0; f < m->nf; f++) {
     if (m->fflags[f] & TDS_DEAD) continue;
-    double c[3];
+    double c[3], ck[3];
     facet_vec(m, f, c);
     for (int k = 0; k < 3; k++) {
       vnorm *w = &vn[m->fv[f][k]];
-      v3_add(w->an, w->an, c);
+      v3_add(w->an, w->an, seen_from(m, f, TDS_NONE, k, c, ck));
       w->nf++;
     }
   }
@@ -75,12 +94,12 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
   int32_t nbad = 0, nfk = 0;
   for (tds_id f = 0; f < m->nf; f++) {
     if (m->fflags[f] & TDS_DEAD) continue;
-    double c[3];
+    double c[3], ck[3];
     facet_vec(m, f, c);
     double lim = 0.8660254037844386 * v3_norm(c); /* cos 30 degrees */
     for (int k = 0; k < 3; k++) {
       tds_id v = m->fv[f][k];
-      if (!bad[v] && !(v3_dot(c, ref[v]) >= lim)) bad[v] = 1;
+      if (!bad[v] && !(v3_dot(seen_from(m, f, TDS_NONE, k, c, ck), ref[v]) >= lim)) bad[v] = 1;
     }
   }
   tds_free(al, ref);
@@ -119,7 +138,7 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
         tds_id v = m->fv[f][k];
         if (!bad[v]) continue;
         int32_t e = TDS_OID(m->fe[f][k]);
-        tds_fkey x = {e == emin[v] ? INT32_MIN : -e, f};
+        tds_fkey x = {e == emin[v] ? INT32_MIN : -e, f, k};
         fk[at[v]++] = x;
       }
     }
@@ -137,12 +156,15 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
   for (tds_id e = 0; e < m->ne; e++) {
     if (m->eflags[e] & TDS_DEAD) continue;
     if (tds_edge_valence(m, e) < 3) continue;
-    double d[3];
-    v3_sub(d, m->x[m->ev[e][1]], m->x[m->ev[e][0]]);
-    double len = v3_norm(d);
+    double d0[3], dk[3];
+    tds_corners C;
+    tds_gather_edge(m, TDS_OREF(e, 0), &C); /* wraps applied */
+    v3_sub(d0, C.x[1], C.x[0]);
+    double len = v3_norm(d0);
     if (!(len > 0)) continue;
-    v3_scale(d, 1 / len);
+    v3_scale(d0, 1 / len);
     for (int k = 0; k < 2; k++) {
+      const double *d = seen_from(m, TDS_NONE, e, k, d0, dk);
       vnorm *w = &vn[m->ev[e][k]];
       if (w->nt) {
         double dot = v3_dot(d, w->td) / v3_norm(w->td);

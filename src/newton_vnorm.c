@@ -53,7 +53,7 @@ int tds_vertex_normal_at(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, td
       tds_id f = fs[i];
       int k = m->fv[f][0] == v ? 0 : m->fv[f][1] == v ? 1 : 2;
       int32_t e = TDS_OID(m->fe[f][k]);
-      a[i] = (tds_fkey){e == emin ? INT32_MIN : -e, f};
+      a[i] = (tds_fkey){e == emin ? INT32_MIN : -e, f, k};
     }
     tds_evolver_sum(m, a, nf, w.an);
     tds_free(&ctx->alloc, a);

@@ -1,4 +1,5 @@
 /* topo_flip.c: edge flips and equiangulation (the u command). */
+#include "gather.h"
 #include "torus.h"
 #include "topo.h"
 #include "snap.h"
@@ -71,16 +72,18 @@ static int32_t quad(const tds_mesh *m, tds_id e, tds_id f1, tds_id f2, double q[
     memcpy(q[3], m->x[m->fv[f2][dd]], sizeof q[3]);
     return 0;
   }
-  int32_t shift = tds_wrap_add(tds_torus_corner_wrap(m, f1, ca),
-                               tds_wrap_neg(tds_torus_corner_wrap(m, f2, da)));
-  int32_t wd = tds_wrap_add(tds_torus_corner_wrap(m, f2, dd), shift);
+  /* shift takes f2's frame to f1's (a where f1 has it); group products in
+  ** order, as a symmetry group's need not commute (symmetry.h) */
+  int32_t shift = tds_wrap_mul(m, tds_torus_corner_wrap(m, f1, ca),
+                               tds_wrap_inv(m, tds_torus_corner_wrap(m, f2, da)));
+  int32_t wd = tds_wrap_mul(m, shift, tds_torus_corner_wrap(m, f2, dd));
   tds_torus_facet_corner(m, f1, ca, q[0]);
   tds_torus_facet_corner(m, f1, cb, q[1]);
   tds_torus_facet_corner(m, f1, cc, q[2]);
   double t[3];
-  tds_wrap_vec(m->period, wd, t);
-  for (int i = 0; i < 3; i++) q[3][i] = m->x[m->fv[f2][dd]][i] + t[i];
-  return tds_wrap_add(wd, tds_wrap_neg(tds_torus_corner_wrap(m, f1, cc)));
+  const double *xd = tds_wrap_point(m, m->x[m->fv[f2][dd]], wd, t);
+  memcpy(q[3], xd, sizeof q[3]);
+  return tds_wrap_mul(m, tds_wrap_inv(m, tds_torus_corner_wrap(m, f1, cc)), wd);
 }
 
 void tds_flip(tds_surf *s, tds_id e, tds_id f1, tds_id f2) {

@@ -114,9 +114,9 @@ static void split_facet(tds_mesh *m, tds_id f, const tds_id *midv,
     /* the corners in the facet's frame (torus): m0, then m1 after the
     ** second half of edge 0 and the first of edge 1 */
     int32_t w0 = tds_oe_wrap(m, half(e2, o[0], 0));
-    int32_t w1 = tds_wrap_add(w0, tds_wrap_add(tds_oe_wrap(m, half(e2, o[0], 1)),
-                                               tds_oe_wrap(m, half(e2, o[1], 0))));
-    int32_t w2 = tds_wrap_add(w1, tds_oe_wrap(m, half(e2, o[1], 1)));
+    int32_t w1 = tds_wrap_mul(m, w0, tds_wrap_mul(m, tds_oe_wrap(m, half(e2, o[0], 1)),
+                                                  tds_oe_wrap(m, half(e2, o[1], 0))));
+    int32_t w2 = tds_wrap_mul(m, w1, tds_oe_wrap(m, half(e2, o[1], 1)));
     tds_id ec = inner_edge(m, f, mm[0], mm[1]);
     new_facet(m, f, half(e2, o[0], 1), half(e2, o[1], 0), TDS_OREF(ec, 1), 2);
     if (dist2(m, a[0], 0, mm[1], w1) <= dist2(m, mm[0], w0, a[2], w2)) {

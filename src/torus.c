@@ -19,14 +19,13 @@ double tds_torus_cell_volume(const tds_mesh *m) {
 int32_t tds_torus_corner_wrap(const tds_mesh *m, tds_id f, int k) {
   if (k == 0) return 0;
   if (k == 1) return tds_oe_wrap(m, m->fe[f][0]);
-  int32_t w = tds_oe_wrap(m, m->fe[f][2]);
-  return w ? tds_wrap_neg(w) : 0;
+  return tds_wrap_inv(m, tds_oe_wrap(m, m->fe[f][2]));
 }
 
 void tds_torus_facet_corner(const tds_mesh *m, tds_id f, int k, double out[3]) {
-  double d[3];
-  tds_wrap_vec(m->period, tds_torus_corner_wrap(m, f, k), d);
-  for (int i = 0; i < 3; i++) out[i] = m->x[m->fv[f][k]][i] + d[i];
+  double p[3];
+  const double *x = tds_wrap_point(m, m->x[m->fv[f][k]], tds_torus_corner_wrap(m, f, k), p);
+  for (int i = 0; i < 3; i++) out[i] = x[i];
 }
 
 /* Corner of facet f where oriented side k's edge starts (its stored
@@ -215,11 +214,12 @@ void tds_torus_settle(tds_surf *s) {
 int tds_torus_check(tds_ctx *ctx, const tds_mesh *m) {
   for (tds_id f = 0; f < m->nf; f++) {
     if (!tds_alive(m->fflags, f)) continue;
-    int32_t w = tds_wrap_add(tds_wrap_add(tds_oe_wrap(m, m->fe[f][0]), tds_oe_wrap(m, m->fe[f][1])),
-                             tds_oe_wrap(m, m->fe[f][2]));
-    if (w != 0)
+    if (tds_facet_wrap(m, f) != 0)
       return tds_seterr(ctx, TDS_ETOPO,
-                        "facet %d: the wraps of its edges do not add up to zero", (int)f + 1);
+                        m->sym > TDS_SYM_TORUS
+                            ? "facet %d: the product of its edges' wraps is not the identity"
+                            : "facet %d: the wraps of its edges do not add up to zero",
+                        (int)f + 1);
   }
   return TDS_OK;
 }
@@ -233,10 +233,16 @@ tds_id tds_torus_dropped_body(const tds_mesh *m) {
 
 void tds_torus_close(tds_mesh *m, tds_id f, int k) {
   int32_t oe = m->fe[f][k];
-  int32_t w = tds_wrap_add(tds_oe_wrap(m, m->fe[f][(k + 1) % 3]),
+  /* w_k w_k+1 w_k+2 = 1 (a facet's product, rotated), so oe carries
+  ** (w_k+1 w_k+2)^-1; stored forwards, so inverted again if reversed */
+  int32_t w = tds_wrap_mul(m, tds_oe_wrap(m, m->fe[f][(k + 1) % 3]),
                            tds_oe_wrap(m, m->fe[f][(k + 2) % 3]));
-  /* oe must carry -w; stored forwards, so negate again if reversed */
-  m->ewrap[TDS_OID(oe)] = TDS_OREV(oe) ? w : (w ? tds_wrap_neg(w) : 0);
+  m->ewrap[TDS_OID(oe)] = TDS_OREV(oe) ? w : tds_wrap_inv(m, w);
+}
+
+int32_t tds_facet_wrap(const tds_mesh *m, tds_id f) {
+  return tds_wrap_mul(m, tds_wrap_mul(m, tds_oe_wrap(m, m->fe[f][0]), tds_oe_wrap(m, m->fe[f][1])),
+                      tds_oe_wrap(m, m->fe[f][2]));
 }
 
 double tds_torus_wrap_code(int32_t w) {
@@ -265,7 +271,11 @@ int tds_torus_set_wrap(tds_ctx *ctx, tds_surf *s, tds_id e, double code) {
   if (!m->torus)
     return tds_seterr(ctx, TDS_ERANGE, "edge %d: wrap needs the torus model (TORUS)", e + 1);
   int32_t w;
-  if (tds_torus_wrap_from_code(code, &w) != TDS_OK)
+  if (m->sym > TDS_SYM_TORUS) {
+    if (tds_sym_from_code(m->sym, m->symp, code, &w) != TDS_OK)
+      return tds_seterr(ctx, TDS_ERANGE, "edge %d: wrap %g is no element of SYMMETRY_GROUP \"%s\"",
+                        e + 1, code, tds_sym_name(m->sym));
+  } else if (tds_torus_wrap_from_code(code, &w) != TDS_OK)
     return tds_seterr(ctx, TDS_ERANGE,
                       "edge %d: wrap %g is not a wrap code (6 bits per period, each "
                       "count -16..15 in two's complement of 5 bits)", e + 1, code);
@@ -276,9 +286,7 @@ int tds_torus_set_wrap(tds_ctx *ctx, tds_surf *s, tds_id e, double code) {
     int32_t r = h;
     do {
       tds_id f = r / 3;
-      int32_t sum = tds_wrap_add(tds_wrap_add(tds_oe_wrap(m, m->fe[f][0]), tds_oe_wrap(m, m->fe[f][1])),
-                                 tds_oe_wrap(m, m->fe[f][2]));
-      if (sum != 0) {
+      if (tds_facet_wrap(m, f) != 0) {
         m->ewrap[e] = old;
         return tds_seterr(ctx, TDS_ETOPO,
                           "edge %d: with wrap %g facet %d would not close in the torus "
@@ -299,6 +307,9 @@ int tds_torus_unsupported(tds_ctx *ctx, const char *what) {
 int tds_torus_wrap_vertex(tds_ctx *ctx, tds_surf *s, tds_id v, int32_t w) {
   tds_mesh *m = &s->m;
   if (!m->torus) return tds_seterr(ctx, TDS_ERANGE, "wrap_vertex needs the torus model (TORUS)");
+  if (tds_mesh_rotates(m))
+    return tds_seterr(ctx, TDS_ESYNTAX, "wrap_vertex is not supported yet with SYMMETRY_GROUP \"%s\"",
+                      tds_sym_name(m->sym));
   if (v < 0 || v >= m->nv || !tds_alive(m->vflags, v))
     return tds_seterr(ctx, TDS_ERANGE, "vertex %d does not exist", (int)v + 1);
   if (!w) return TDS_OK;

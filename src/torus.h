@@ -70,6 +70,10 @@ int32_t tds_torus_corner_wrap(const tds_mesh *m, tds_id f, int k);
 ** already have theirs). */
 void tds_torus_close(tds_mesh *m, tds_id f, int k);
 
+/* The product of facet f's edge wraps in order (tds_wrap_mul): 0 when
+** the facet closes (in the torus: the lattice counts add up to zero). */
+int32_t tds_facet_wrap(const tds_mesh *m, tds_id f);
+
 /* Evolver's wrap code of a packed wrap (the `wrap` edge attribute): 6 bits
 ** per period from the lowest, each count in 5-bit two's complement
 ** (+1 = 1, -1 = 31), so "* * +" is 4096. */

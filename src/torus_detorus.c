@@ -96,7 +96,7 @@ int tds_torus_detorus(tds_ctx *ctx, tds_mesh *m) {
           ne2 = ce.id[h];
         } else {
           tds_id t = vcopy(m, &cv, m->ev[e][0], wt);
-          tds_id hd = vcopy(m, &cv, m->ev[e][1], tds_wrap_add(wt, m->ewrap[e]));
+          tds_id hd = vcopy(m, &cv, m->ev[e][1], tds_wrap_mul(m, wt, m->ewrap[e]));
           ne2 = tds_mesh_add_edge(m, t, hd);
           tds_edge_inherit(m, ne2, e);
           ce.key[h] = e;
@@ -142,6 +142,9 @@ int tds_torus_rewrap(tds_ctx *ctx, tds_surf *s, int32_t *n) {
   tds_mesh *m = &s->m;
   *n = 0;
   if (!m->torus) return tds_seterr(ctx, TDS_ERANGE, "rewrap needs the torus model (TORUS)");
+  if (tds_mesh_rotates(m))
+    return tds_seterr(ctx, TDS_ESYNTAX, "rewrap is not supported yet with SYMMETRY_GROUP \"%s\"",
+                      tds_sym_name(m->sym));
   /* lattice coordinates: x = sum_i c_i period[i], c = x P^-1 */
   const double (*p)[3] = m->period;
   double inv[3][3], det = 0;

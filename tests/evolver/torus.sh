@@ -166,11 +166,6 @@ for k = 0, 3 do
   same('torus/phelanc/u-energy' .. k, val([[$td]]), val([[$ev]]), 1e-12)
 end"
 
-# symtest.fe (a symmetry group) is refused at its keyword.
-got=$("$TDS" -q "$EXAMPLES/symtest.fe" -e '' 2>&1 < /dev/null)
-want="$EXAMPLES/symtest.fe:7: SYMMETRY_GROUP is not supported yet"
-if [ "$got" = "$want" ]; then echo "PASS torus/symtest/refused"
-else echo "FAIL torus/symtest/refused: '$got', want '$want'"; fi
 
 # The twointor tutorial (../shared/reference/tutorial.md, section 4): its
 # gogo (g 5; r; g 5; hessian; r; g 5; hessian; hessian) gives V 122 E 408
