@@ -39,29 +39,15 @@ static int over_facets(const tds_mesh *m, tds_id v, double out[3]) {
   for (int32_t i = m->vf_start[v]; i < m->vf_start[v + 1]; i++) {
     tds_id f = m->vf[i];
     if (m->fcon[f] != m->vcon[v]) continue;
-    tds_corners C;
-    tds_gather_facet(m, f, &C);
-    const double *a = C.x[0], *b = C.x[1], *c = C.x[2];
-    /* on a torus the facet is gathered from its first corner: sh moves it
-    ** to v's copy (0 otherwise); a group that rotates moves the corners
-    ** there by the inverse of v's corner element instead */
-    int cv = m->fv[f][0] == v ? 0 : m->fv[f][1] == v ? 1 : 2;
-    double ab[3], ac[3], N[3], sh[3], moved[3][3];
-    if (tds_mesh_rotates(m) && cv) {
-      int32_t back = tds_wrap_inv(m, tds_torus_corner_wrap(m, f, cv));
-      for (int k = 0; k < 3; k++) {
-        const double *y = tds_wrap_point(m, C.x[k], back, moved[k]);
-        if (y != moved[k]) memcpy(moved[k], y, sizeof moved[k]);
-      }
-      a = moved[0], b = moved[1], c = moved[2];
-    }
-    v3_sub(sh, m->x[v], cv == 0 ? a : cv == 1 ? b : c);
+    double P[3][3]; /* the facet in v's frame (v's copy on a torus) */
+    tds_torus_facet_at(m, f, m->fv[f][0] == v ? 0 : m->fv[f][1] == v ? 1 : 2, P);
+    const double *a = P[0], *b = P[1], *c = P[2];
+    double ab[3], ac[3], N[3];
     v3_sub(ab, b, a);
     v3_sub(ac, c, a);
     v3_cross(N, ab, ac);
     double A = 0.5 * v3_norm(N);
     for (int k = 0; k < 3; k++) sum[k] += A * (a[k] + b[k] + c[k]) / 3;
-    if (m->torus) v3_axpy(sum, A, sh);
     wsum += A;
     v3_add(nsum, nsum, N);
   }

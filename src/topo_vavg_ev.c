@@ -35,6 +35,7 @@
 #include <stdint.h>
 
 #include "gather.h"
+#include "torus.h"
 #include "motion.h"
 #include "vec3.h"
 
@@ -89,15 +90,15 @@ int tds_vavg_target(const tds_surf *s, tds_id v, int mode, double *g,
   int nf = star_order(m, v, ord);
   for (int i = 0; i < nf; i++) {
     tds_id f = ord[i];
-    tds_corners C;
-    tds_gather_facet(m, f, &C);
+    int k = m->fv[f][0] == v ? 0 : m->fv[f][1] == v ? 1 : 2;
+    double P[3][3]; /* the facet in v's frame (a group may rotate it) */
+    tds_torus_facet_at(m, f, k, P);
     double ab[3], ac[3], N[3];
-    v3_sub(ab, C.x[1], C.x[0]);
-    v3_sub(ac, C.x[2], C.x[0]);
+    v3_sub(ab, P[1], P[0]);
+    v3_sub(ac, P[2], P[0]);
     v3_cross(N, ab, ac);
     /* the sum in star order, each facet signed to agree with it */
     v3_axpy(nall, ca++ && v3_dot(N, nall) < 0 ? -1 : 1, N);
-    int k = m->fv[f][0] == v ? 0 : m->fv[f][1] == v ? 1 : 2;
     double A = 0.5 * v3_norm(N);
     int a = edge_slot(m, v, m->fe[f][k]), b = edge_slot(m, v, m->fe[f][(k + 2) % 3]);
     if (a >= 0) g[a] += A;

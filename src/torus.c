@@ -28,6 +28,16 @@ void tds_torus_facet_corner(const tds_mesh *m, tds_id f, int k, double out[3]) {
   for (int i = 0; i < 3; i++) out[i] = x[i];
 }
 
+void tds_torus_facet_at(const tds_mesh *m, tds_id f, int k, double out[3][3]) {
+  tds_corners C;
+  tds_gather_facet(m, f, &C);
+  int32_t back = m->torus && k ? tds_wrap_inv(m, tds_torus_corner_wrap(m, f, k)) : 0;
+  for (int j = 0; j < 3; j++) {
+    const double *y = tds_wrap_point(m, C.x[j], back, out[j]);
+    if (y != out[j]) memcpy(out[j], y, sizeof out[j]);
+  }
+}
+
 /* Corner of facet f where oriented side k's edge starts (its stored
 ** tail), so two facets on an edge name the same vertex of it. */
 static int tail_corner(const tds_mesh *m, tds_id f, int k) {

@@ -61,6 +61,13 @@ tds_id tds_torus_dropped_body(const tds_mesh *m);
 ** out (the same points tds_gather_facet gives). */
 void tds_torus_facet_corner(const tds_mesh *m, tds_id f, int k, double out[3]);
 
+/* Corners of facet f (in its orientation) in the frame of its corner k:
+** out[k] is vertex fv[f][k]'s stored position and the others follow the
+** facet's edges from there (through the inverse of corner k's wrap, which
+** may rotate under a symmetry group). Without wraps, the stored
+** positions. */
+void tds_torus_facet_at(const tds_mesh *m, tds_id f, int k, double out[3][3]);
+
 /* The packed lattice offset of corner k of facet f from its first corner
 ** (0, the wrap of the first edge, minus the wrap of the third). */
 int32_t tds_torus_corner_wrap(const tds_mesh *m, tds_id f, int k);
