@@ -19,7 +19,7 @@ LUA_LIBS = $(shell pkg-config --libs lua5.4)
 CAIRO_CFLAGS = $(shell pkg-config --cflags cairo)
 CAIRO_LIBS = $(shell pkg-config --libs cairo)
 # The sparse symmetric solver (la_mumps.c) and LAPACK (small dense eigenproblems).
-LA_LIBS = -ldmumps_seq -llapack
+LA_LIBS = -ldmumps_seq -lcholmod -llapack
 LIBS = $(LUA_LIBS) $(CAIRO_LIBS) $(LA_LIBS) -lreadline -lm
 
 BIND_SRC := $(wildcard src/lua_*.c) src/repl.c src/main.c

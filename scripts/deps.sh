@@ -11,8 +11,10 @@ set -e
 # eigenvalues: src/la_mumps.c, src/newton*.c); OpenBLAS (single-threaded),
 # which becomes the system's libblas.so.3 and liblapack.so.3: MUMPS's
 # factorisation runs twice as fast on it as on the reference BLAS.
+# CHOLMOD (SuiteSparse): the Gram matrix of many body volumes (src/spchol.c).
 BUILD_PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev libmicrohttpd-dev
-  libcairo2-dev fonts-dejavu-core libmumps-seq-dev liblapack-dev libopenblas0-serial"
+  libcairo2-dev fonts-dejavu-core libmumps-seq-dev liblapack-dev libopenblas0-serial
+  libsuitesparse-dev"
 # The tests: Surface Evolver; meshio, VTK and NumPy for /usr/bin/python3
 # (export round trips, tests/export); Chromium (the live view's browser
 # test, tests/web); the stock Lua interpreter (the module tds.so, tests/module).
