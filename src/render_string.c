@@ -50,7 +50,7 @@ static void project(const tds_render_info *in, const tds_render_opts *o, const d
 static int frame(tds_ctx *ctx, const tds_surf *s, const tds_render_opts *o, int plotw,
                  tds_render_info *in) {
   const tds_mesh *m = &s->m;
-  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
   int any = 0;
   for (int pass = 0; pass < 2; pass++) {
     double R = 0;
@@ -225,8 +225,8 @@ int tds_render_strings(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o, cons
   int rc = frame(ctx, s, o, plotw, &in);
   if (rc != TDS_OK) return rc;
   if (field) {
-    in.lo = INFINITY;
-    in.hi = -INFINITY;
+    in.lo = HUGE_VAL;
+    in.hi = -HUGE_VAL;
     for (tds_id e = 0; e < m->ne; e++)
       if (!(m->eflags[e] & TDS_DEAD)) {
         if (m->eten[e] < in.lo) in.lo = m->eten[e];
