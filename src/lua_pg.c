@@ -2,7 +2,7 @@
 **
 ** Raw primitives (lua/pg.lua gives them their user names):
 **   tds.pg{ iterations=, max=, nmax=, s=, plain=, depth=, flips=, every=,
-**           rtol=, threads=, newton= }                        -> result table
+**           rtol=, threads=, newton=, probe= }                     -> result table
 **   tds.quality()                          -> statistics table
 **   tds.curvature(mode [, value [, measure]]) -> statistics table with
 **                                             per-vertex values
@@ -71,6 +71,7 @@ static int l_pg(lua_State *L) {
     o.rtol = opt_num(L, 1, "rtol", 0);
     o.threads = (int)opt_int(L, 1, "threads", 1);
     o.newton = opt_bool(L, 1, "newton", 1);
+    o.probe = opt_bool(L, 1, "probe", 1);
   }
   luaL_argcheck(L, o.threads >= 1 && o.threads <= 2, 1, "threads must be 1 or 2");
   luaL_argcheck(L, o.iterations >= 0, 1, "iterations must not be negative");
@@ -91,6 +92,8 @@ static int l_pg(lua_State *L) {
   setint(L, "clamps", r.clamps);
   setint(L, "restarts", r.restarts);
   setint(L, "newton_builds", r.newton_builds);
+  setint(L, "probes", r.probes);
+  setint(L, "saddles", r.saddles);
   setint(L, "reached", r.reached);
   setnum(L, "lambda", r.lambda);
   setnum(L, "pressure", -r.lambda);

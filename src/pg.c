@@ -216,6 +216,7 @@ void tds_pg_defaults(tds_pg_opts *o) {
   o->depth = 20;
   o->flips = 1;
   o->newton = 1;
+  o->probe = 1;
 }
 
 static double mean_edge(const tds_mesh *m) {
@@ -274,6 +275,21 @@ static int evaluate(tds_ctx *ctx, tds_surf *s, pgw *w, int flips, double sfac,
   return pg_step(ctx, s, w, sfac, si);
 }
 
+/* The stability probe (doc/method.md, Termination): move every state
+** entry by a pseudo-random amount in [-delta, delta] (a fixed sequence, so
+** runs repeat). Nonzero when a vertex could not be projected. */
+static int probe_perturb(tds_surf *s, pgw *w, double *X, double delta) {
+  pg_get_state(s, w, X);
+  uint64_t z = 0x9e3779b97f4a7c15u;
+  for (size_t i = 0; i < 3 * (size_t)w->nmov; i++) {
+    z ^= z << 13;
+    z ^= z >> 7;
+    z ^= z << 17;
+    X[i] += delta * ((double)(z >> 11) * 0x1p-52 - 1);
+  }
+  return pg_set_state(s, w, X);
+}
+
 int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
                tds_pg_result *res) {
   if (s->m.torus) return tds_torus_unsupported(ctx, "pg");
@@ -322,6 +338,20 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   double win_min = INFINITY, glob_min = INFINITY;
   int stuck = 0, resumes = 0;
   int64_t plain_until = 0; /* > 0: resume the mixing at this iteration */
+  /* Stability probe (doc/method.md, Termination): the mixing, Newton's
+  ** above all, can converge to a fixed point the plain iteration leaves
+  ** (a saddle of the mesh-quality energy). Before an accelerated run
+  ** stops as converged, the kept mesh is perturbed by 1e-8 x mean edge
+  ** and iterated plainly for probe_len iterations: a flip, or r growing
+  ** tenfold from its value after 5 of them, marks the fixed point
+  ** unstable and the run goes on from where the plain steps took it
+  ** (at most max_probes times); else the kept mesh is restored. */
+  const int64_t probe_len = 50;
+  const int max_probes = 3;
+  int probing = 0, probes = 0, escaping = 0;
+  int64_t probe_k0 = 0, probe_flips = 0;
+  double probe_r0 = 0;
+  double *probe_x = NULL; /* the perturbed state */
   res->hysteresis = w.flip_tol;
   /* Newton preconditioning (pg_newton.c, doc/method.md): once r is below
   ** 1e-3 x mean edge and no edge has flipped for nt_wait iterations, the
@@ -348,6 +378,14 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
     return tds_snap_end(ctx, s, &sn, tds_seterr(ctx, TDS_ENOMEM, "out of memory"));
   }
   nt.free = use_nt && !anchored && !w.nrig;
+  if (o->probe && accel && until) {
+    probe_x = tds_calloc(&w.al, 3 * (size_t)(w.nmov > 0 ? w.nmov : 1), sizeof *probe_x);
+    if (!probe_x) {
+      pg_newton_free(&nt);
+      pg_work_free(&w);
+      return tds_snap_end(ctx, s, &sn, tds_seterr(ctx, TDS_ENOMEM, "out of memory"));
+    }
+  }
   const int64_t nt_wait = 10, nt_patience = 20, nt_maxb = 50;
   const double nt_start = 1e-3 * hbar;
   int64_t nt_next = 0, nt_since = 0;
@@ -393,7 +431,38 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
     if (!live && every > 0 && (k % every == 0 || k == 1))
       tds_printf(ctx, "pg %7lld  r %.3e  lambda % .12g  energy %.15g  flips %lld\n",
                  (long long)k, si.r, si.lambda0, si.energy, (long long)res->flips);
-    if (until) {
+    if (until && probing) {
+      probe_flips += nf;
+      if (k == probe_k0 + 5) probe_r0 = si.r;
+      int grew = k > probe_k0 + 5 && si.r > 10 * probe_r0;
+      if (probe_flips || grew) { /* unstable: go on from here */
+        probing = 0;
+        res->saddles++;
+        tds_progress_erase(ctx);
+        tds_printf(ctx, "pg %7lld  the fixed point is unstable (%s after %lld plain "
+                        "steps from it): continuing\n", (long long)k,
+                   probe_flips ? "edges flipped" : "r grew tenfold",
+                   (long long)(k - probe_k0));
+        /* plain steps until they have left it (a flip, or r ten
+        ** thousand times its value after the perturbation), at most N_max
+        ** of them; the mixing would return to it from nearby */
+        escaping = 1;
+        plain_until = k + o->nmax;
+        res->reached = 0;
+        progress = k;
+        rbest = INFINITY;
+        nt_next = k + nt_wait;
+        win_start = k;
+        win_min = glob_min = INFINITY;
+        win_flips = 0;
+        stuck = 0;
+        stuck_flips = 0;
+      } else if (k >= probe_k0 + probe_len) { /* stable: keep the mesh */
+        res->converged = 1;
+        res->status = TDS_PG_CONVERGED;
+        break;
+      }
+    } else if (until) {
       /* The paper's rule: no new best r for N_max iterations. Above the
       ** rounding level r may rise for a while on a slow mode and fall
       ** again, so there the patience is five times longer; an accelerated
@@ -418,7 +487,9 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
         if (rbest > noise) rbest = INFINITY;
         idle = 0;
       }
+      if (escaping && nf) plain_until = k;
       if (!accel && plain_until && k >= plain_until) {
+        escaping = 0;
         accel = 1;
         plain_until = 0;
         resumes++;
@@ -432,6 +503,26 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
           (idle >= o->nmax && rbest <= noise) || idle >= 5 * (int64_t)o->nmax) {
         res->converged = rbest <= 1e-6 * hbar || (o->rtol > 0 && rbest < o->rtol * hbar);
         res->status = res->converged ? TDS_PG_CONVERGED : TDS_PG_STALLED;
+        if (res->converged && probe_x && probes < max_probes && rbest <= fine) {
+          probes++;
+          res->probes++;
+          res->converged = 0; /* decided by the probe */
+          res->status = TDS_PG_COUNT;
+          load_best(s, &w);
+          if (nt.lu) pg_newton_drop(&nt);
+          accel = 0;
+          probing = 1;
+          probe_k0 = k;
+          probe_flips = 0;
+          probe_r0 = INFINITY;
+          if (probe_perturb(s, &w, probe_x, 1e-8 * hbar)) {
+            rc = tds_seterr(ctx, TDS_ENUM, "projected gradient: a vertex could "
+                                           "not be projected onto its constraints");
+            break;
+          }
+          s->iterations++;
+          continue; /* this iteration's moves belong to the kept mesh */
+        }
         break;
       }
       if (si.r < win_min) win_min = si.r;
@@ -550,6 +641,7 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   res->threaded = w.threaded;
   res->cpu_seconds = cpu_now() - c0;
   res->newton_builds = nt.builds;
+  tds_free(&w.al, probe_x);
   pg_newton_free(&nt);
   pg_work_free(&w);
   int rc2 = rc == TDS_OK || rc == TDS_EINTR ? tds_surf_update(ctx, s) : TDS_OK;

@@ -38,6 +38,9 @@ typedef struct tds_pg_opts {
                              the results do not depend on it */
   int newton;             /* 1: Newton-type preconditioning of the
                              accelerated run (default); 0: none */
+  int probe;              /* 1: an accelerated run until converged checks
+                             that its fixed point is stable under the plain
+                             iteration before it stops (default); 0: no */
 } tds_pg_opts;
 
 typedef struct tds_pg_result {
@@ -61,6 +64,8 @@ typedef struct tds_pg_result {
   int status;             /* how the run ended: TDS_PG_* below */
   int64_t window_flips;   /* TDS_PG_CYCLING: flips in the last windows */
   int64_t newton_builds;  /* Jacobians measured (Newton preconditioning) */
+  int64_t probes;         /* stability probes of a converged mesh */
+  int64_t saddles;        /* probes that found it unstable (run went on) */
   double hysteresis;      /* flip hysteresis at the end: 1e-3, widened
                              up to 0.1 while flips cycle (doc/method.md) */
   char message[640];      /* STALLED, CYCLING, MAX: what happened and what
@@ -80,7 +85,7 @@ enum { TDS_PG_COUNT = 0, TDS_PG_CONVERGED, TDS_PG_STALLED, TDS_PG_CYCLING,
        TDS_PG_MAX };
 
 /* Defaults: until converged, N_max 200, s = 2, accelerated (depth 20),
-** flips on. */
+** flips on, Newton preconditioning and the stability probe on. */
 void tds_pg_defaults(tds_pg_opts *o);
 
 /* Run the method. Allocates its work arrays once; the loop allocates

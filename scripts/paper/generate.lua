@@ -28,7 +28,10 @@
 --                the hemisphere an 11-gon pyramid refined three times (a
 --                valence-11 pole), for Schwarz P the lattice with 20
 --                vertices per circle (fixed edges 1.4 times the interior)
--- Every generator is deterministic: the seed is the family's and the case's.
+-- Every generator is deterministic: the seed is the family's and the case's
+-- (and the optional salt's: G.experiment(family, case, salt) with a
+-- positive integer salt gives another input of the same kind, for checks
+-- on inputs nobody has looked at; the name then ends in "_sSALT").
 local dir = debug.getinfo(1, "S").source:match("^@(.*/)") or "./"
 local M = dofile(dir .. "meshes.lua")
 local G = {}
@@ -267,10 +270,10 @@ local function perturb(t, amp, rng)
   end
 end
 
-local function seed_of(family, case)
+local function seed_of(family, case, salt)
   local s = 0
   for i = 1, #family do s = s * 131 + family:byte(i) end
-  return (s * 1000 + case) % 2^52 + 12345
+  return (s * 1000 + case + 7919 * (salt or 0)) % 2^52 + 12345
 end
 
 -- Disk surfaces (hemisphere, drops): unit disk, nrim boundary points,
@@ -511,11 +514,15 @@ local function mean_edge_of(t)
   return s / n
 end
 
--- The experiment table (for common.lua's C.run) of case 1..10 of family.
-function G.experiment(family, case)
+-- The experiment table (for common.lua's C.run) of case 1..10 of family;
+-- salt (optional, a positive integer): another seed.
+function G.experiment(family, case, salt)
   local kind = G.kinds[case] or error(("case %s: 1..%d expected"):format(tostring(case), G.cases))
-  local rng = M.rng(seed_of(family, case))
-  local name = ("%s_%02d_%s"):format(family, case, kind)
+  if salt ~= nil and (math.type(salt) ~= "integer" or salt < 1) then
+    error(("salt %s: a positive integer expected"):format(tostring(salt)))
+  end
+  local rng = M.rng(seed_of(family, case, salt))
+  local name = ("%s_%02d_%s"):format(family, case, kind) .. (salt and "_s" .. salt or "")
   local function finish(t)
     if kind == "perturbed" then perturb(t, 0.25 * mean_edge_of(t), rng) end
     return t

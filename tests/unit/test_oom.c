@@ -350,7 +350,7 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
   switch (c->op) {
   case 'p':
     tds_pg_defaults(&po);
-    po.iterations = 3;
+    po.max_iterations = 3; /* until converged (its arrays: the probe's too), capped */
     po.every = -1;
     return tds_pg_run(ctx, s, &po, &pr);
   case 'h': return hessian(ctx, s);
