@@ -9,7 +9,7 @@ set -e
 # The program: Lua, readline, libmicrohttpd (the live view's server),
 # cairo and a font (pictures); MUMPS (sequential), CHOLMOD (SuiteSparse:
 # Cholesky of definite systems) and LAPACK (hessian, eigenvalues:
-# src/la_mumps.c, src/la_chol.c, src/newton*.c); OpenBLAS (single-threaded),
+# src/la_mumps.c, src/la_chol.c, src/spchol.c, src/newton*.c); OpenBLAS (single-threaded),
 # which becomes the system's libblas.so.3 and liblapack.so.3: MUMPS's
 # factorisation runs twice as fast on it as on the reference BLAS.
 BUILD_PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev libmicrohttpd-dev

@@ -149,7 +149,9 @@ assemble_k(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int kind, term *t0,
       tds_gather_facet(m, el, &C);
     else
       tds_gather_edge(m, TDS_OREF(el, 0), &C);
-    for (int c = 0; c < kind; c++) L.x[c] = C.x[c];
+    L.x[0] = C.x[0]; /* not a loop: gcc makes it a memcpy call per element */
+    L.x[1] = C.x[1];
+    if (kind == TDS_EL_FACET) L.x[2] = C.x[2];
     if (n0) {
       int want = want_grad(out, t0, sk0, n0);
       double v = k0(&L, want ? g : NULL, hp);
@@ -458,11 +460,24 @@ static int s_str_tail(const tds_surf *s, const term *t, tds_id e, sink *o) {
 }
 
 /* Body areas, pressures, gravity and constraint contents of the string
-** model. */
-static int string_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
+** model; with `tension` also the edges' tension (plain lengths), in the
+** areas' pass. */
+static int string_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int tension) {
   int rc = tds_strings_index(ctx, s);
-  if (rc != TDS_OK || s->m.nb == 0) return rc;
-  rc = energy_term(ctx, s, out, make(s, TDS_M_EDGE_AREA, s_str_area, NULL, 0));
+  if (rc != TDS_OK) return rc;
+  if (s->m.nb == 0)
+    return tension ? energy_term(ctx, s, out, make(s, TDS_M_EDGE_LENGTH, s_edge_tension, NULL, 0))
+                   : TDS_OK;
+  term area = make(s, TDS_M_EDGE_AREA, s_str_area, NULL, 0);
+  if (tension) { /* fused with the areas: one gather per edge */
+    term ten = make(s, TDS_M_EDGE_LENGTH, s_edge_tension, NULL, 0);
+    if (!out->grad) area.gq = ten.gq = -2;
+    rc = assemble_k(ctx, s, out, TDS_EL_EDGE, &area, tds_mk_edge_area, s_str_area, &ten,
+                    ten.row->eval, s_edge_tension);
+    out->energy += ten.total + area.total;
+  } else {
+    rc = energy_term(ctx, s, out, area);
+  }
   if (rc == TDS_OK && s->gravity_on && s->gravity != 0)
     rc = energy_term(ctx, s, out, make(s, TDS_M_STRING_GRAVITY, s_str_gravity, NULL, 0));
   for (int c = 0; c < TDS_MAX_CON && rc == TDS_OK; c++) {
@@ -484,9 +499,11 @@ static int edge_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
   for (tds_id e = 0; e < s->m.ne && !anyten; e++) anyten = s->m.eten[e] != 0;
   if (anyten && s->metric_on) /* METRIC: lengths in the metric */
     rc = energy_term(ctx, s, out, make(s, TDS_M_METRIC_LENGTH, s_edge_tension, s->metric, 0));
+  else if (anyten && s->str) /* string_terms: fused with the cells' areas */
+    return string_terms(ctx, s, out, 1);
   else if (anyten)
     rc = energy_term(ctx, s, out, make(s, TDS_M_EDGE_LENGTH, s_edge_tension, NULL, 0));
-  if (s->str) return rc == TDS_OK ? string_terms(ctx, s, out) : rc;
+  if (s->str) return rc == TDS_OK ? string_terms(ctx, s, out, 0) : rc;
   for (int c = 0; c < TDS_MAX_CON && rc == TDS_OK; c++) {
     const tds_constraint *con = &s->con[c];
     if (!con->number) continue;

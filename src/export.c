@@ -354,6 +354,7 @@ static char *body_path(const tds_alloc *a, const char *path, tds_id body) {
 }
 
 int tds_export(tds_ctx *ctx, tds_surf *s, const char *path, const tds_export_opts *o) {
+  if (s->str) return tds_export_strings(ctx, s, path, o); /* edges, not triangles */
   if (s->m.torus) { /* each facet unwrapped, never an edge across the cell */
     tds_surf view;
     int vrc = tds_torus_view(ctx, s, &view);

@@ -45,6 +45,10 @@ int tds_write_vtu(tds_ctx *ctx, FILE *f, const xmesh *x, int enc, int appended);
 int tds_write_vtk(tds_ctx *ctx, FILE *f, const xmesh *x, int enc);
 int tds_write_msh(tds_ctx *ctx, FILE *f, const xmesh *x, int enc, int version);
 
+/* export.h's tds_export for a string-model surface (export_string.c):
+** its edges as lines (OBJ, legacy VTK). Same status codes. */
+int tds_export_strings(tds_ctx *ctx, tds_surf *s, const char *path, const tds_export_opts *o);
+
 /* Byte writers with an explicit byte order (le: little-endian). */
 void xput_i32(FILE *f, int32_t v, int le);
 void xput_u32(FILE *f, uint32_t v, int le);

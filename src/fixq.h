@@ -11,10 +11,11 @@
 #ifndef TDS_FIXQ_H
 #define TDS_FIXQ_H
 
+#include "sparse.h"
 #include "surf.h"
 
 /* Above this many constrained quantities the Gram matrix is assembled
-** sparse and factored by the sparse LDL^T (la.h), not dense: a 2-D foam of 10,000 cells would otherwise take 800 MB and
+** sparse and factored by the sparse Cholesky (spchol.h), not dense: a 2-D foam of 10,000 cells would otherwise take 800 MB and
 ** a cubic-time solve. */
 #define TDS_FIXQ_DENSE_MAX 400
 
@@ -33,6 +34,22 @@ typedef struct tds_fixq {
   int32_t *eq;          /* entry -> q */
   double (*g)[3];       /* entry -> gradient */
   int32_t nent;
+  /* The sparse path's Gram matrix (fixq.c), made at its first solve and
+  ** kept with the pattern: its upper triangle (CSC), where each vertex's
+  ** entry pairs add (gmap), the values last factored (gold) and their
+  ** factorisation (gf, analysed once). */
+  tds_spmat gm;
+  int32_t *gmap;
+  double *gold;
+  double *gwork;        /* 4 nq: conjugate gradients' vectors */
+  struct tds_spchol *gf;
+  int gfok;             /* gf holds the factors of gold */
+  /* The relative residual tds_fixq_restore's sparse solve may leave
+  ** (0: as exact as a direct solve). A caller that repeats the restoring
+  ** move until the targets are met (a Newton iteration) may set it: the
+  ** solve is then cheaper, and each move still shrinks the error by
+  ** about this factor. */
+  double restore_rtol;
   tds_alloc alloc;      /* the allocator of the arrays (the ctx's at build) */
 } tds_fixq;
 

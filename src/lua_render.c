@@ -223,7 +223,7 @@ static int l_snapshot(lua_State *L) {
     lua_setfield(L, -2, "body_colors");
   }
   lua_pushinteger(L, in.drawn);
-  lua_setfield(L, -2, "facets");
+  lua_setfield(L, -2, st->s.str ? "edges" : "facets"); /* string model: edges drawn */
   lua_pushinteger(L, o.width);
   lua_setfield(L, -2, "width");
   lua_pushinteger(L, o.height);

@@ -271,6 +271,7 @@ static void paint_facets(cairo_t *cr, const rfacet *rf, int32_t n, int smooth,
 
 int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
                    const char *path, tds_render_info *info) {
+  if (s->str) return tds_render_strings(ctx, s, o, path, info); /* edges, not facets */
   if (s->m.torus) { /* each facet unwrapped, never an edge across the cell */
     tds_surf view;
     int vrc = tds_torus_view(ctx, s, &view);

@@ -18,4 +18,12 @@ void tds_draw_swatches(cairo_t *cr, double x, double y, const int32_t *ids, int 
 /* Write the image as PNG: TDS_OK or TDS_EIO naming the file. */
 int tds_write_png(tds_ctx *ctx, cairo_surface_t *img, const char *path);
 
+/* render.h's tds_render_png for a string-model surface (s->str):
+** render_string.c. Same options, results and status codes. */
+struct tds_surf;
+struct tds_render_opts;
+struct tds_render_info;
+int tds_render_strings(tds_ctx *ctx, struct tds_surf *s, const struct tds_render_opts *o,
+                       const char *path, struct tds_render_info *info);
+
 #endif

@@ -264,12 +264,91 @@ def colors(out):
     report("evolver_colors_and_clear", not why, "; ".join(why))
 
 
+def strings_part(out, seed, name):
+    """Run PART name of strings.tds: its INFO lines by their first three
+    words, its other lines by their first word, as lists of numbers."""
+    env = dict(os.environ, OUT=out, SEED=str(seed), PART=name)
+    p = subprocess.run([TDS, "-q", os.path.join(HERE, "strings.tds")], env=env,
+                       capture_output=True, text=True)
+    if p.returncode:
+        raise RuntimeError(f"strings.tds {name}: {p.stderr.strip() or p.stdout.strip()}")
+    rows = {}
+    for line in p.stdout.splitlines():
+        w = line.split()
+        k = 3 if w[0] == "INFO" else 1
+        rows.setdefault(" ".join(w[:k]), []).append([float(x) for x in w[k:]])
+    return rows
+
+
+def strings_fixed(out):
+    """String-model pictures without a seed (strings.tds). The bubble,
+    filled with its body's colour: the pixels showing exactly that colour
+    cover the cell's area (A scale^2) less at most the inner half of the
+    outline (width 400/300 px) and one anti-aliased pixel along the
+    perimeter. The tilted loop in 3-D: a dark pixel (at most 80 on every
+    channel; edges are grey 26) within a pixel of every projected corner,
+    and white at the corners' mean (no fill without bodies). Every edge is
+    drawn; a colouring that needs facets is refused."""
+    why = []
+    rows = strings_part(out, 7, "bubble")
+    img = read_png(os.path.join(out, "bubble.png"))
+    area, perim = rows["INFO bubble area"][0][0], rows["INFO bubble perimeter"][0][0]
+    drawn, count = rows["INFO bubble edges"][0]
+    c = np.array(rows["INFO bubble color"][0])
+    n = (np.abs(img - c).max(axis=2) <= 2).sum()
+    if not (area - perim * (400 / 300 / 2 + 1) <= n <= area):
+        why.append(f"{n} pixels of the body colour for an area of {area:.0f} px")
+    if drawn != count:
+        why.append(f"{drawn:.0f} of {count:.0f} edges drawn")
+    report("strings_bubble_area", not why, "; ".join(why))
+
+    why = []
+    rows = strings_part(out, 7, "loop")
+    img = read_png(os.path.join(out, "loop.png"))
+    for x, y in rows["CORNER"]:
+        i, j = int(y), int(x)
+        if img[i - 1:i + 2, j - 1:j + 2].max(axis=2).min() > 80:
+            why.append(f"no dark pixel at corner ({x:.0f}, {y:.0f})")
+    mx, my = np.mean([r[0] for r in rows["CORNER"]]), np.mean([r[1] for r in rows["CORNER"]])
+    if img[int(my), int(mx)].min() < 255:
+        why.append(f"the loop's middle ({mx:.0f}, {my:.0f}) is {img[int(my), int(mx)]}")
+    drawn, count = rows["INFO loop edges"][0]
+    if drawn != count:
+        why.append(f"{drawn:.0f} of {count:.0f} edges drawn")
+    if rows["INFO loop refused"][0][0] != 1:
+        why.append("color = mean_curvature was not refused in the string model")
+    report("strings_loop", not why, "; ".join(why))
+
+
+def strings_foam(out, seed):
+    """A seeded perturbed honeycomb foam (convex cells) coloured by body:
+    each cell's vertex centroid shows its body's colour (within 2 of 255),
+    each wall's midpoint is dark (walls are 800/300 px wide, grey 26: at
+    most 80 on every channel), every edge is drawn."""
+    why = []
+    rows = strings_part(out, seed, "foam")
+    img = read_png(os.path.join(out, "foam.png"))
+    for x, y, *col in rows["CELL"]:
+        p = img[int(y), int(x)]
+        if np.abs(p - np.array(col)).max() > 2:
+            why.append(f"cell centroid pixel ({x:.0f}, {y:.0f}) is {p}, not {col}")
+    for x, y in rows["WALL"]:
+        p = img[int(y), int(x)]
+        if p.max() > 80:
+            why.append(f"wall midpoint pixel ({x:.0f}, {y:.0f}) is {p}, not dark")
+    drawn, count = rows["INFO foam edges"][0]
+    if drawn != count:
+        why.append(f"{drawn:.0f} of {count:.0f} edges drawn")
+    report(f"strings_foam_seed{seed}", not why, "; ".join(why[:3]))
+
 with tempfile.TemporaryDirectory() as out:
     for name, fn in (("sphere", lambda: [sphere(out, s) for s in (42, 1234)]),
                      ("bubbles", lambda: bubbles(out, 7)),
                      ("catenoid", lambda: catenoid(out)),
                      ("plots", lambda: plots(out, 3)),
-                     ("colors", lambda: colors(out))):
+                     ("colors", lambda: colors(out)),
+                     ("strings", lambda: strings_fixed(out)),
+                     ("strings_foam", lambda: [strings_foam(out, s) for s in (7, 31)])):
         try:
             fn()
         except Exception as e:  # a crash of one group is a failure, not the end
