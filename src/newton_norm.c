@@ -5,16 +5,18 @@
 
 #include "expr.h"
 #include "fixq.h"
+#include "gather.h"
 #include "motion.h"
 #include "newton_int.h"
 #include "vec3.h"
 
 /* Area vector (length = area) of live facet f. */
 static void facet_vec(const tds_mesh *m, tds_id f, double c[3]) {
-  const tds_id *fv = m->fv[f];
+  tds_corners C; /* unwrapped: in the torus a facet may cross the cell */
+  tds_gather_facet(m, f, &C);
   double a[3], b[3];
-  v3_sub(a, m->x[fv[1]], m->x[fv[0]]);
-  v3_sub(b, m->x[fv[2]], m->x[fv[0]]);
+  v3_sub(a, C.x[1], C.x[0]);
+  v3_sub(b, C.x[2], C.x[0]);
   v3_cross(c, a, b);
   v3_scale(c, 0.5);
 }
@@ -118,7 +120,7 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
     if (m->eflags[e] & TDS_DEAD) continue;
     if (tds_edge_valence(m, e) < 3) continue;
     double d[3];
-    v3_sub(d, m->x[m->ev[e][1]], m->x[m->ev[e][0]]);
+    tds_edge_vec(m, TDS_OREF(e, 0), d); /* unwrapped (torus) */
     double len = v3_norm(d);
     if (!(len > 0)) continue;
     v3_scale(d, 1 / len);
