@@ -21,8 +21,9 @@
 int tds_autopop(tds_ctx *ctx, tds_surf *s, const double (*vel)[3], int32_t nvel,
                 double dt, int *changed);
 
-/* autochop: every edge whose length after the move would exceed `len` is
-** split at its midpoint as l does (new edges are not tested again).
+/* autochop: every edge whose length after twice the move would exceed
+** `len` is split at its midpoint as l does (new edges are not tested
+** again): Evolver's choice, measured (autopop.c).
 ** Prints "Autochopped n edges." and sets *changed when there were any;
 ** then *ends (to free with the mesh's allocator) holds the two ends of
 ** the edge each new vertex split, in the order the new vertices were

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "eval.h"
+#include "mobility.h"
 #include "motion.h"
 #include "progress.h"
 #include "recalc.h"
@@ -31,6 +32,7 @@ typedef struct work {
   double slope;      /* dE/ds along vel at the start (negative) */
   int undone;        /* check_increase took the last step back */
   int keep_vel;      /* autochop: vel is the motion from before the chop */
+  double *mob;       /* area normalization: 1/sqrt(a_v) (mobility.h), or NULL */
   tds_alloc al;      /* the ctx's allocator */
 } work;
 
@@ -41,6 +43,7 @@ static void work_free(work *w) {
   tds_free(&w->al, w->vel);
   tds_free(&w->al, w->rest);
   tds_free(&w->al, w->rest0);
+  tds_free(&w->al, w->mob);
   tds_fixq_free(&w->fq);
 }
 
@@ -55,7 +58,9 @@ static int work_init(tds_ctx *ctx, tds_surf *s, work *w) {
   w->vel = tds_calloc(&w->al, nv, sizeof *w->vel);
   w->rest = tds_calloc(&w->al, nv, sizeof *w->rest);
   w->rest0 = tds_calloc(&w->al, nv, sizeof *w->rest0);
-  if (!w->x0 || !w->p0 || !w->grad || !w->vel || !w->rest || !w->rest0) {
+  if (s->area_normalization) w->mob = tds_calloc(&w->al, nv ? nv : 1, sizeof *w->mob);
+  if (!w->x0 || !w->p0 || !w->grad || !w->vel || !w->rest || !w->rest0 ||
+      (s->area_normalization && !w->mob)) {
     work_free(w);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   }
@@ -100,6 +105,13 @@ static int direction(tds_ctx *ctx, tds_surf *s, work *w) {
     for (int32_t i = fq->start[v]; i < fq->start[v + 1]; i++)
       tds_motion_project(s, v, fq->g[i]);
   }
+  if (w->mob) { /* area normalization: work in the M-weighted metric */
+    tds_area_norm_weights(s, w->mob);
+    for (tds_id v = 0; v < m->nv; v++) {
+      v3_scale(w->grad[v], w->mob[v]);
+      for (int32_t i = fq->start[v]; i < fq->start[v + 1]; i++) v3_scale(fq->g[i], w->mob[v]);
+    }
+  }
   rc = tds_fixq_multipliers(ctx, fq, w->grad);
   if (rc != TDS_OK) return rc;
   store_pressures(s, fq);
@@ -121,6 +133,10 @@ static int direction(tds_ctx *ctx, tds_surf *s, work *w) {
       w->vel[v][2] += lam * fq->g[i][2];
     }
     w->slope -= v3_dot(w->vel[v], w->vel[v]);
+    if (w->mob) {
+      v3_scale(w->vel[v], w->mob[v]);
+      if (w->use_rest0) v3_scale(w->rest0[v], w->mob[v]);
+    }
   }
   return TDS_OK;
 }
