@@ -11,7 +11,8 @@
 #include "surf.h"
 
 /* autopop: every edge that the move would shorten to below L = sqrt(2 dt)
-** is collapsed (as t does), then every facet that the move would shrink
+** is collapsed (as t does; in the string model its end with the lower id
+** stays where it is, as Evolver's), then every facet that the move would shrink
 ** to an area below L * perimeter / 2 is deleted (as `delete facet`
 ** does); all are found first, then removed, or with s->immediate_autopop
 ** each as soon as it is found. If any went, edges and vertices are popped

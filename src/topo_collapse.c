@@ -74,7 +74,9 @@ static int same_edges(const tds_mesh *m, tds_id f, tds_id g) {
   return 1;
 }
 
-int tds_collapse_edge(tds_surf *s, tds_id e) {
+int tds_collapse_edge(tds_surf *s, tds_id e) { return tds_collapse_edge_at(s, e, -1); }
+
+int tds_collapse_edge_at(tds_surf *s, tds_id e, int end) {
   tds_mesh *m = &s->m;
   if (e < 0 || e >= m->ne || !tds_alive(m->eflags, e)) return 0;
   if (m->eflags[e] & TDS_FIXED) return 0;
@@ -82,6 +84,11 @@ int tds_collapse_edge(tds_surf *s, tds_id e) {
   int pt = pinned(s, t, e), ph = pinned(s, h, e);
   if (pt && ph) return 0;
   tds_id keep = ph ? h : t, gone = ph ? t : h;
+  if (end >= 0 && !pt && !ph) { /* that end stays where it is */
+    keep = end ? h : t;
+    gone = end ? t : h;
+    pt = 1; /* (no move to the midpoint below) */
+  }
   /* The edges at either end, whether each comes from `gone` and had
   ** facets; another edge between the ends would become a loop. */
   int32_t nat = 0;
