@@ -147,6 +147,10 @@ evolver_run "$EXAMPLES/sphere.fe" 'section' > "$tmp/ev.out"
 dofile('$ROOT/tests/evolver/numcmp.lua')
 local pat = '^ *%-?%d+%.%d+ +%-?%d+%.%d+ +%-?%d+%.%d+ *$'
 numcmp('commands/section-sphere', lines_of('$tmp/ev.out', pat), lines_of('$tmp/tds.out', pat), 1e-12)"
+# In the string model total_area is the total length (in the metric with
+# METRIC), as in Evolver.
+compare total-area-popstr "$EXAMPLES/popstr.fe" 1e-12 'printf "K %.15g %.15g\n", total_area, total_length'
+compare total-area-metric "$EXAMPLES/metric.fe" 1e-12 'printf "K %.15g %.15g\n", total_area, total_length'
 # Named quantities' attributes, and parameters assigned from commands.
 compare quantity-qmound "$EXAMPLES/qmound.fe" 1e-12 'printf "K1 %.15g %.15g\n", vol.value, vol.target
 angle := 60; printf "K2 %g\n", angle'
@@ -190,6 +194,16 @@ for f in cat mound qmound catbody; do
 dofile('$ROOT/tests/evolver/numcmp.lua')
 numcmp('commands/evolver-search/$f', lines_of('$tmp/ev.k', '^K'), lines_of('$tmp/tds.k', '^K'), 1e-10)"
 done
+# knotty.fe's gogo (g 50; U; g 50) from a length 2.7 off its target:
+# measured 9e-9 apart (its long trials are projected exactly where
+# Evolver's restoring moves are not known, doc/commands.md), so 1e-7.
+K='printf "K %d %d %.15g\n", vertex_count, edge_count, total_energy'
+evolver_run "$EXAMPLES/knotty.fe" "gogo; $K" | grep '^K ' > "$tmp/ev.k"
+"$TDS" -q "$EXAMPLES/knotty.fe" -e "tds.setting('evolver_line_search', true); gogo(); evolver [[ $K ]]" 2>&1 |
+  grep '^K ' > "$tmp/tds.k"
+"$TDS" -q -e "
+dofile('$ROOT/tests/evolver/numcmp.lua')
+numcmp('commands/evolver-search/knotty', lines_of('$tmp/ev.k', '^K'), lines_of('$tmp/tds.k', '^K'), 1e-7)"
 # tankex.fe, g 10; r; g 2000: with Evolver's search tds ends where
 # Evolver does (measured 1.1e-7 apart: over 2000 steps near a stall on a
 # folded facet the rounding differences grow), so 1e-6; tds's own search
