@@ -187,6 +187,7 @@ demo: $(TDS_BIN)
 bench: $(TDS_BIN) | deps-test
 	sh bench/cube.sh ./$(TDS_BIN)
 	sh bench/string.sh ./$(TDS_BIN)
+	sh bench/foam3.sh ./$(TDS_BIN)
 	sh bench/hessian.sh ./$(TDS_BIN)
 	sh bench/pictures.sh ./$(TDS_BIN)
 

@@ -734,6 +734,7 @@ local TOGGLE_MSG = {
   autopop = "Autopopping %s.\n (was %s)",
   immediate_autopop = "Immediate autopop mode %s.\n (was %s)",
   autochop = "Autochopping %s. (was %s)",
+  area_normalization = "Area normalization %s. (was %s)",
   little_endian = "little_endian %s. (was %s)",
   big_endian = "big_endian %s. (was %s)",
   hessian_normal = "hessian_normal %3s. (was %s)",
@@ -755,7 +756,8 @@ local function toggle_get(name)
   if name == "quiet" then return tds.quiet() end
   if name == "gravity" then local _, on = tds.gravity(); return on end
   if name == "check_increase" then return tds.setting("check_increase") end
-  if name == "autopop" or name == "immediate_autopop" or name == "autochop" then return tds.setting(name) end
+  if name == "autopop" or name == "immediate_autopop" or name == "autochop"
+      or name == "area_normalization" then return tds.setting(name) end
   if name == "little_endian" then return endian == "<" end
   if name == "big_endian" then return endian == ">" end
   if name == "transforms" then return show_transforms end
@@ -771,7 +773,8 @@ local function toggle_set(name, on)
   elseif name == "quiet" then tds.quiet(on)
   elseif name == "gravity" then local g = tds.gravity(); tds.gravity(g, on)
   elseif name == "check_increase" then tds.setting("check_increase", on)
-  elseif name == "autopop" or name == "immediate_autopop" or name == "autochop" then tds.setting(name, on)
+  elseif name == "autopop" or name == "immediate_autopop" or name == "autochop"
+      or name == "area_normalization" then tds.setting(name, on)
   elseif name == "little_endian" then endian = on and "<" or ">"
   elseif name == "big_endian" then endian = on and ">" or "<"
   elseif name == "transforms" then show_transforms = on
@@ -1117,7 +1120,7 @@ for w in ([[J e A a b f k p Q W y Z z s P D F H h X
   display_text delete_text postscript binary_off_file off_file geomview
   homothety ribiere
   quietgo quietload verbose approximate_curvature runge_kutta
-  post_project volgrads_every area_normalization effective_area normal_motion
+  post_project volgrads_every effective_area normal_motion
   ysmp bunch_kaufman sparse_constraints augmented_hessian
   kusner conf_edge normal_curvature boundary_curvature
   show_all_quantities interp_bdry_param break_after_warning break_on_warning

@@ -384,7 +384,8 @@ function check_increase(on)
 end
 
 -- autopop(on), immediate_autopop(on), autochop(on [, length]): the mesh
--- maintenance g does before each step (doc/commands.md). No argument
+-- maintenance g does before each step; area_normalization(on): g's motion
+-- is force / (vertex area) (doc/commands.md). No argument
 -- toggles.
 local function gtoggle(name, what)
   return function(on, len)
@@ -398,6 +399,7 @@ end
 autopop = gtoggle("autopop", "Autopopping")
 immediate_autopop = gtoggle("immediate_autopop", "Immediate autopop mode")
 autochop = gtoggle("autochop", "Autochopping")
+area_normalization = gtoggle("area_normalization", "Area normalization")
 
 -- recalc(): after assigning parameters, put boundary vertices where their
 -- parameters say and constrained vertices back on their constraints (g, r

@@ -11,7 +11,8 @@
 #include "surf.h"
 
 /* autopop: every edge that the move would shorten to below L = sqrt(2 dt)
-** is collapsed (as t does), then every facet that the move would shrink
+** is collapsed (as t does; in the string model its end with the lower id
+** stays where it is, as Evolver's), then every facet that the move would shrink
 ** to an area below L * perimeter / 2 is deleted (as `delete facet`
 ** does); all are found first, then removed, or with s->immediate_autopop
 ** each as soon as it is found. If any went, edges and vertices are popped
@@ -21,8 +22,9 @@
 int tds_autopop(tds_ctx *ctx, tds_surf *s, const double (*vel)[3], int32_t nvel,
                 double dt, int *changed);
 
-/* autochop: every edge whose length after the move would exceed `len` is
-** split at its midpoint as l does (new edges are not tested again).
+/* autochop: every edge whose length after twice the move would exceed
+** `len` is split at its midpoint as l does (new edges are not tested
+** again): Evolver's choice, measured (autopop.c).
 ** Prints "Autochopped n edges." and sets *changed when there were any;
 ** then *ends (to free with the mesh's allocator) holds the two ends of
 ** the edge each new vertex split, in the order the new vertices were

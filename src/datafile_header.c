@@ -27,8 +27,8 @@ static const char *const unsupported[] = {
     "squared_gaussian_curvature", "square_gaussian_curvature", "sqgauss",
     "insulating_knot_energy", "conducting_knot_energy", "mobility",
     "mobility_tensor", "integral_order", "integral_order_1d",
-    "integral_order_2d", "runge_kutta", "homothety", "autopop", "autochop",
-    "area_normalization", "approximate_curvature", "effective_area", "jiggle",
+    "integral_order_2d", "runge_kutta", "homothety", "approximate_curvature",
+    "effective_area", "jiggle",
     "temperature", "length_method_name", "area_method_name",
     "volume_method_name", "fixed_area",
     "area_fixed", "load_library", "interp_bdry_param",
@@ -636,6 +636,25 @@ static int h_display_mode(df *d, const hdr_kw *k) {
   return TDS_OK;
 }
 
+/* AUTOPOP, AUTOCHOP length, AREA_NORMALIZATION: the toggles of g
+** (autopop.h, iterate.c), on from the start as in Evolver. */
+static int h_toggle(df *d, const hdr_kw *k) {
+  tds_surf *s = d->s;
+  if (!strcmp(k->name, "autopop")) {
+    s->autopop = 1;
+  } else if (!strcmp(k->name, "autochop")) {
+    double v;
+    int rc = df_header_value(d, &v, "AUTOCHOP");
+    if (rc) return rc;
+    if (!(v > 0)) return df_err(d, NULL, TDS_ESYNTAX, "AUTOCHOP length must be positive");
+    s->autochop = 1;
+    s->autochop_length = v;
+  } else {
+    s->area_normalization = 1;
+  }
+  return TDS_OK;
+}
+
 /* A keyword asking for what tds does anyway. */
 static int h_nothing(df *d, const hdr_kw *k) {
   (void)d;
@@ -701,6 +720,9 @@ static const hdr_kw header_kw[] = {
     {"space_dimension", h_dimension, 0, 0},
     {"surface_dimension", h_dimension, 0, 0},
     {"scale", h_scale, AT(scale), NONNEG},
+    {"autopop", h_toggle, 0, 0},
+    {"autochop", h_toggle, 0, 0},
+    {"area_normalization", h_toggle, 0, 0},
     {"scale_limit", h_value, AT(scale_limit), POSITIVE},
     {"view_matrix", h_view_matrix, 0, 0},
     {"slice_coeff", h_slice, 0, 0},

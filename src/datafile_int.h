@@ -129,6 +129,7 @@ typedef struct df {
   int string_model;    /* STRING or SURFACE_DIMENSION 1 given */
   int torus_line;      /* line of TORUS / TORUS_FILLED (0: none) */
   int periods_line;    /* line of PERIODS (0: none) */
+  int periods_dim;     /* rows (and values per row) PERIODS had: 2 or 3 */
   /* Element ids: as Evolver, elements are numbered 1, 2, ... in the order
   ** the file gives them (the file's ids become `original`), unless the
   ** top section says KEEP_ORIGINALS (slot = the file's id - 1). */

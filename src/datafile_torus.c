@@ -24,8 +24,6 @@ static void unit_periods(tds_mesh *m) {
 }
 
 int df_torus(df *d, int filled) {
-  if (d->string_model)
-    return df_not_supported(d, NULL, "torus"); /* the string model's torus */
   if (d->app)
     return df_err(d, NULL, TDS_ESYNTAX, "%s in a file added by addload is not supported yet",
                   filled ? "TORUS_FILLED" : "TORUS");
@@ -84,15 +82,18 @@ int df_periods(df *d) {
     return df_err(d, NULL, TDS_ESYNTAX, "PERIODS given twice (first at line %d)",
                   d->periods_line);
   d->periods_line = df_line_of(d, NULL);
-  if (d->space_dim == 2)
-    return df_err(d, NULL, TDS_ESYNTAX, "PERIODS in SPACE_DIMENSION 2 is not supported yet");
-  double p[3][3];
+  /* in SPACE_DIMENSION 2 (the string model's plane) two rows of two; the
+  ** third period is then the unit z vector, so the cell "volume" is the
+  ** parallelogram's area and z never wraps */
+  int dim = d->space_dim == 2 ? 2 : 3;
+  d->periods_dim = dim;
+  double p[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 1}};
   tds_expr *e[3][3] = {{NULL}};
   int rc = TDS_OK;
   d->split = 1;
-  for (int i = 0; i < 3 && !rc; i++) {
+  for (int i = 0; i < dim && !rc; i++) {
     int line = 0;
-    for (int j = 0; j < 3 && !rc; j++) {
+    for (int j = 0; j < dim && !rc; j++) {
       char what[64];
       snprintf(what, sizeof what, "PERIODS row %d", i + 1);
       rc = df_header_expr(d, TDS_EXPR_NOCOORD, &e[i][j], what);
@@ -101,8 +102,8 @@ int df_periods(df *d) {
       if (j == 0) line = l;
       else if (l != line) {
         rc = df_err_line(d, line, TDS_ESYNTAX,
-                    "PERIODS row %d has %d values; a period vector needs 3 on one line",
-                    i + 1, j);
+                    "PERIODS row %d has %d values; a period vector needs %d on one line",
+                    i + 1, j, dim);
         break;
       }
       double vars[TDS_NVARS] = {0};
@@ -114,8 +115,8 @@ int df_periods(df *d) {
     }
     if (!rc && !df_at_eol(d) && df_looks_value(d))
       rc = df_err(d, d->p, TDS_ESYNTAX,
-                  "PERIODS row %d has more than 3 values (the torus model is 3-dimensional)",
-                  i + 1);
+                  "PERIODS row %d has more than %d values (%s)", i + 1, dim,
+                  dim == 3 ? "the torus model is 3-dimensional" : "SPACE_DIMENSION 2");
   }
   d->split = 0;
   if (!rc) {
@@ -132,7 +133,7 @@ int df_periods(df *d) {
   memcpy(s->m.period, p, sizeof p);
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++) {
-      if (tds_expr_uses_params(e[i][j])) {
+      if (e[i][j] && tds_expr_uses_params(e[i][j])) {
         s->period_expr[i][j] = e[i][j];
       } else {
         tds_expr_free(e[i][j]);
@@ -156,6 +157,16 @@ int df_torus_start(df *d, const char *at) {
   /* the group's parameters (rotation_order, ...) as the top section left them */
   if (d->s->m.sym && tds_sym_read_params(d->ctx, d->s) != TDS_OK)
     return df_core(d, d->torus_line, TDS_ERANGE, NULL);
+  int dim = d->space_dim == 2 ? 2 : 3;
+  if (d->periods_line && d->periods_dim != dim)
+    return df_err_line(d, d->periods_line, TDS_ESYNTAX,
+                       "PERIODS has %d vectors of %d but the space has dimension %d "
+                       "(give SPACE_DIMENSION before PERIODS)", d->periods_dim,
+                       d->periods_dim, dim);
+  if (d->s->m.torus && dim == 2) { /* the unit square, not the unit cube */
+    d->s->m.period[2][0] = d->s->m.period[2][1] = 0;
+    d->s->m.period[2][2] = 1;
+  }
   (void)at;
   return TDS_OK;
 }
@@ -174,16 +185,16 @@ int df_edge_wrap(df *d, const char *what, int32_t *wrap) {
     return df_err(d, d->p, TDS_ESYNTAX,
                   "%s: wrap signs (* + -) are the torus's; SYMMETRY_GROUP \"%s\" takes "
                   "wrap N (the group element's code)", what, tds_sym_name(d->s->m.sym));
-  int k[3];
-  for (int i = 0; i < 3; i++) {
+  int k[3] = {0, 0, 0}, dim = d->space_dim == 2 ? 2 : 3;
+  for (int i = 0; i < dim; i++) {
     df_ws(d);
     char c = *d->p;
     int end = d->p[0] && (d->p[1] == ' ' || d->p[1] == '\t' || d->p[1] == 0);
     if ((c != '*' && c != '+' && c != '-') || !end) {
       char b[64];
       return df_err(d, d->p, TDS_ESYNTAX,
-                    "%s: expected 3 wrap signs (* + -), one per period; found %s as sign %d",
-                    what, df_describe(d->p, b, sizeof b), i + 1);
+                    "%s: expected %d wrap signs (* + -), one per period; found %s as sign %d",
+                    what, dim, df_describe(d->p, b, sizeof b), i + 1);
     }
     k[i] = c == '+' ? 1 : c == '-' ? -1 : 0;
     d->p++;
@@ -192,7 +203,7 @@ int df_edge_wrap(df *d, const char *what, int32_t *wrap) {
   if (*d->p == '*' || ((*d->p == '+' || *d->p == '-') &&
                        (d->p[1] == ' ' || d->p[1] == '\t' || d->p[1] == 0)))
     return df_err(d, d->p, TDS_ESYNTAX,
-                  "%s: more than 3 wrap signs (the torus has 3 periods)", what);
+                  "%s: more than %d wrap signs (the torus has %d periods)", what, dim, dim);
   *wrap = tds_wrap_pack(k);
   return TDS_OK;
 }

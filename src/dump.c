@@ -237,8 +237,9 @@ static void header(out *o, const tds_surf *s) {
       fputs("PERIODS\n", f);
     else
       fputs(s->m.torus == 2 ? "TORUS_FILLED\nPERIODS\n" : "TORUS\nPERIODS\n", f);
-    for (int i = 0; i < 3 && s->m.sym <= TDS_SYM_TORUS; i++) {
-      for (int j = 0; j < 3; j++) {
+    int pd = s->str && s->str->space_dim == 2 ? 2 : 3; /* the plane: two of two */
+    for (int i = 0; i < pd && s->m.sym <= TDS_SYM_TORUS; i++) {
+      for (int j = 0; j < pd; j++) {
         if (s->period_expr[i][j]) {
           fputs(j ? " (" : "(", f);
           text(o, s->period_expr[i][j]);
@@ -274,6 +275,14 @@ static void header(out *o, const tds_surf *s) {
     fputs(" FIXED\n", f);
   }
   if (s->symmetric_content) fputs("SYMMETRIC_CONTENT\n", f);
+  /* g's toggles that a datafile can give (Evolver's dump writes them) */
+  if (s->autochop) {
+    fputs("AUTOCHOP", f);
+    num(o, s->autochop_length, "autochop", 0);
+    fputc('\n', f);
+  }
+  if (s->autopop) fputs("AUTOPOP\n", f);
+  if (s->area_normalization) fputs("AREA_NORMALIZATION\n", f);
   view_matrices(o, s);
   fputc('\n', f);
 
@@ -434,8 +443,9 @@ static void elements(out *o, tds_surf *s) {
     if (m->torus && !m->sym) { /* Evolver's signs; larger counts by the wrap word */
       int k[3];
       tds_wrap_unpack(m->ewrap[e], k);
+      int pd = s->str && s->str->space_dim == 2 ? 2 : 3;
       if (k[0] * k[0] <= 1 && k[1] * k[1] <= 1 && k[2] * k[2] <= 1)
-        for (int i = 0; i < 3; i++) fputs(k[i] > 0 ? " +" : k[i] < 0 ? " -" : " *", f);
+        for (int i = 0; i < pd; i++) fputs(k[i] > 0 ? " +" : k[i] < 0 ? " -" : " *", f);
     }
     attrs(o, s, TDS_EDGE, e);
     fputc('\n', f);

@@ -433,6 +433,26 @@ static int s_str_area(const tds_surf *s, const term *t, tds_id e, sink *o) {
   return str_bodies(s, e, 1, 1, o);
 }
 
+/* Torus: the lattice lifts of the cells' loops (string_model.h's
+** eb_lift), weights (-t_y) of the edge_shift row with k = 0 (x1 - x0). */
+static int s_str_lift(const tds_surf *s, const term *t, tds_id e, sink *o) {
+  const tds_strings *st = s->str;
+  const tds_mesh *m = &s->m;
+  (void)t;
+  int n = 0;
+  double pw = 0;
+  for (int32_t k = st->eb_start[e]; k < st->eb_start[e + 1]; k++) {
+    double c = -st->eb_lift[k];
+    if (c == 0) continue;
+    if (n == MAX_SINKS - 1) return -1;
+    tds_id b = st->eb_body[k];
+    o[n++] = (sink){b, c};
+    if (m->bflags[b] & TDS_PRESSURE) pw -= c * m->bpressure[b];
+  }
+  if (pw != 0) o[n++] = (sink){TDS_NONE, pw};
+  return n;
+}
+
 /* G density int int y dA per body, from the same weights. */
 static int s_str_gravity(const tds_surf *s, const term *t, tds_id e, sink *o) {
   const tds_strings *st = s->str;
@@ -477,6 +497,11 @@ static int string_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int tensio
     out->energy += ten.total + area.total;
   } else {
     rc = energy_term(ctx, s, out, area);
+  }
+  if (rc == TDS_OK && s->m.torus && s->str->eb_lift) {
+    term t = make(s, TDS_M_EDGE_SHIFT, s_str_lift, NULL, 0);
+    t.L.k = 0; /* x1 - x0: a shift t_y changes -(y0 + y1) dx / 2 by -t_y dx */
+    rc = energy_term(ctx, s, out, t);
   }
   if (rc == TDS_OK && s->gravity_on && s->gravity != 0)
     rc = energy_term(ctx, s, out, make(s, TDS_M_STRING_GRAVITY, s_str_gravity, NULL, 0));

@@ -222,7 +222,7 @@ static int l_setting(lua_State *L) {
                                       "check_increase", "random_seed",
                                       "evolver_line_search", "autopop",
                                       "immediate_autopop", "autochop",
-                                      "autochop_length", NULL};
+                                      "autochop_length", "area_normalization", NULL};
   int which = luaL_checkoption(L, 1, NULL, names);
   tds_surf *s = &st->s;
   int set = !lua_isnone(L, 2);
@@ -283,6 +283,10 @@ static int l_setting(lua_State *L) {
       s->autochop_length = len;
     }
     lua_pushnumber(L, s->autochop_length);
+    break;
+  case 14:
+    if (set) s->area_normalization = lua_toboolean(L, 2);
+    lua_pushboolean(L, s->area_normalization);
     break;
   case 8: /* the jiggle's generator state (jiggle.h) */
     if (set) s->rng = (uint64_t)luaL_checkinteger(L, 2);

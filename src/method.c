@@ -211,6 +211,7 @@ const tds_method tds_methods[TDS_M_NROWS] = {
     [TDS_M_METRIC_LENGTH] = {"metric_edge_length", TDS_EL_EDGE, TDS_MF_HESS_FD | TDS_MF_METRIC,
                              tds_mk_metric_length},
     [TDS_M_FACET_FLUX] = {"facet_flux", TDS_EL_FACET, 0, tds_mk_facet_flux},
+    [TDS_M_EDGE_SHIFT] = {"edge_shift", TDS_EL_EDGE, 0, tds_mk_edge_shift},
 };
 
 int tds_method_by_name(const char *name) {

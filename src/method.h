@@ -79,6 +79,8 @@ enum {
                                        Riemannian metric ig[0..8] */
   TDS_M_FACET_FLUX,                 /* torus: (N . e_k) / 2, k the row
                                        constant (method_torus.c) */
+  TDS_M_EDGE_SHIFT,                 /* string torus: x1[k] - x0[k], k the row
+                                       constant (method_string.c) */
   TDS_M_NROWS
 };
 
@@ -136,6 +138,7 @@ double tds_mk_vertex_tail(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_metric_length(const tds_mlocal *L, double g[3][3], double h[9][9]);
 /* The torus model's row (method_torus.c). */
 double tds_mk_facet_flux(const tds_mlocal *L, double g[3][3], double h[9][9]);
+double tds_mk_edge_shift(const tds_mlocal *L, double g[3][3], double h[9][9]);
 
 /* Knot, curvature and Hooke rows (method_knot.c). */
 double tds_mk_knot(const tds_mlocal *L, double g[3][3], double h[9][9]);

@@ -12,6 +12,11 @@
 **   vertex_scalar_tail  a constraint's content in the string model, which
 **                       Evolver evaluates at the vertices on the
 **                       constraint where a cell's loop leaves or meets it.
+**   edge_shift          x1[k] - x0[k] (k the row constant): in the torus a
+**                       cell's edge seen from a lattice translate t of its
+**                       stored tail has edge_area less t_y (x1 - x0), so a
+**                       body's area is its edge_area rows plus this row
+**                       weighted by -t_y per loop entry (string_model.h).
 ** Only x and y enter the first two, in 2-D and 3-D space alike (Evolver's
 ** string model measures areas in the x-y plane).
 */
@@ -165,4 +170,17 @@ double tds_mk_metric_length(const tds_mlocal *L, double g[3][3], double h[9][9])
   for (int k = 0; k < 6; k++)
     for (int j = 0; j < k; j++) h[k][j] = h[j][k] = (h[k][j] + h[j][k]) / 2;
   return v;
+}
+
+double tds_mk_edge_shift(const tds_mlocal *L, double g[3][3], double h[9][9]) {
+  int k = (int)L->k;
+  if (k < 0) k = 0;
+  if (k > 2) k = 2;
+  if (g) {
+    memset(g, 0, sizeof(double[3][3]));
+    g[0][k] = -1;
+    g[1][k] = 1;
+  }
+  if (h) memset(h, 0, sizeof(double[9][9]));
+  return L->x[1][k] - L->x[0][k];
 }

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "eval.h"
+#include "gather.h"
 #include "newton_int.h"
 #include "vec3.h"
 
@@ -33,7 +34,7 @@ int tds_hess_diff(tds_ctx *ctx, tds_surf *s, tds_hess *h) {
   for (tds_id e = 0; e < m->ne; e++) {
     if (m->eflags[e] & TDS_DEAD) continue;
     double d[3];
-    v3_sub(d, m->x[m->ev[e][1]], m->x[m->ev[e][0]]);
+    tds_edge_vec(m, TDS_OREF(e, 0), d); /* unwrapped (torus) */
     len += v3_norm(d);
     ne++;
   }

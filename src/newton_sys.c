@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gather.h"
 #include "iterate.h"
 #include "motion.h"
 #include "newton_int.h"
@@ -54,9 +55,11 @@ int tds_nsys_build_metric(tds_ctx *ctx, const tds_mesh *m, double mix, int perp,
   for (tds_id f = 0; f < m->nf; f++) {
     if (m->fflags[f] & TDS_DEAD) continue;
     const tds_id *fv = m->fv[f];
+    tds_corners C; /* unwrapped (torus) */
+    tds_gather_facet(m, f, &C);
     double a[3], b[3], c[3];
-    v3_sub(a, m->x[fv[1]], m->x[fv[0]]);
-    v3_sub(b, m->x[fv[2]], m->x[fv[0]]);
+    v3_sub(a, C.x[1], C.x[0]);
+    v3_sub(b, C.x[2], C.x[0]);
     v3_cross(c, a, b);
     double cl = v3_norm(c);
     double area = 0.5 * cl * m->ften[f]; /* weighted as Evolver's */

@@ -28,9 +28,11 @@ static void free_index(tds_strings *st) {
   tds_free(&st->alloc, st->eb_start);
   tds_free(&st->alloc, st->eb_body);
   tds_free(&st->alloc, st->eb_w);
+  tds_free(&st->alloc, st->eb_lift);
   st->eb_start = NULL;
   st->eb_body = NULL;
   st->eb_w = NULL;
+  st->eb_lift = NULL;
   st->idx_gen = 0;
   st->idx_ne = 0;
 }
@@ -206,8 +208,9 @@ int tds_strings_index(tds_ctx *ctx, tds_surf *s) {
   size_t cap = 2 * (size_t)st->noe + 1;
   st->eb_body = tds_malloc(&st->alloc, cap * sizeof *st->eb_body);
   st->eb_w = tds_malloc(&st->alloc, cap * sizeof *st->eb_w);
+  if (m->torus) st->eb_lift = tds_malloc(&st->alloc, cap * sizeof *st->eb_lift);
   int32_t *cnt = tds_calloc(&ctx->alloc, (size_t)ne + 1, sizeof *cnt);
-  if (!st->eb_start || !st->eb_body || !st->eb_w || !cnt) {
+  if (!st->eb_start || !st->eb_body || !st->eb_w || !cnt || (m->torus && !st->eb_lift)) {
     tds_free(&ctx->alloc, cnt);
     free_index(st);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
@@ -222,15 +225,23 @@ int tds_strings_index(tds_ctx *ctx, tds_surf *s) {
   for (int32_t e = 0; e < ne; e++) cnt[e + 1] += cnt[e];
   for (tds_id f = 0; f < st->nf; f++) {
     if (st->flags[f] & (TDS_DEAD | TDS_NONCONTENT)) continue;
+    int32_t lift = 0; /* the loop's lattice translate so far */
     for (int32_t i = st->start[f]; i < st->start[f + 1]; i++) {
-      int32_t r = st->oe[i];
-      double sg = TDS_OREV(r) ? -1 : 1;
+      int32_t r = st->oe[i], w = m->torus ? tds_oe_wrap(m, r) : 0;
+      double sg = TDS_OREV(r) ? -1 : 1, ty = 0;
+      if (m->torus) { /* the stored tail is the head of a reversed entry */
+        double t[3];
+        tds_wrap_vec(m->period, TDS_OREV(r) ? tds_wrap_add(lift, w) : lift, t);
+        ty = t[1];
+        lift = tds_wrap_add(lift, w);
+      }
       for (int j = 0; j < 2; j++) {
         tds_id b = st->fb[f][j];
         if (b == TDS_NONE) continue;
         int32_t at = cnt[TDS_OID(r)]++;
         st->eb_body[at] = b;
         st->eb_w[at] = j ? -sg : sg;
+        if (st->eb_lift) st->eb_lift[at] = st->eb_w[at] * ty;
       }
     }
   }
@@ -245,9 +256,11 @@ int tds_strings_index(tds_ctx *ctx, tds_surf *s) {
       while (k < n && st->eb_body[k] != st->eb_body[i]) k++;
       if (k == n) {
         st->eb_body[n] = st->eb_body[i];
+        if (st->eb_lift) st->eb_lift[n] = st->eb_lift[i];
         st->eb_w[n++] = st->eb_w[i];
       } else {
         st->eb_w[k] += st->eb_w[i];
+        if (st->eb_lift) st->eb_lift[k] += st->eb_lift[i];
       }
     }
     a = b;
@@ -281,13 +294,23 @@ double tds_strings_area(const tds_surf *s, tds_id f) {
   const tds_strings *st = s->str;
   const tds_mesh *m = &s->m;
   double A = 0;
+  int32_t lift = 0;
   for (int32_t i = st->start[f]; i < st->start[f + 1]; i++) {
     tds_corners C;
     tds_mlocal L = {0};
-    tds_gather_edge(m, st->oe[i], &C);
+    int32_t r = st->oe[i];
+    tds_gather_edge(m, r, &C);
     L.x[0] = C.x[0];
     L.x[1] = C.x[1];
-    A += tds_mk_edge_area(&L, NULL, NULL);
+    double a = tds_mk_edge_area(&L, NULL, NULL);
+    if (m->torus) { /* gathered from r's own start, which the unwrapped
+                    ** loop reaches translated by lift */
+      double t[3];
+      tds_wrap_vec(m->period, lift, t);
+      a -= t[1] * (C.x[1][0] - C.x[0][0]);
+      lift = tds_wrap_add(lift, tds_oe_wrap(m, r));
+    }
+    A += a;
     A += vertex_content(s, tds_oe_head(m, st->oe[i])) - vertex_content(s, tds_oe_tail(m, st->oe[i]));
   }
   return A;
@@ -331,6 +354,12 @@ int tds_strings_check(tds_ctx *ctx, const tds_surf *s) {
           tds_oe_head(m, st->oe[i]) != tds_oe_tail(m, st->oe[i + 1]))
         return tds_seterr(ctx, TDS_ETOPO, "facet %d: edges %d and %d do not chain", f + 1,
                           e + 1, TDS_OID(st->oe[i + 1]) + 1);
+    }
+    int32_t a = st->start[f], b = st->start[f + 1], w = 0;
+    if (m->ewrap && b > a && tds_oe_head(m, st->oe[b - 1]) == tds_oe_tail(m, st->oe[a])) {
+      for (int32_t i = a; i < b; i++) w = tds_wrap_add(w, tds_oe_wrap(m, st->oe[i]));
+      if (w) return tds_seterr(ctx, TDS_ETOPO, "facet %d: the wraps of its edges do not add "
+                               "up to zero", f + 1);
     }
   }
   return TDS_OK;

@@ -36,6 +36,11 @@ typedef struct tds_strings {
   int32_t *eb_start;        /* idx_ne + 1 */
   tds_id *eb_body;
   double *eb_w;
+  double *eb_lift;          /* torus: sum over the same entries of the weight
+                               times t_y, t the lattice translate of the
+                               edge's tail in the cell's loop unwrapped from
+                               its first edge (edge_shift, method_string.c);
+                               NULL without a torus */
   tds_alloc alloc;
 } tds_strings;
 
@@ -87,8 +92,9 @@ double tds_strings_area(const tds_surf *s, tds_id f);
 ** written to out[0..max), returns how many (at most max). */
 int tds_strings_vertex_bodies(tds_surf *s, tds_id v, tds_id *out, int max);
 
-/* Check the cells: loops chain, edges alive, bodies alive. TDS_OK or
-** TDS_ETOPO with a message. */
+/* Check the cells: loops chain, edges alive, bodies alive, and in the
+** torus a closed loop's wraps add up to zero (the cell lies in one copy of
+** the unit cell). TDS_OK or TDS_ETOPO with a message. */
 int tds_strings_check(tds_ctx *ctx, const tds_surf *s);
 
 /* Evolver's V for one vertex of the string model: a vertex on no
@@ -107,6 +113,10 @@ int tds_strings_vavg(const tds_surf *s, tds_id v, double out[3]);
 ** nothing. TDS_OK, TDS_ERANGE (not the string model), TDS_ENOMEM,
 ** TDS_ENUM. */
 int tds_strings_pop(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npopped);
+
+/* tds_strings_pop on every vertex without a snapshot (autopop inside g,
+** which holds one): on failure the surface may be half changed. */
+int tds_strings_pop_raw(tds_ctx *ctx, tds_surf *s, int32_t *npopped);
 
 /* Evolver's t1_edgeswap (string_topo.c), in 2-D space: every selected edge
 ** (sel[e] != 0; sel NULL: all) joining two triple points, not fixed and

@@ -157,6 +157,12 @@ static int pop_all(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npopp
   return tds_surf_update(ctx, s);
 }
 
+int tds_strings_pop_raw(tds_ctx *ctx, tds_surf *s, int32_t *npopped) {
+  if (npopped) *npopped = 0;
+  if (!s->str) return tds_seterr(ctx, TDS_ERANGE, "works in the string model only (STRING)");
+  return pop_all(ctx, s, NULL, npopped);
+}
+
 int tds_strings_pop(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npopped) {
   if (npopped) *npopped = 0;
   if (!s->str) return tds_seterr(ctx, TDS_ERANGE, "works in the string model only (STRING)");

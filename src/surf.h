@@ -117,6 +117,8 @@ typedef struct tds_surf {
   int immediate_autopop;  /* ... each as soon as it is found (autopop.h) */
   int autochop;           /* g bisects edges about to grow past autochop_length */
   double autochop_length;
+  int area_normalization; /* g divides each vertex's force by its share of
+                             the edge lengths (facet areas): iterate.c */
   uint64_t rng;           /* state of the jiggle's random numbers (jiggle.h) */
 
   char *read_text;        /* a datafile's read section, kept verbatim */

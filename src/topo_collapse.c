@@ -74,7 +74,9 @@ static int same_edges(const tds_mesh *m, tds_id f, tds_id g) {
   return 1;
 }
 
-int tds_collapse_edge(tds_surf *s, tds_id e) {
+int tds_collapse_edge(tds_surf *s, tds_id e) { return tds_collapse_edge_at(s, e, -1); }
+
+int tds_collapse_edge_at(tds_surf *s, tds_id e, int end) {
   tds_mesh *m = &s->m;
   if (e < 0 || e >= m->ne || !tds_alive(m->eflags, e)) return 0;
   if (m->eflags[e] & TDS_FIXED) return 0;
@@ -82,6 +84,11 @@ int tds_collapse_edge(tds_surf *s, tds_id e) {
   int pt = pinned(s, t, e), ph = pinned(s, h, e);
   if (pt && ph) return 0;
   tds_id keep = ph ? h : t, gone = ph ? t : h;
+  if (end >= 0 && !pt && !ph) { /* that end stays where it is */
+    keep = end ? h : t;
+    gone = end ? t : h;
+    pt = 1; /* (no move to the midpoint below) */
+  }
   /* The edges at either end, whether each comes from `gone` and had
   ** facets; another edge between the ends would become a loop. */
   int32_t nat = 0;
@@ -108,12 +115,28 @@ int tds_collapse_edge(tds_surf *s, tds_id e) {
       info[nat++] = (uint8_t)(g | (m->eside[d] != TDS_NONE ? 2 : 0));
     }
 
+  /* torus: e's wrap W takes t's frame to h's true place; `gone`'s edges
+  ** move to keep's frame */
+  int32_t W = m->ewrap ? m->ewrap[e] : 0;
+  if (W) {
+    int32_t into_h = gone == h ? W : tds_wrap_neg(W); /* keep's frame minus gone's */
+    for (int32_t i = 0; i < nat; i++) {
+      tds_id d = at[i];
+      if (m->ev[d][0] == gone) m->ewrap[d] = tds_wrap_add(m->ewrap[d], into_h);
+      if (m->ev[d][1] == gone) m->ewrap[d] = tds_wrap_add(m->ewrap[d], tds_wrap_neg(into_h));
+    }
+  }
   if (!pt && !ph && m->vbdry[keep] == TDS_NONE) {
     tds_corners C;
     tds_gather_edge(m, TDS_OREF(e, 0), &C);
     double x[3];
     v3_add(x, C.x[0], C.x[1]);
     v3_scale(x, 0.5);
+    if (W && keep == h) { /* the midpoint in h's stored frame */
+      double wv[3];
+      tds_wrap_vec(m->period, W, wv);
+      v3_sub(x, x, wv);
+    }
     v3_copy(m->x[keep], x);
     tds_motion_enforce(s, keep);
     m->coord_gen++;
@@ -142,6 +165,11 @@ int tds_collapse_edge(tds_surf *s, tds_id e) {
       if (!tds_alive(m->eflags, q)) continue;
       tds_id oq = m->ev[q][0] == keep ? m->ev[q][1] : m->ev[q][0];
       if (oq != od) continue;
+      if (m->ewrap) { /* in the torus the same ends may be different edges */
+        int32_t wd = m->ev[d][0] == keep ? m->ewrap[d] : tds_wrap_neg(m->ewrap[d]);
+        int32_t wq = m->ev[q][0] == keep ? m->ewrap[q] : tds_wrap_neg(m->ewrap[q]);
+        if (wd != wq) continue;
+      }
       int rd = rank(m, d), rq = rank(m, q);
       tds_id win = rd != rq ? (rd > rq ? d : q) : ((info[j] & 1) && !(info[i] & 1) ? q : d);
       if (s->str && rd == rq) win = d > q ? d : q; /* strings: the higher id (Evolver) */

@@ -30,6 +30,9 @@
 ** facets or edges by that are removed. Returns 1 when the edge collapsed.
 ** Not a command by itself: no snapshot, no energy update. */
 int tds_collapse_edge(tds_surf *s, tds_id e);
+/* The same, but end 0 (tail) or 1 (head) stays where it is (unless an
+** end is pinned); end -1: as tds_collapse_edge. */
+int tds_collapse_edge_at(tds_surf *s, tds_id e, int end);
 
 /* delete edge (sel over edges): collapse each selected live edge. */
 int tds_delete_edges(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);

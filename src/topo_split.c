@@ -61,6 +61,12 @@ static void split_one(tds_surf *s, tds_id e) {
   tds_id n = tds_mesh_add_edge(m, v, h);
   tds_edge_inherit(m, n, e);
   m->ev[e][1] = v;
+  /* torus: the midpoint is on the edge unwrapped from its tail, so the
+  ** head half carries the whole wrap (as r's split) */
+  if (m->ewrap) {
+    m->ewrap[n] = m->ewrap[e];
+    m->ewrap[e] = 0;
+  }
   for (int i = 0; i < nfe; i++) {
     tds_id f = fs[i];
     int k = ks[i];
@@ -93,6 +99,8 @@ static void split_one(tds_surf *s, tds_id e) {
     int32_t *add = pa, *keep = pb;
     tds_id g = tds_mesh_add_facet(m, add);
     tds_facet_inherit(m, g, f);
+    /* the inner edge d closes the new facet (the kept one then closes) */
+    if (m->ewrap) tds_torus_close(m, g, TDS_OID(add[1]) == d ? 1 : 2);
     tds_mesh_set_facet(m, f, keep);
   }
   m->topo_gen++;

@@ -34,20 +34,6 @@ same('string/$f/refine-area', vol(), $b1, 1e-12)
 " 2>&1 || echo "FAIL string/$f: tds exited with an error"
 done
 
-# Files that need features tds does not have: a clear message, exit 1.
-for spec in \
-            "100grain:10: TORUS is not supported yet"; do
-  f=${spec%%:*}
-  want="$EXAMPLES/$f.fe:${spec#*:}"
-  got=$("$TDS" -q "$EXAMPLES/$f.fe" -e '' 2>&1 < /dev/null)
-  status=$?
-  if [ "$status" -eq 1 ] && [ "$got" = "$want" ]; then
-    echo "PASS string/$f/refused"
-  else
-    echo "FAIL string/$f/refused: status $status, '$got', want '$want'"
-  fi
-done
-
 # V: every vertex where Evolver puts it.
 fe=$ROOT/tests/evolver/string/vavg.fe
 want=$(evolver_run "$fe" 'V; foreach vertex vv do printf "V %d %.17g %.17g\n", vv.id, vv.x, vv.y;' |

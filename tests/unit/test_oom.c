@@ -588,12 +588,13 @@ static void sweep_all(char op, int refine, int steps) {
   }
 }
 
-/* The string model's knot, curvature and Hooke rows (eval_knot.c) and
-** its Riemannian metric: load, g, dump. */
+/* The string model's knot, curvature and Hooke rows (eval_knot.c), its
+** Riemannian metric, and its torus with autochop, autopop and area
+** normalization (100grain.fe): load, g, dump. */
 static void oom_strings(void) {
-  const char *files[] = {"tests/evolver/knot/knots.fe", EX "metric.fe"};
+  const char *files[] = {"tests/evolver/knot/knots.fe", EX "metric.fe", EX "100grain.fe"};
   const char ops[] = {'L', 'g', 'd'};
-  for (size_t i = 0; i < 2 && !check_failed_; i++)
+  for (size_t i = 0; i < 3 && !check_failed_; i++)
     for (size_t k = 0; k < 3 && !check_failed_; k++) {
       opcase c = {files[i], 0, 0, ops[k]};
       sweep(&c);
