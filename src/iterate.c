@@ -103,12 +103,6 @@ static int direction(tds_ctx *ctx, tds_surf *s, work *w) {
   rc = tds_fixq_multipliers(ctx, fq, w->grad);
   if (rc != TDS_OK) return rc;
   store_pressures(s, fq);
-  w->use_rest0 = 0;
-  if (s->evolver_ls && !w->at_target && m->nv) { /* Evolver's restoring move */
-    rc = tds_fixq_restore(ctx, fq, m->nv, w->rest0);
-    if (rc != TDS_OK) return rc;
-    w->use_rest0 = 1;
-  }
   w->slope = 0;
   for (tds_id v = 0; v < m->nv; v++) {
     w->vel[v][0] = -w->grad[v][0];
@@ -121,6 +115,14 @@ static int direction(tds_ctx *ctx, tds_surf *s, work *w) {
       w->vel[v][2] += lam * fq->g[i][2];
     }
     w->slope -= v3_dot(w->vel[v], w->vel[v]);
+  }
+  /* Evolver's restoring move, after vel: tds_fixq_restore reuses the
+  ** multipliers' array for its coefficients. */
+  w->use_rest0 = 0;
+  if (s->evolver_ls && !w->at_target && m->nv) {
+    rc = tds_fixq_restore(ctx, fq, m->nv, w->rest0);
+    if (rc != TDS_OK) return rc;
+    w->use_rest0 = 1;
   }
   return TDS_OK;
 }
