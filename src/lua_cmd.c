@@ -209,7 +209,8 @@ static int l_setting(lua_State *L) {
                                       "check_increase", "random_seed",
                                       "evolver_line_search", "autopop",
                                       "immediate_autopop", "autochop",
-                                      "autochop_length", NULL};
+                                      "autochop_length", "pop_to_edge", "pop_to_face",
+                                      NULL};
   int which = luaL_checkoption(L, 1, NULL, names);
   tds_surf *s = &st->s;
   int set = !lua_isnone(L, 2);
@@ -268,6 +269,16 @@ static int l_setting(lua_State *L) {
     }
     lua_pushnumber(L, s->autochop_length);
     break;
+  case 14: /* Evolver's pop_to_edge and pop_to_face exclude each other */
+  case 15: {
+    int *mine = which == 14 ? &s->pop_to_edge : &s->pop_to_face;
+    if (set) {
+      *mine = lua_toboolean(L, 2);
+      if (*mine) *(which == 14 ? &s->pop_to_face : &s->pop_to_edge) = 0;
+    }
+    lua_pushboolean(L, *mine);
+    break;
+  }
   case 8: /* the jiggle's generator state (jiggle.h) */
     if (set) s->rng = (uint64_t)luaL_checkinteger(L, 2);
     lua_pushinteger(L, (lua_Integer)s->rng);
