@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "string_model.h"
 #include "topo_edit.h"
 #include "vec3.h"
 
@@ -91,6 +92,12 @@ int tds_autopop(tds_ctx *ctx, tds_surf *s, const double (*vel)[3], int32_t nvel,
   if (!cnt) return TDS_OK;
   *changed = 1;
   int32_t pe = 0, pv = 0;
+  if (s->str) { /* strings: split the vertices where four or more edges meet */
+    int rc = tds_strings_pop(ctx, s, NULL, &pv);
+    if (rc != TDS_OK) return rc;
+    tds_printf(ctx, "Autopopped %d edges, %d vertices.\n", cnt, pv);
+    return tds_surf_update(ctx, s);
+  }
   int rc = tds_pop_raw(ctx, s, &pe, &pv);
   if (rc != TDS_OK) return rc;
   tds_printf(ctx, "Edges popped: %d\nAutopopped %d edges, %d vertices.\n", pe, cnt, pv);
