@@ -622,7 +622,14 @@ end
 local function loopbody(body, id) return "do " .. body .. " end ::_c" .. id .. "::" end
 
 -- A definition body compiled as a function with its own scopes and loops.
+-- The body of a definition (a Lua function body) and, for the outermost
+-- definition, the Lua list of the command words in it that nothing in this
+-- text defines: the runtime refuses the definition when one of them is not
+-- a command, variable or function at that moment, as Evolver refuses
+-- `gg := { nosuchcmd 5 }` when it reads it.
 function P:funcbody(params, compound)
+  local outer = not self.unknown
+  if outer then self.unknown = {} end
   local saved_loops = self.loops
   self.loops = {}
   self:push()
@@ -640,7 +647,27 @@ function P:funcbody(params, compound)
   self.elems = saved_elems
   self:pop()
   self.loops = saved_loops
-  return body
+  local unknown = self.unknown
+  if not outer then return body, "" end
+  self.unknown = nil
+  local words = {}
+  for i, w in ipairs(unknown) do words[i] = q(w) end
+  return body, #words > 0 and ", {" .. table.concat(words, ", ") .. "}" or ""
+end
+
+-- A definition: FN(name, function(PARAMS) BODY end[, unknown words]).
+function P:defn(fn, name, params, compound, names)
+  local body, words = self:funcbody(params, compound)
+  return fn .. "(" .. q(name) .. ", function(" .. (names or "") .. ") " .. body .. " end" .. words .. ")"
+end
+
+-- Command word t, run by E.cmd: noted for its definition's check unless
+-- the text itself defines it.
+function P:note_cmd(t)
+  if self.unknown and not self:lookup(t.s) and not self.names[t.s] and not self.names[t.raw]
+     and not (self.usercmds and self.usercmds[t.s]) then
+    self.unknown[#self.unknown + 1] = t.raw
+  end
 end
 
 function P:params()
@@ -754,10 +781,7 @@ function P:statement1()
     end
     if op == ":::=" then
       if #t.raw ~= 1 then self:err(":::= redefines a single-letter command", t) end
-      if self:isop("{") then
-        return "E.redefine(" .. q(t.raw) .. ", function() " .. self:funcbody({}, true) .. " end)"
-      end
-      return "E.redefine(" .. q(t.raw) .. ", function() " .. self:funcbody({}, false) .. " end)"
+      return self:defn("E.redefine", t.raw, {}, self:isop("{"))
     end
     -- name := {1, x, -y}: an array value when the braces hold a list of
     -- expressions separated by commas; otherwise a command definition.
@@ -777,8 +801,7 @@ function P:statement1()
     if (op == ":=" or op == "::=") and self:isop("{") and not self:lookup(w) then
       self.usercmds = self.usercmds or {}
       self.usercmds[w] = true -- a user command of that name is no unsupported command
-      local body = self:funcbody({}, true)
-      return "E.defcmd(" .. q(w) .. ", function() " .. body .. " end)"
+      return self:defn("E.defcmd", w, {}, true)
     end
     -- name := command (no braces), as Evolver: `gg := g 5`, `few :=
     -- transforms off`, `all := show facet`, `rr := r`. The right side is
@@ -791,17 +814,19 @@ function P:statement1()
       local whole = ok and self:atend()
       -- (new_body alone is a value: the new body's id, `bd := new_body`)
       local lone = self.i == save + 1 and not self:lookup(c.s) and
-        (#c.raw == 1 and LETTERS[c.raw] or STMT[c.s] or type(rawget(_G, c.s)) == "function")
+        (#c.raw == 1 and LETTERS[c.raw] or STMT[c.s] or type(rawget(_G, c.s)) == "function"
+         or self.usercmds and self.usercmds[c.s])
         and c.s ~= "new_body" -- Evolver's value without parentheses: bd := new_body
       self.i, self.depth = save, saved_depth
       if not whole or lone then
         self.usercmds = self.usercmds or {}
         self.usercmds[w] = true
-        return "E.defcmd(" .. q(w) .. ", function() " .. self:funcbody({}, false) .. " end)"
+        return self:defn("E.defcmd", w, {}, false)
       end
     end
     local v = asnum(self:expr())
     local b = self:lookup(w)
+    if not b then self.names[w] = true end
     if b then
       if op == ":=" or op == "::=" then return b.lua .. " = E.assign(" .. b.lua .. ", " .. v .. ")" end
       return b.lua .. " = E.arith(" .. q(op:sub(1, 1)) .. ", " .. b.lua .. ", " .. v .. ")"
@@ -848,6 +873,7 @@ function P:statement1()
   -- procedure call: name(args)
   if self:isop("(") and not (#t.raw == 1 and LETTERS[t.raw]) then
     self:next()
+    self:note_cmd(t)
     local a = self:args()
     return "E.cmd(" .. q(t.raw) .. (a ~= "" and (", " .. a) or "") .. ")"
   end
@@ -855,8 +881,10 @@ function P:statement1()
   if self:atend() then
     local b = self:lookup(w)
     if b and not b.kind then return "E.cmdvalue(" .. b.lua .. ")" end
+    self:note_cmd(t)
     return "E.cmd(" .. q(t.raw) .. ")"
   end
+  self:note_cmd(t)
   local a = { asnum(self:expr()) }
   while self:acceptop(",") do a[#a + 1] = asnum(self:expr()) end
   return "E.cmd(" .. q(t.raw) .. ", " .. table.concat(a, ", ") .. ")"
@@ -1000,8 +1028,8 @@ function P:s_procedure()
   local nt = self:next()
   if nt.t ~= "name" then self:err("expected a procedure name", nt) end
   local ps, names = self:params()
-  local body = self:funcbody(ps, true)
-  return "E.defproc(" .. q(nt.s) .. ", function(" .. names .. ") " .. body .. " end)"
+  self.names[nt.s] = true -- callable in its own body (recursion) and after
+  return self:defn("E.defproc", nt.s, ps, true, names)
 end
 
 function P:s_function()
@@ -1011,8 +1039,8 @@ function P:s_function()
   local nt = self:next()
   if nt.t ~= "name" then self:err("expected a function name", nt) end
   local ps, names = self:params()
-  local body = self:funcbody(ps, true)
-  return "E.defproc(" .. q(nt.s) .. ", function(" .. names .. ") " .. body .. " end)"
+  self.names[nt.s] = true -- callable in its own body (recursion) and after
+  return self:defn("E.defproc", nt.s, ps, true, names)
 end
 
 -- define name type [dims] [= init]; define kind attribute name type [dims]
@@ -1065,6 +1093,7 @@ function P:s_define()
   if b and not b.kind then -- define of a local: a local array
     return ("%s = E.newvalue(%s, {%s}, %s)"):format(b.lua, q(ty.s), table.concat(dims, ", "), init)
   end
+  self.names[t.s] = true
   return ("E.define(%s, %s, {%s}, %s)"):format(q(t.s), q(ty.s), table.concat(dims, ", "), init)
 end
 
@@ -1259,7 +1288,7 @@ function M.translate(text, line0)
       end
     end
     local p = setmetatable({ text = text, toks = lex(text, line0), i = 1, nsym = 0, depth = 0, scopes = { {} },
-                             elems = {}, loops = {}, extra = extra }, P)
+                             elems = {}, loops = {}, extra = extra, names = {} }, P)
     -- Each input line (with its continuations) is one command for abort,
     -- as at Evolver's prompt: E.top runs it.
     local unit

@@ -1130,7 +1130,26 @@ end
 
 
 
-function E.defcmd(name, fn)
+-- Whether E.cmd would find `name` now (a command, variable or function).
+local function known(name)
+  local low = name:lower()
+  if redefined[name] or B[name] or B[low] or rawget(_G, name) ~= nil then return true end
+  if #name > 1 and (rawget(_G, low) ~= nil or UNSUPPORTED[low] or EVOLVER_VARS[low]) then return true end
+  if #name == 1 and UNSUPPORTED[name] then return true end
+  return tds.param(name) ~= nil or INTERNAL[low] ~= nil
+end
+
+-- A definition names commands (words, from the translator) that nothing in
+-- its text defines: each must exist when the definition runs, as Evolver
+-- checks them when it reads the definition.
+local function check_words(words)
+  for _, w in ipairs(words or {}) do
+    if not known(w) then fail(("'%s' is not a command, variable or function"):format(w)) end
+  end
+end
+
+function E.defcmd(name, fn, words)
+  check_words(words)
   if B[name] then fail(("'%s' is a built-in command and cannot be redefined (use a new name)"):format(name)) end
   if protected[name] and not user[rawget(_G, name)] then
     fail(("'%s' is a tds function and cannot be redefined (use a new name)"):format(name))
@@ -1143,7 +1162,8 @@ function E.defcmd(name, fn)
   rawset(_G, name, cmd)
 end
 
-function E.defproc(name, fn)
+function E.defproc(name, fn, words)
+  check_words(words)
   if B[name] or INTERNAL[name] or protected[name] and not user[rawget(_G, name)] then
     fail(("'%s' is a built-in name"):format(name))
   end
@@ -1152,7 +1172,8 @@ function E.defproc(name, fn)
   rawset(_G, name, proc)
 end
 
-function E.redefine(letter, fn)
+function E.redefine(letter, fn, words)
+  check_words(words)
   redefined[letter] = fn
 end
 

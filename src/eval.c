@@ -559,6 +559,28 @@ int tds_eval_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int facet_core)
   return TDS_OK;
 }
 
+/* The total edge length of a string surface (in the metric with METRIC):
+** Evolver's total_area in the string model. */
+static double string_length(const tds_surf *s) {
+  const tds_mesh *m = &s->m;
+  double sum = 0;
+  for (tds_id e = 0; e < m->ne; e++) {
+    if (m->eflags[e] & TDS_DEAD) continue;
+    tds_corners C;
+    tds_gather_edge(m, TDS_OREF(e, 0), &C);
+    if (s->metric_on) {
+      tds_mlocal L = {.x = {C.x[0], C.x[1]}, .ig = s->metric, .param = s->parval,
+                      .G = s->gravity_on ? s->gravity : 0};
+      sum += tds_methods[TDS_M_METRIC_LENGTH].eval(&L, NULL, NULL);
+    } else {
+      double d[3];
+      v3_sub(d, C.x[1], C.x[0]);
+      sum += v3_norm(d);
+    }
+  }
+  return sum;
+}
+
 int tds_eval(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
   tds_mesh *m = &s->m;
   out->energy = 0;
@@ -567,7 +589,9 @@ int tds_eval(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
   if (out->fq) tds_fixq_clear(out->fq);
   for (tds_id b = 0; b < m->nb; b++)
     m->bvol[b] = (m->bflags[b] & TDS_DEAD) ? 0 : m->bvolconst[b];
-  return tds_eval_terms(ctx, s, out, 1);
+  int rc = tds_eval_terms(ctx, s, out, 1);
+  if (s->str) out->area = string_length(s);
+  return rc;
 }
 
 int tds_surf_update(tds_ctx *ctx, tds_surf *s) {

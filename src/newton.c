@@ -343,7 +343,7 @@ int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
   if (scale) *scale = t;
   if (in.neg) tds_printf(ctx, "WARNING 1825: Hessian not positive definite. Index: %d\n", (int)in.neg);
   if (seekmax > 0)
-    tds_printf(ctx, "%3d. area: %#17.15g energy: %#17.15g  scale: %g\n", 1, s->area, s->energy, t);
+    tds_printf(ctx, "%3d. area: %#17.15g energy: %#17.15g  scale: %#g\n", 1, s->area, s->energy, t);
   else
     tds_printf(ctx, "%3d. area: %#17.15g energy: %#17.15g\n", 1, s->area, s->energy);
   tds_snap_free(&sn);

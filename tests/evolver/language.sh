@@ -3,7 +3,8 @@
 # unchanged in tds and in Surface Evolver; the lines starting with K must
 # agree (numbers to 1e-10 relative: they are printed with %.12g or less
 # and involve no iteration, so only the last printed digit may differ).
-# errors.cmd stops at a run-time error in both programs (tds: exit 1);
+# errors.cmd stops at a run-time error in both programs (tds: exit 1),
+# undefined.cmd at a definition naming an unknown command;
 # histogram.cmd's lines are the histograms' (bins and counts); model.cmd's
 # also the messages of linear, lagrange 1 and M 1; view.cmd's those of
 # the transforms toggle. Files in data/ (views.fe) are used before the
@@ -11,7 +12,7 @@
 . "$(dirname "$0")/lib.sh"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-for run in flow:cube elements:cube elements:catbody errors:cube histogram:cube define:cube matrix:cube facetedge:cube facetedge:catbody named:cube model:cube feattr:cube feattr:catbody view:views resize:cube defcmd:cube phview:phelanc; do
+for run in flow:cube elements:cube elements:catbody errors:cube undefined:cube histogram:cube define:cube matrix:cube facetedge:cube facetedge:catbody named:cube model:cube feattr:cube feattr:catbody view:views resize:cube defcmd:cube phview:phelanc; do
   c=${run%%:*} fe=${run#*:}
   src=$EXAMPLES/$fe.fe
   [ -f "$ROOT/tests/evolver/data/$fe.fe" ] && src=$ROOT/tests/evolver/data/$fe.fe
@@ -21,13 +22,16 @@ for run in flow:cube elements:cube elements:catbody errors:cube histogram:cube d
   (cd "$tmp" && "$TDS" -q in.fe -f c.cmd) > "$tmp/tds.out" 2> "$tmp/tds.err"
   rc=$?
   want=0
-  [ "$c" = errors ] && want=1
+  msg=
+  [ "$c" = errors ] && msg="c.cmd:4: division by zero"
+  [ "$c" = undefined ] && msg="c.cmd:11: 'nosuchcmd' is not a command, variable or function"
+  [ -n "$msg" ] && want=1
   if [ $rc -ne $want ]; then
     echo "FAIL language/$c-$fe: exit status $rc, expected $want: $(head -n 2 "$tmp/tds.err" | tr '\n' ' ')"
     continue
   fi
-  if [ "$c" = errors ] && ! grep -q '^c.cmd:4: division by zero' "$tmp/tds.err"; then
-    echo "FAIL language/$c-$fe: expected 'c.cmd:4: division by zero', got: $(cat "$tmp/tds.err")"
+  if [ -n "$msg" ] && ! grep -qF "$msg" "$tmp/tds.err"; then
+    echo "FAIL language/$c-$fe: expected '$msg', got: $(cat "$tmp/tds.err")"
     continue
   fi
   pat='^K'

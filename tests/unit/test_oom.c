@@ -315,7 +315,8 @@ typedef struct opcase {
                         eigenvalues (ritz: 3 lowest), 'S' saddle, 'i'
                         inverse iteration (eigenprobe(0.5, 20)), 'A'
                         addload of the same file, 'R' replace_load, 'T'
-                        replacing the view transforms, 'D' detorus */
+                        replacing the view transforms, 'D' detorus, 'G'
+                        g with Evolver's line search */
 } opcase;
 
 static int prepare(tds_ctx *ctx, tds_surf *s, const opcase *c) {
@@ -323,6 +324,7 @@ static int prepare(tds_ctx *ctx, tds_surf *s, const opcase *c) {
   int rc = tds_datafile_load(ctx, s, c->file);
   if (rc == TDS_OK && tds_surf_param_set(s, "wob", 0.5) < 0) rc = TDS_ENOMEM;
   if (rc == TDS_OK) rc = tds_surf_update(ctx, s);
+  s->evolver_ls = c->op == 'G';
   for (int i = 0; i < c->refine && rc == TDS_OK; i++) rc = tds_refine(ctx, s, NULL, NULL);
   if (rc == TDS_OK && c->steps) rc = tds_iterate(ctx, s, c->steps);
   return rc;
@@ -407,7 +409,8 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
   }
   case 'R': return tds_datafile_replace_load(ctx, s, c->file);
   case 'r': return tds_refine(ctx, s, NULL, &n);
-  case 'g': return tds_iterate(ctx, s, 2);
+  case 'g':
+  case 'G': return tds_iterate(ctx, s, 2);
   case 'u': return tds_equiangulate(ctx, s, NULL, &n);
   case 'V': return tds_vertex_average(ctx, s, NULL, &n);
   case 'O': return tds_pop_edges(ctx, s, NULL, &n);
@@ -602,7 +605,10 @@ static void oom_strings(void) {
 
 static void oom_load(void) { sweep_all('L', 0, 0); }
 static void oom_refine(void) { sweep_all('r', 0, 0); }
-static void oom_iterate(void) { sweep_all('g', 1, 0); }
+static void oom_iterate(void) {
+  sweep_all('g', 1, 0);
+  sweep_all('G', 1, 0);
+}
 static void oom_equiangulate(void) { sweep_all('u', 1, 2); }
 static void oom_vertex_average(void) { sweep_all('V', 1, 2); }
 static void oom_dump(void) { sweep_all('d', 1, 2); }
