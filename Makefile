@@ -11,15 +11,16 @@ SAN ?=
 WARN = -Wall -Wextra -Wshadow -Wmissing-prototypes -Wstrict-prototypes -Wwrite-strings \
   -Wdouble-promotion -Wcast-qual
 CFLAGS_ALL = -std=c11 $(OPT) -g $(WARN) -D_POSIX_C_SOURCE=200809L $(SAN) $(CFLAGS)
-# Only pg's passes use OpenMP; the program and unit tests link its runtime.
-OMP_SRC := src/pg.c src/pg_pass.c
+# pg's passes use OpenMP (la_chol.c only to turn CHOLMOD's off); the
+# program and unit tests link its runtime.
+OMP_SRC := src/pg.c src/pg_pass.c src/la_chol.c
 # Evaluated when a recipe runs, so after `deps` has installed pkg-config/Lua.
 LUA_CFLAGS = $(shell pkg-config --cflags lua5.4)
 LUA_LIBS = $(shell pkg-config --libs lua5.4)
 CAIRO_CFLAGS = $(shell pkg-config --cflags cairo)
 CAIRO_LIBS = $(shell pkg-config --libs cairo)
-# The sparse symmetric solver (la_mumps.c) and LAPACK (small dense eigenproblems).
-LA_LIBS = -ldmumps_seq -llapack
+# The sparse symmetric solvers (la_mumps.c, la_chol.c) and LAPACK (small dense eigenproblems).
+LA_LIBS = -ldmumps_seq -lcholmod -llapack
 LIBS = $(LUA_LIBS) $(CAIRO_LIBS) $(LA_LIBS) -lreadline -lm
 
 BIND_SRC := $(wildcard src/lua_*.c) src/repl.c src/main.c

@@ -7,6 +7,7 @@
 # the ratio Evolver / tds measured in the same run, the energy after the
 # step in both, and tds's peak memory per vertex (the whole process).
 # Usage: bench/hessian.sh [TDS_BINARY]
+# (NOCUBE=1: the catenoid only; CATREF=n: refine it n times, not 5)
 TDS=${1:-./tds}
 EXAMPLES=${EXAMPLES:-/usr/share/doc/evolver/examples}
 dir=$(mktemp -d)
@@ -45,5 +46,5 @@ print(('TDS %.6f %.15g %d'):format(t1 - t0, total_energy, vertex_count))"; } 2>&
     printf "  speed ratio (Evolver / tds): %.2fx (goal: at least 3x)\n", e / t
     printf "  tds peak memory: %.0f MB, %.0f bytes per vertex\n", r / 1024, r * 1024 / n }'
 }
-one cube "$EXAMPLES/cube.fe" 6
-one catenoid "$EXAMPLES/cat.fe" 5
+[ -n "$NOCUBE" ] || one cube "$EXAMPLES/cube.fe" 6
+one catenoid "$EXAMPLES/cat.fe" ${CATREF:-5}

@@ -287,6 +287,11 @@ ATTR.facet_normal = function(h, rev)
   local x, y, z = vec(rev and reversed(h) or h)
   return { x, y, z } -- the normal scaled by the area, as facet.x, .y, .z
 end
+ATTR.vertex_normal = function(h)
+  if kindof(h) ~= "vertex" then fail("vertex_normal is a vertex attribute") end
+  return { tds.vertex_normal(h) } -- the hessian normal (doc/newton.md)
+end
+ATTR.vertexnormal = ATTR.vertex_normal -- Evolver's old synonym
 ATTR.edge_vector = function(h, rev)
   if kindof(h) ~= "edge" then fail("edge_vector is an edge attribute") end
   return { vec(rev and reversed(h) or h) }
@@ -359,7 +364,7 @@ end
 -- Element attributes of Evolver (elements.htm) tds does not have: reading
 -- one is an error naming it as such.
 local EV_ATTRS = {}
-for w in ([[dihedral orientation vertex_normal sqcurve square_mean_curvature v_force
+for w in ([[dihedral orientation sqcurve square_mean_curvature v_force
   v_velocity raw_velocity v_oldx v_constraint_list e_constraint_list f_constraint_list
   v_boundary e_boundary v_method_list e_method_list f_method_list on_quantity
   on_method_instance mid_edge mid_facet axial_point triple_point tetra_point midv wrap

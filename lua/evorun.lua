@@ -397,6 +397,8 @@ local INTERNAL = {
   gravity = function() local _, on = tds.gravity(); return on and 1.0 or 0.0 end,
   hessian_normal = function() return tds.hessian_setting("hessian_normal") and 1.0 or 0.0 end,
   linear_metric = function() return tds.hessian_setting("linear_metric") and 1.0 or 0.0 end,
+  hessian_normal_one = function() return tds.hessian_setting("hessian_normal_one") and 1.0 or 0.0 end,
+  hessian_normal_perp = function() return tds.hessian_setting("hessian_normal_perp") and 1.0 or 0.0 end,
   linear_metric_mix = function() return tds.hessian_setting("linear_metric_mix") end,
   last_eigenvalue = function() return tds.hessian_setting("last_eigenvalue") end,
   hessian_epsilon = function() return tds.hessian_setting("hessian_epsilon") end,
@@ -725,10 +727,12 @@ local TOGGLE_MSG = {
   pop_to_face = "pop_to_face %s. (was %s)",
   little_endian = "little_endian %s. (was %s)",
   big_endian = "big_endian %s. (was %s)",
-  hessian_normal = "hessian_normal %s. (was %s)",
+  hessian_normal = "hessian_normal %3s. (was %s)",
   linear_metric = "Linear interpolation metric with Hessian %s.(was %s)",
   hessian_diff = "hessian_diff %s. (was %s)",
-  hessian_special_normal = "hessian_special_normal %s. (was %s)",
+  hessian_special_normal = "hessian_special_normal %3s. (was %s)",
+  hessian_normal_one = "hessian_normal_one %3s. (was %s)",
+  hessian_normal_perp = "hessian_normal_perp %3s. (was %s)",
   transforms = "Transform showing %s. (was %s)", -- display only: no graphics in tds
 }
 local show_transforms = true
@@ -750,7 +754,8 @@ local function toggle_get(name)
   if name == "big_endian" then return endian == ">" end
   if name == "transforms" then return show_transforms end
   if name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff"
-      or name == "hessian_special_normal" then
+      or name == "hessian_special_normal" or name == "hessian_normal_one"
+      or name == "hessian_normal_perp" then
     return tds.hessian_setting(name)
   end
 end
@@ -767,7 +772,8 @@ local function toggle_set(name, on)
   elseif name == "big_endian" then endian = on and ">" or "<"
   elseif name == "transforms" then show_transforms = on
   elseif name == "hessian_normal" or name == "linear_metric" or name == "hessian_diff"
-      or name == "hessian_special_normal" then
+      or name == "hessian_special_normal" or name == "hessian_normal_one"
+      or name == "hessian_normal_perp" then
     tds.hessian_setting(name, on)
   end
 end
@@ -1108,7 +1114,7 @@ for w in ([[J e A a b f k p Q W y Z z s P D F H h X
   kusner conf_edge normal_curvature boundary_curvature
   show_all_quantities interp_bdry_param break_after_warning break_on_warning
   itdebug memdebug debug estimate extrapolate set_body_target quantity]]):gmatch("%S+") do UNSUPPORTED[w] = true end
-for w in ([[deturck diffusion hessian_normal_one hessian_normal_perp hessian_special_normal
+for w in ([[deturck diffusion hessian_special_normal
   hessian_double_normal sobolev_mode dirichlet_mode metis_factor hessian_quiet pop_disjoin
   pop_enjoin septum_flag force_deletion star_finagling
   force_edgeswap k_altitude_mode assume_oriented calculate_in_3d self_similar

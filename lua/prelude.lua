@@ -570,10 +570,12 @@ local function newton_toggle(name, msg)
     print(msg:format(on and "ON" or "OFF", was and "on" or "off"))
   end
 end
-hessian_normal = newton_toggle("hessian_normal", "hessian_normal %s. (was %s)")
+hessian_normal = newton_toggle("hessian_normal", "hessian_normal %3s. (was %s)")
 linear_metric = newton_toggle("linear_metric", "Linear interpolation metric with Hessian %s.(was %s)")
 hessian_diff = newton_toggle("hessian_diff", "hessian_diff %s. (was %s)")
-hessian_special_normal = newton_toggle("hessian_special_normal", "hessian_special_normal %s. (was %s)")
+hessian_special_normal = newton_toggle("hessian_special_normal", "hessian_special_normal %3s. (was %s)")
+hessian_normal_one = newton_toggle("hessian_normal_one", "hessian_normal_one %3s. (was %s)")
+hessian_normal_perp = newton_toggle("hessian_normal_perp", "hessian_normal_perp %3s. (was %s)")
 
 -- Evolver's command language: the runtime (tds.E, evolver [[...]]), read
 -- sections run at load, and the prompt's Lua/Evolver rule.

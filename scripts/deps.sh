@@ -7,12 +7,14 @@
 #   test:  also what the tests and benchmarks compare against
 set -e
 # The program: Lua, readline, libmicrohttpd (the live view's server),
-# cairo and a font (pictures); MUMPS (sequential) and LAPACK (hessian,
-# eigenvalues: src/la_mumps.c, src/newton*.c); OpenBLAS (single-threaded),
+# cairo and a font (pictures); MUMPS (sequential), CHOLMOD (SuiteSparse:
+# Cholesky of definite systems) and LAPACK (hessian, eigenvalues:
+# src/la_mumps.c, src/la_chol.c, src/newton*.c); OpenBLAS (single-threaded),
 # which becomes the system's libblas.so.3 and liblapack.so.3: MUMPS's
 # factorisation runs twice as fast on it as on the reference BLAS.
 BUILD_PKGS="gcc make pkg-config liblua5.4-dev libreadline-dev libmicrohttpd-dev
-  libcairo2-dev fonts-dejavu-core libmumps-seq-dev liblapack-dev libopenblas0-serial"
+  libcairo2-dev fonts-dejavu-core libmumps-seq-dev libsuitesparse-dev liblapack-dev
+  libopenblas0-serial"
 # The tests: Surface Evolver; meshio, VTK and NumPy for /usr/bin/python3
 # (export round trips, tests/export); Chromium (the live view's browser
 # test, tests/web); the stock Lua interpreter (the module tds.so, tests/module).

@@ -6,8 +6,11 @@
 ** factorisation on a 50k-vertex surface, and plain AMD/AMF analyse a
 ** dense row slowly); inertia from INFOG(12) (negative pivots) and INFOG(28)
 ** (null pivots, ICNTL(24) = 1). Each factorisation owns its MUMPS
-** instance, so several may coexist (no globals). */
+** instance, so several may coexist (no globals). A symmetric matrix is
+** first offered to la_chol.h (Cholesky, CHOLMOD): when it is positive
+** definite that factorisation serves, at about half MUMPS's cost. */
 #include "la.h"
+#include "la_chol.h"
 
 #include <dmumps_c.h>
 #include <math.h>
@@ -23,10 +26,12 @@ struct tds_la {
   MUMPS_INT *irn, *jcn;
   double *a;
   tds_inertia in;
+  tds_chol *chol;        /* the Cholesky path, when it served */
 };
 
 void tds_la_free(tds_la *f) {
   if (!f) return;
+  tds_chol_free(f->chol);
   if (f->id.instance_number >= 0) {
     f->id.job = -2;
     dmumps_c(&f->id);
@@ -60,6 +65,18 @@ static int factor(tds_ctx *ctx, const tds_spmat *A, int sym, double eps, tds_la 
   if (n == 0) {
     *out = f;
     return TDS_OK;
+  }
+  if (sym == 2) { /* positive definite: Cholesky (la_chol.h) */
+    int rc = tds_chol_factor(ctx, A, eps > 0 ? eps : 1e-10, &f->chol);
+    if (rc == TDS_OK) {
+      f->in.pos = n;
+      *out = f;
+      return TDS_OK;
+    }
+    if (rc != TDS_ERANGE) {
+      tds_la_free(f);
+      return rc;
+    }
   }
   f->irn = tds_malloc(&ctx->alloc, (size_t)(nnz + 1) * sizeof *f->irn);
   f->jcn = tds_malloc(&ctx->alloc, (size_t)(nnz + 1) * sizeof *f->jcn);
@@ -152,6 +169,11 @@ int tds_la_solve(tds_ctx *ctx, tds_la *f, double *b, int allow_singular) {
   if (f->in.zero && !allow_singular)
     return tds_seterr(ctx, TDS_ENUM, "la: the matrix is singular (%d zero pivots)",
                       (int)f->in.zero);
+  if (f->chol) {
+    int rc = tds_chol_solve(ctx, f->chol, b);
+    if (rc != TDS_OK) return rc;
+    goto check;
+  }
   DMUMPS_STRUC_C *id = &f->id;
   id->rhs = b;
   id->nrhs = 1;
@@ -162,6 +184,7 @@ int tds_la_solve(tds_ctx *ctx, tds_la *f, double *b, int allow_singular) {
   dmumps_c(id);
   if (id->infog[0] < 0)
     return tds_seterr(ctx, TDS_ENUM, "la: the solve failed (MUMPS error %d)", (int)id->infog[0]);
+check:
   for (int32_t i = 0; i < f->n; i++)
     if (!isfinite(b[i])) return tds_seterr(ctx, TDS_ENUM, "la: the solution is not finite");
   return TDS_OK;

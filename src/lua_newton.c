@@ -1,6 +1,6 @@
 /* lua_newton.c: Newton steps and eigenvalues (newton.h) for Lua:
 ** tds.hessian, tds.hessian_seek, tds.saddle, tds.eigenprobe, tds.ritz,
-** tds.move, tds.eigenvector, tds.hessian_setting. The settings and the
+** tds.move, tds.eigenvector, tds.vertex_normal, tds.hessian_setting. The settings and the
 ** last ritz eigenvector live in a userdata in the registry (no globals). */
 #include <math.h>
 #include <stdlib.h>
@@ -208,14 +208,27 @@ static int l_eigenvector(lua_State *L) {
   return 3;
 }
 
+/* tds.vertex_normal(v) -> x, y, z: Evolver's vertex_normal (newton.h,
+** tds_vertex_normal_at) with the current hessian settings */
+static int l_vertex_normal(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  nstate *ns = get_ns(L);
+  tds_id v = tds_check_elem(L, st, 1, TDS_VERTEX, NULL);
+  double n[3];
+  check_rc(L, st, tds_vertex_normal_at(&st->ctx, &st->s, &ns->o, v, n));
+  for (int i = 0; i < 3; i++) lua_pushnumber(L, n[i]);
+  return 3;
+}
+
 /* tds.hessian_setting(name [, value]) -> value: hessian_normal,
 ** linear_metric, linear_metric_mix, hessian_diff, hessian_epsilon,
-** hessian_special_normal;
+** hessian_special_normal, hessian_normal_one, hessian_normal_perp;
 ** last_eigenvalue (read) */
 static int l_setting(lua_State *L) {
   static const char *const names[] = {"hessian_normal", "linear_metric", "linear_metric_mix",
                                       "hessian_diff", "last_eigenvalue", "hessian_epsilon",
-                                      "hessian_special_normal", NULL};
+                                      "hessian_special_normal", "hessian_normal_one",
+                                      "hessian_normal_perp", NULL};
   nstate *ns = get_ns(L);
   int which = luaL_checkoption(L, 1, NULL, names);
   int set = !lua_isnone(L, 2);
@@ -243,6 +256,14 @@ static int l_setting(lua_State *L) {
   case 6:
     if (set) ns->o.special_normal = lua_toboolean(L, 2);
     lua_pushboolean(L, ns->o.special_normal);
+    break;
+  case 7:
+    if (set) ns->o.normal_one = lua_toboolean(L, 2);
+    lua_pushboolean(L, ns->o.normal_one);
+    break;
+  case 8:
+    if (set) ns->o.normal_perp = lua_toboolean(L, 2);
+    lua_pushboolean(L, ns->o.normal_perp);
     break;
   case 4: /* read-only */
     if (set) return tds_lua_error(L, "last_eigenvalue is read-only");
@@ -275,6 +296,7 @@ void tds_open_newton(lua_State *L, tds_state *st) {
       {"saddle", l_saddle},         {"eigenprobe", l_eigenprobe},
       {"ritz", l_ritz},             {"move", l_move},
       {"eigenvector", l_eigenvector}, {"hessian_setting", l_setting},
+      {"vertex_normal", l_vertex_normal},
       {NULL, NULL}};
   tds_lua_register(L, st, fns);
 }

@@ -5,10 +5,10 @@
 ** The system. The Hessian of the Lagrangian (hess.h) restricted to the
 ** vertices' motion spaces (tds_hess_reduce) and, with `normal` on
 ** (Evolver's hessian_normal, the default), further to each vertex's
-** normal space: a free or constrained vertex moves along its normal (the
-** area-weighted sum of its facets' unit normals, each signed to agree
-** with the vertex's dominant normal direction: the volume gradient on a
-** smooth closed sheet), projected into its motion space and scaled to
+** normal space: a free or constrained vertex moves along its normal
+** (Evolver's: the sum of its facets' area vectors, each signed to agree
+** with the sum so far in Evolver's order, newton_int.h; the volume
+** gradient on a smooth sheet), projected into its motion space and scaled to
 ** unit length in space; a vertex on one triple
 ** junction line (edges with three or more facets) moves in the plane
 ** perpendicular to the line; a vertex where several such lines meet, or
@@ -54,6 +54,13 @@ typedef struct tds_newton_opts {
   int diff;             /* hessian_diff: H by central differences */
   int special_normal;   /* hessian_special_normal: the normal is the
                            datafile's HESSIAN_SPECIAL_NORMAL_VECTOR */
+  int normal_one;       /* hessian_normal_one: with normal, every vertex
+                           with facets moves along one direction, the
+                           leading eigenvector of the sum of its facets'
+                           n n^T (also on triple junctions) */
+  int normal_perp;      /* hessian_normal_perp: linear_metric takes only
+                           each unit motion's component along the facet's
+                           normal */
   double epsilon;       /* hessian_epsilon: a pivot below epsilon x the
                            largest entry counts as zero (la.h); <= 0: 1e-10 */
   int general;          /* assemble through the xyz Hessian (hess.h) and
@@ -122,5 +129,14 @@ int tds_newton_move(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, const d
 ** the lowest eigenvalue; *moved 1 if the surface moved. */
 int tds_newton_saddle(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double maxscale,
                       double *lowest, int *moved);
+
+/* Evolver's vertex_normal of live vertex v: the unit direction
+** hessian_normal moves it along (newton_int.h's rule, with o's
+** normal_one and special_normal), on a triple junction line the first
+** direction of its normal plane, where several lines meet (1, 0, 0);
+** (0, 0, 0) for a vertex with no facets. TDS_OK, TDS_ENOMEM, TDS_ERANGE
+** or TDS_ENUM (the special normal vector missing or not finite). */
+int tds_vertex_normal_at(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_id v,
+                         double n[3]);
 
 #endif

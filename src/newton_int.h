@@ -25,22 +25,49 @@ typedef struct tds_nsys {
 ** normal, the number of triple-junction edges at it and their direction
 ** (each signed to agree with the first).
 **
-** The normal is the area-weighted sum of the facets' unit normals, each
-** facet's sign chosen to agree with the vertex's dominant normal
-** direction (the leading eigenvector of sum area n n^T). On a smooth,
-** consistently oriented surface this is the plain sum of the facets'
-** area vectors, which is the volume gradient; where the facets around a
-** vertex fold over (a crumpled mesh, inconsistent orientations) it still
-** points across the sheet, as Evolver's hessian normal does. */
+** The normal is Evolver's (its vertex_normal attribute): the running sum
+** of the facets' area vectors, each added with the sign that agrees with
+** the sum so far, over the vertex's facets in Evolver's order (by their
+** edges leaving the vertex: the lowest edge id first, then decreasing
+** ids, the order of a surface Evolver has just read). On a smooth,
+** consistently oriented surface this is the plain sum of the area
+** vectors, the volume gradient, whatever the order; where the facets
+** around a vertex fold over (a crumpled mesh) the signs, and so the
+** normal, depend on the order. */
 typedef struct vnorm {
   double an[3];
-  double P[3][3];       /* sum area n n^T (only where the normals spread) */
   double td[3];
   int nt, nf, bent;     /* bent: two triple edges not along one line */
 } vnorm;
 
 /* vn: m->nv slots. TDS_OK or TDS_ENOMEM (then vn is incomplete). */
 int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn);
+
+/* The pieces of tds_vertex_normals that tds_vertex_normal_at
+** (newton_vnorm.c) shares. A facet at a vertex with its place in
+** Evolver's order there: key INT32_MIN for the facet whose leading edge
+** (the side leaving the vertex) is the vertex's lowest edge, else minus
+** that edge's index. tds_evolver_sum sorts a[0..n) by key (then facet)
+** and sets S to the running sum of their area vectors, each signed to
+** agree with the sum so far. */
+typedef struct tds_fkey {
+  int32_t key, f;
+} tds_fkey;
+void tds_evolver_sum(const tds_mesh *m, tds_fkey *a, int32_t n, double S[3]);
+/* P (upper: xx xy xz yy yz zz) += c c^T / |c|^2 (nothing when c = 0). */
+void tds_unit_nnt(const double c[3], double P[6]);
+/* e = the unit eigenvector of P's largest eigenvalue, signed to agree
+** with ref; 0 when that eigenvalue is not positive (e untouched). */
+int tds_lead_eig(const double P[6], const double ref[3], double e[3]);
+/* The HESSIAN_SPECIAL_NORMAL_VECTOR at vertex v. TDS_OK or TDS_ENUM. */
+int tds_special_at(tds_ctx *ctx, const tds_surf *s, tds_id v, double an[3]);
+
+/* hessian_normal_one: every vertex with facets gets a one-dimensional
+** normal space, the leading eigenvector of sum n n^T over its facets'
+** unit normals (signed to agree with its normal from
+** tds_vertex_normals), also on triple junctions. TDS_OK or TDS_ENOMEM
+** (vn unchanged). */
+int tds_normals_one(const tds_alloc *al, const tds_mesh *m, vnorm *vn);
 
 /* hessian_special_normal: the normal of every vertex off triple
 ** junctions becomes the datafile's HESSIAN_SPECIAL_NORMAL_VECTOR there
@@ -62,8 +89,8 @@ void tds_nsys_free(tds_nsys *n);
 /* The linear_metric matrix out->M (out->m, out->dx set): vk maps a vertex
 ** slot to its movable index (or -1), ustart a movable index to its first
 ** unknown. TDS_OK or TDS_ENOMEM. */
-int tds_nsys_build_metric(tds_ctx *ctx, const tds_mesh *m, double mix, const int32_t *vk,
-                          const int32_t *ustart, tds_nsys *out);
+int tds_nsys_build_metric(tds_ctx *ctx, const tds_mesh *m, double mix, int perp,
+                          const int32_t *vk, const int32_t *ustart, tds_nsys *out);
 
 /* tds_nsys_build's fast path (newton_asm.c): the same system assembled
 ** straight into the unknowns on a pattern from the edges. *miss set (and

@@ -19,6 +19,26 @@ static void facet_vec(const tds_mesh *m, tds_id f, double c[3]) {
   v3_scale(c, 0.5);
 }
 
+void tds_evolver_sum(const tds_mesh *m, tds_fkey *a, int32_t n, double S[3]) {
+  for (int32_t i = 1; i < n; i++) { /* a few facets: insertion sort */
+    tds_fkey x = a[i];
+    int32_t j = i;
+    while (j > 0 && (a[j - 1].key > x.key || (a[j - 1].key == x.key && a[j - 1].f > x.f))) {
+      a[j] = a[j - 1];
+      j--;
+    }
+    a[j] = x;
+  }
+  /* the running sum: each facet's area vector added with the sign that
+  ** agrees with the sum so far */
+  S[0] = S[1] = S[2] = 0;
+  for (int32_t i = 0; i < n; i++) {
+    double c[3];
+    facet_vec(m, a[i].f, c);
+    v3_axpy(S, v3_dot(S, c) < 0 ? -1 : 1, c);
+  }
+}
+
 /* TDS_OK or TDS_ENOMEM (then vn is incomplete: an answer that depends on
 ** memory would make a command's result depend on it). */
 int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
@@ -34,11 +54,9 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
     }
   }
   /* Where every facet's normal is within 30 degrees of the plain sum's,
-  ** each agrees in sign with the dominant direction too (that lies
-  ** within 60 degrees of the sum: its Rayleigh quotient is at least the
-  ** sum's), so the plain sum is the answer; elsewhere the dominant
-  ** direction by power iteration from the plain sum, and the facets
-  ** added again with their signs. */
+  ** no facet disagrees with a partial sum (any two are within 60
+  ** degrees), so the plain sum is Evolver's running sum below; elsewhere
+  ** ("bad" vertices) the running sum in Evolver's order. */
   double (*ref)[3] = tds_malloc(al, ((size_t)m->nv + 1) * sizeof *ref);
   unsigned char *bad = tds_calloc(al, (size_t)m->nv + 1, 1);
   if (!ref || !bad) {
@@ -54,7 +72,7 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
       bad[v] = 1;
     }
   }
-  int nbad = 0;
+  int32_t nbad = 0, nfk = 0;
   for (tds_id f = 0; f < m->nf; f++) {
     if (m->fflags[f] & TDS_DEAD) continue;
     double c[3];
@@ -65,55 +83,57 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
       if (!bad[v] && !(v3_dot(c, ref[v]) >= lim)) bad[v] = 1;
     }
   }
-  for (tds_id v = 0; v < m->nv; v++) nbad += bad[v];
-  for (tds_id f = 0; f < m->nf && nbad; f++) { /* sum area n n^T where needed */
-    if (m->fflags[f] & TDS_DEAD) continue;
-    double c[3];
-    facet_vec(m, f, c);
-    double A = v3_norm(c);
-    for (int k = 0; k < 3; k++) {
-      vnorm *w = &vn[m->fv[f][k]];
-      if (bad[m->fv[f][k]] && A > 0)
-        for (int i = 0; i < 3; i++)
-          for (int j = 0; j < 3; j++) w->P[i][j] += c[i] * c[j] / A;
+  tds_free(al, ref);
+  for (tds_id v = 0; v < m->nv; v++)
+    if (bad[v] && vn[v].nf) {
+      nbad++;
+      nfk += vn[v].nf;
     }
-  }
-  for (tds_id v = 0; v < m->nv; v++) {
-    if (!bad[v]) continue;
-    vnorm *w = &vn[v];
-    double r[3];
-    v3_copy(r, w->an);
-    if (!(v3_norm(r) > 1e-12 * (w->P[0][0] + w->P[1][1] + w->P[2][2]))) {
-      int big = 0;
-      for (int i = 1; i < 3; i++)
-        if (w->P[i][i] > w->P[big][big]) big = i;
-      for (int i = 0; i < 3; i++) r[i] = w->P[i][big];
+  if (nbad) {
+    /* Evolver's order at a vertex: its facets by their leading edge (the
+    ** one leaving the vertex along the facet's orientation) in the
+    ** vertex's edge list, which is the edge with the lowest id, then the
+    ** others by decreasing id (each edge read is inserted right after
+    ** the first: the order of a surface loaded from a file) */
+    int32_t *emin = tds_malloc(al, ((size_t)m->nv + 1) * sizeof *emin);
+    int32_t *at = tds_malloc(al, ((size_t)m->nv + 2) * sizeof *at);
+    tds_fkey *fk = tds_malloc(al, ((size_t)nfk + 1) * sizeof *fk);
+    if (!emin || !at || !fk) {
+      tds_free(al, emin);
+      tds_free(al, at);
+      tds_free(al, fk);
+      tds_free(al, bad);
+      return TDS_ENOMEM;
     }
-    for (int it = 0; it < 100; it++) {
-      double t[3];
-      for (int i = 0; i < 3; i++) t[i] = w->P[i][0] * r[0] + w->P[i][1] * r[1] + w->P[i][2] * r[2];
-      double l = v3_norm(t);
-      if (!(l > 0)) break;
-      v3_scale(t, 1 / l);
-      double dr[3];
-      v3_sub(dr, t, r);
-      v3_copy(r, t);
-      if (it > 0 && v3_dot(dr, dr) < 1e-30) break; /* converged */
+    for (tds_id v = 0; v < m->nv; v++) emin[v] = INT32_MAX;
+    for (tds_id e = 0; e < m->ne; e++) {
+      if (m->eflags[e] & TDS_DEAD) continue;
+      for (int k = 0; k < 2; k++)
+        if (e < emin[m->ev[e][k]]) emin[m->ev[e][k]] = e;
     }
-    v3_copy(ref[v], r);
-    memset(w->an, 0, sizeof w->an);
-  }
-  for (tds_id f = 0; f < m->nf && nbad; f++) {
-    if (m->fflags[f] & TDS_DEAD) continue;
-    double c[3];
-    facet_vec(m, f, c);
-    for (int k = 0; k < 3; k++) {
-      tds_id v = m->fv[f][k];
-      if (bad[v]) v3_axpy(vn[v].an, v3_dot(c, ref[v]) < 0 ? -1 : 1, c);
+    at[0] = 0;
+    for (tds_id v = 0; v < m->nv; v++) at[v + 1] = at[v] + (bad[v] ? vn[v].nf : 0);
+    for (tds_id f = 0; f < m->nf; f++) {
+      if (m->fflags[f] & TDS_DEAD) continue;
+      for (int k = 0; k < 3; k++) {
+        tds_id v = m->fv[f][k];
+        if (!bad[v]) continue;
+        int32_t e = TDS_OID(m->fe[f][k]);
+        tds_fkey x = {e == emin[v] ? INT32_MIN : -e, f};
+        fk[at[v]++] = x;
+      }
     }
+    for (tds_id v = m->nv; v > 0; v--) at[v] = at[v - 1]; /* back to starts */
+    at[0] = 0;
+    for (tds_id v = 0; v < m->nv; v++) {
+      if (!bad[v] || !vn[v].nf) continue;
+      tds_evolver_sum(m, fk + at[v], at[v + 1] - at[v], vn[v].an);
+    }
+    tds_free(al, emin);
+    tds_free(al, at);
+    tds_free(al, fk);
   }
   tds_free(al, bad);
-  tds_free(al, ref);
   for (tds_id e = 0; e < m->ne; e++) {
     if (m->eflags[e] & TDS_DEAD) continue;
     if (tds_edge_valence(m, e) < 3) continue;
@@ -134,6 +154,52 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
       w->nt++;
     }
   }
+  return TDS_OK;
+}
+
+void dsyev_(const char *jobz, const char *uplo, const int *n, double *a, const int *lda,
+            double *w, double *work, const int *lwork, int *info);
+
+int tds_lead_eig(const double P[6], const double ref[3], double e[3]) {
+  double a[9] = {P[0], P[1], P[2], P[1], P[3], P[4], P[2], P[4], P[5]};
+  double w[3], work[16];
+  int n = 3, lwork = 16, info = 0;
+  dsyev_("V", "U", &n, a, &n, w, work, &lwork, &info);
+  if (info != 0 || !(w[2] > 0)) return 0;
+  double sg = v3_dot(a + 6, ref) < 0 ? -1 : 1; /* a + 6: the largest's vector */
+  for (int i = 0; i < 3; i++) e[i] = sg * a[6 + i];
+  return 1;
+}
+
+void tds_unit_nnt(const double c[3], double P[6]) {
+  double l2 = v3_dot(c, c);
+  if (!(l2 > 0)) return;
+  P[0] += c[0] * c[0] / l2;
+  P[1] += c[0] * c[1] / l2;
+  P[2] += c[0] * c[2] / l2;
+  P[3] += c[1] * c[1] / l2;
+  P[4] += c[1] * c[2] / l2;
+  P[5] += c[2] * c[2] / l2;
+}
+
+int tds_normals_one(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
+  double (*P)[6] = tds_calloc(al, (size_t)m->nv + 1, sizeof *P); /* upper xx xy xz yy yz zz */
+  if (!P) return TDS_ENOMEM;
+  for (tds_id f = 0; f < m->nf; f++) {
+    if (m->fflags[f] & TDS_DEAD) continue;
+    double c[3];
+    facet_vec(m, f, c);
+    for (int k = 0; k < 3; k++) tds_unit_nnt(c, P[m->fv[f][k]]);
+  }
+  for (tds_id v = 0; v < m->nv; v++) {
+    if ((m->vflags[v] & TDS_DEAD) || !vn[v].nf) continue;
+    double e[3];
+    if (!tds_lead_eig(P[v], vn[v].an, e)) continue; /* no facet with an area */
+    v3_copy(vn[v].an, e);
+    vn[v].nt = 0;
+    vn[v].bent = 0;
+  }
+  tds_free(al, P);
   return TDS_OK;
 }
 
@@ -215,15 +281,22 @@ int tds_special_normals(tds_ctx *ctx, const tds_surf *s, vnorm *vn) {
                       "HESSIAN_SPECIAL_NORMAL_VECTOR");
   for (tds_id v = 0; v < m->nv; v++) {
     if ((m->vflags[v] & TDS_DEAD) || vn[v].nt || !vn[v].nf) continue;
-    double vars[TDS_NVARS];
-    tds_motion_vars(s, m->x[v], m->vp[v], vars);
-    for (int i = 0; i < 3; i++) {
-      double c = tds_expr_eval(s->special_normal[i], s->parval, vars);
-      if (!isfinite(c))
-        return tds_seterr(ctx, TDS_ENUM, "HESSIAN_SPECIAL_NORMAL_VECTOR: c%d is not finite at "
-                          "vertex %d", i + 1, (int)v + 1);
-      vn[v].an[i] = c;
-    }
+    int rc = tds_special_at(ctx, s, v, vn[v].an);
+    if (rc != TDS_OK) return rc;
+  }
+  return TDS_OK;
+}
+
+int tds_special_at(tds_ctx *ctx, const tds_surf *s, tds_id v, double an[3]) {
+  const tds_mesh *m = &s->m;
+  double vars[TDS_NVARS];
+  tds_motion_vars(s, m->x[v], m->vp[v], vars);
+  for (int i = 0; i < 3; i++) {
+    double c = tds_expr_eval(s->special_normal[i], s->parval, vars);
+    if (!isfinite(c))
+      return tds_seterr(ctx, TDS_ENUM, "HESSIAN_SPECIAL_NORMAL_VECTOR: c%d is not finite at "
+                        "vertex %d", i + 1, (int)v + 1);
+    an[i] = c;
   }
   return TDS_OK;
 }

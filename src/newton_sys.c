@@ -47,8 +47,8 @@ static int need_pressures(tds_ctx *ctx, tds_surf *s, int *needp) {
 
 static int nomem(tds_ctx *ctx) { return tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory"); }
 
-int tds_nsys_build_metric(tds_ctx *ctx, const tds_mesh *m, double mix, const int32_t *vk,
-                          const int32_t *ustart, tds_nsys *out) {
+int tds_nsys_build_metric(tds_ctx *ctx, const tds_mesh *m, double mix, int perp,
+                          const int32_t *vk, const int32_t *ustart, tds_nsys *out) {
   int32_t mm = out->m;
   tds_sptrip t = {.nrow = mm, .ncol = mm, .alloc = ctx->alloc};
   for (tds_id f = 0; f < m->nf; f++) {
@@ -58,7 +58,9 @@ int tds_nsys_build_metric(tds_ctx *ctx, const tds_mesh *m, double mix, const int
     v3_sub(a, m->x[fv[1]], m->x[fv[0]]);
     v3_sub(b, m->x[fv[2]], m->x[fv[0]]);
     v3_cross(c, a, b);
-    double area = 0.5 * v3_norm(c) * m->ften[f]; /* weighted as Evolver's */
+    double cl = v3_norm(c);
+    double area = 0.5 * cl * m->ften[f]; /* weighted as Evolver's */
+    if (perp && cl > 0) v3_scale(c, 1 / cl); /* the unit normal */
     for (int x = 0; x < 3; x++)
       for (int y = 0; y < 3; y++) {
         int32_t kx = vk[fv[x]], ky = vk[fv[y]];
@@ -67,7 +69,8 @@ int tds_nsys_build_metric(tds_ctx *ctx, const tds_mesh *m, double mix, const int
         for (int32_t p = ustart[kx]; p < ustart[kx + 1]; p++)
           for (int32_t q = ustart[ky]; q < ustart[ky + 1]; q++) {
             if (p > q || (x != y && p == q)) continue;
-            double v = wgt * v3_dot(out->dx[p], out->dx[q]);
+            double v = perp ? wgt * v3_dot(out->dx[p], c) * v3_dot(out->dx[q], c)
+                            : wgt * v3_dot(out->dx[p], out->dx[q]);
             if (v != 0 && tds_sptrip_add(&t, p, q, v)) goto nomem;
           }
       }
@@ -113,6 +116,7 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
   rk = tds_malloc(&ctx->alloc, ((size_t)r.m + 1) * sizeof *rk);
   if (!vn || !W || !ustart || !rk) goto nomem;
   if (tds_vertex_normals(&ctx->alloc, m, vn) != TDS_OK) goto nomem;
+  if (o->normal && o->normal_one && tds_normals_one(&ctx->alloc, m, vn) != TDS_OK) goto nomem;
   if (o->normal && o->special_normal && (rc = tds_special_normals(ctx, s, vn)) != TDS_OK)
     goto fail;
   ustart[0] = 0;
@@ -193,7 +197,7 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
     int32_t *vk = tds_malloc(&ctx->alloc, ((size_t)m->nv + 1) * sizeof *vk);
     if (!vk) goto nomem;
     for (tds_id v = 0; v < m->nv; v++) vk[v] = h.vidx[v] < 0 ? -1 : h.vidx[v] / 3;
-    rc = tds_nsys_build_metric(ctx, m, o->metric_mix, vk, ustart, out);
+    rc = tds_nsys_build_metric(ctx, m, o->metric_mix, o->normal_perp, vk, ustart, out);
     tds_free(&ctx->alloc, vk);
     if (rc != TDS_OK) goto fail;
   }

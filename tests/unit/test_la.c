@@ -4,11 +4,15 @@
 ** matrices built as Q D Q^T with chosen signs in D (Sylvester's law fixes
 ** the inertia). Solve tolerances: the residual of a backward-stable LDL^T
 ** solve is a few ulps times ||A|| ||x||; 1e-12 relative leaves room for
-** the conditioning of these matrices (condition numbers below 1e3). */
+** the conditioning of these matrices (condition numbers below 1e3).
+** la_chol: the Cholesky path (la_chol.h) on the N x N grid Laplacian
+** (Dirichlet), whose eigenvalues are known in closed form: shifted, its
+** inertia is exact, whichever path serves. */
 #include <stdlib.h>
 
 #include "check.h"
 #include "la.h"
+#include "la_chol.h"
 
 /* Dense symmetric n x n (row-major) to upper CSC, keeping zeros off. */
 static void to_sp(int n, const double *a, tds_spmat *out) {
@@ -162,6 +166,91 @@ static void la_bad_input(void) {
   tds_la_free(f);
 }
 
+/* The 5-point Laplacian of an N x N grid minus c I, upper CSC;
+** eigenvalues 4 - 2 cos(j pi / (N + 1)) - 2 cos(k pi / (N + 1)) - c. */
+static void grid(int N, double c, tds_spmat *out) {
+  tds_sptrip t = {.nrow = N * N, .ncol = N * N};
+  for (int i = 0; i < N; i++)
+    for (int j = 0; j < N; j++) {
+      int v = i * N + j;
+      tds_sptrip_add(&t, v, v, 4 - c);
+      if (j + 1 < N) tds_sptrip_add(&t, v, v + 1, -1);
+      if (i + 1 < N) tds_sptrip_add(&t, v, v + N, -1);
+    }
+  tds_spmat_from_trip(&t, 1, out);
+  tds_sptrip_free(&t);
+}
+
+static void la_chol(void) {
+  const int N = 40, n = N * N;
+  const double pi = acos(-1.0);
+  tds_ctx ctx;
+  tds_ctx_init(&ctx);
+  /* shifts: 0 (definite), and values between eigenvalues (indefinite,
+  ** MUMPS's path); the exact count below each from the closed form */
+  const double shifts[] = {0, 0.05, 0.5, 1.91, 3.3, 5.55};
+  for (size_t si = 0; si < sizeof shifts / sizeof *shifts; si++) {
+    double c = shifts[si], gap = HUGE_VAL;
+    int below = 0;
+    for (int j = 1; j <= N; j++)
+      for (int k = 1; k <= N; k++) {
+        double ev = 4 - 2 * cos(j * pi / (N + 1)) - 2 * cos(k * pi / (N + 1));
+        below += ev < c;
+        gap = fmin(gap, fabs(ev - c));
+      }
+    CHECK(gap > 1e-4); /* no eigenvalue at the shift: the count is clear */
+    tds_spmat A = {0};
+    grid(N, c, &A);
+    tds_chol *ch = (tds_chol *)&ctx;
+    int rc = tds_chol_factor(&ctx, &A, 1e-10, &ch);
+    CHECK(rc == (below ? TDS_ERANGE : TDS_OK));
+    CHECK((ch != NULL) == (rc == TDS_OK));
+    tds_la *f = NULL;
+    CHECK(tds_la_factor(&ctx, &A, 0, &f) == TDS_OK);
+    if (f) {
+      tds_inertia in = tds_la_inertia(f);
+      CHECK(in.neg == below);
+      CHECK(in.zero == 0);
+      CHECK(in.pos == n - below);
+    }
+    /* solves, both ways: residual at rounding (cond < 1e3 here) */
+    double *xs = malloc(n * sizeof *xs), *b = malloc(n * sizeof *b), *b2 = malloc(n * sizeof *b2);
+    for (int i = 0; i < n; i++) xs[i] = sin(0.37 * i) + 0.1 * (i % 7);
+    tds_spmat_mulv(&A, xs, b);
+    memcpy(b2, b, n * sizeof *b);
+    if (ch) CHECK(tds_chol_solve(&ctx, ch, b2) == TDS_OK);
+    if (f) CHECK(tds_la_solve(&ctx, f, b, 0) == TDS_OK);
+    double err = 0, err2 = 0;
+    for (int i = 0; i < n; i++) {
+      err = fmax(err, fabs(b[i] - xs[i]));
+      if (ch) err2 = fmax(err2, fabs(b2[i] - xs[i]));
+    }
+    CHECK_NEAR(err, 0, 1e-10);
+    CHECK_NEAR(err2, 0, 1e-10);
+    free(xs);
+    free(b);
+    free(b2);
+    tds_chol_free(ch);
+    tds_la_free(f);
+    tds_spmat_free(&A);
+  }
+  /* definite (eigenvalues 2 and 5e-14) but with a pivot below eps |A|:
+  ** not Cholesky's; MUMPS counts the zero pivot */
+  double d[4] = {1, 1, 1, 1 + 1e-13};
+  tds_spmat D = {0};
+  to_sp(2, d, &D);
+  tds_chol *ch = NULL;
+  CHECK(tds_chol_factor(&ctx, &D, 1e-10, &ch) == TDS_ERANGE && ch == NULL);
+  tds_spmat_free(&D);
+  factor_check(2, d, 0, 1, 1, 0);
+  /* a zero diagonal (a KKT border) is not Cholesky's either */
+  double k[9] = {2, 0, 1, 0, 2, 1, 1, 1, 0};
+  tds_spmat K = {0};
+  to_sp(3, k, &K);
+  CHECK(tds_chol_factor(&ctx, &K, 1e-10, &ch) == TDS_ERANGE && ch == NULL);
+  tds_spmat_free(&K);
+}
+
 int main(void) {
   RUN(la_definite);
   RUN(la_indefinite);
@@ -169,5 +258,6 @@ int main(void) {
   RUN(la_kkt);
   RUN(la_random);
   RUN(la_bad_input);
+  RUN(la_chol);
   return check_done();
 }

@@ -4,7 +4,8 @@
 ** (newton_sys.c, hess.c, hess_reduce.c; checked against finite
 ** differences in test_hess.c), on states of Evolver's examples with
 ** every kind of vertex (free, on level sets, on boundaries, on triple
-** junctions, fixed), with hessian_normal on and off, linear_metric, and
+** junctions, fixed), with hessian_normal on and off (and
+** hessian_normal_one with hessian_normal_perp), linear_metric, and
 ** on jittered (badly shaped) copies.
 **
 ** Tolerance: the two sum the same products in another order, so they
@@ -125,6 +126,8 @@ static void example(const char *file, int refine, int steps) {
     compare(&ctx, &s, (tds_newton_opts){.normal = 1, .linear_metric = 1, .metric_mix = 0.3},
             file);
     compare(&ctx, &s, (tds_newton_opts){.normal = 0, .linear_metric = 1, .metric_mix = 1}, file);
+    compare(&ctx, &s, (tds_newton_opts){.normal = 1, .normal_one = 1, .linear_metric = 1,
+                                        .normal_perp = 1, .metric_mix = 0.5}, file);
     jitter(&s.m, 0.05, 42);
   }
   tds_surf_free(&s);

@@ -316,7 +316,8 @@ typedef struct opcase {
                         inverse iteration (eigenprobe(0.5, 20)), 'A'
                         addload of the same file, 'R' replace_load, 'T'
                         replacing the view transforms, 'D' detorus, 'G'
-                        g with Evolver's line search */
+                        g with Evolver's line search, 'W' every vertex's
+                        vertex_normal (hessian_normal_one) */
 } opcase;
 
 static int prepare(tds_ctx *ctx, tds_surf *s, const opcase *c) {
@@ -374,8 +375,19 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
     tds_inertia in;
     return tds_newton_ritz(ctx, s, &no, NAN, 3, vals, &got, &in, NULL, &iters, NULL);
   }
-  case 'i': {
-    tds_newton_opts no = {.normal = 1, .linear_metric = 1, .metric_mix = 0.5};
+  case 'W': {
+    tds_newton_opts no = {.normal = 1, .normal_one = 1};
+    for (tds_id v = 0; v < s->m.nv; v++) {
+      if (s->m.vflags[v] & TDS_DEAD) continue;
+      double n[3];
+      int rc = tds_vertex_normal_at(ctx, s, &no, v, n);
+      if (rc != TDS_OK) return rc;
+    }
+    return TDS_OK;
+  }
+  case 'i': { /* also hessian_normal_one and hessian_normal_perp */
+    tds_newton_opts no = {.normal = 1, .normal_one = 1, .normal_perp = 1, .linear_metric = 1,
+                          .metric_mix = 0.5};
     double val;
     int iters;
     tds_inertia in;
@@ -621,6 +633,7 @@ static void oom_newton(void) {
   sweep_all('e', 1, 5);
   sweep_all('S', 1, 5);
   sweep_all('i', 1, 5);
+  sweep_all('W', 1, 0);
 }
 /* O on octa.fe (six runs of one edge: split, then pulled) and refined
 ** once (runs of two edges). */
