@@ -735,6 +735,8 @@ local TOGGLE_MSG = {
   immediate_autopop = "Immediate autopop mode %s.\n (was %s)",
   autochop = "Autochopping %s. (was %s)",
   area_normalization = "Area normalization %s. (was %s)",
+  pop_to_edge = "pop_to_edge %s. (was %s)",
+  pop_to_face = "pop_to_face %s. (was %s)",
   little_endian = "little_endian %s. (was %s)",
   big_endian = "big_endian %s. (was %s)",
   hessian_normal = "hessian_normal %3s. (was %s)",
@@ -757,7 +759,9 @@ local function toggle_get(name)
   if name == "gravity" then local _, on = tds.gravity(); return on end
   if name == "check_increase" then return tds.setting("check_increase") end
   if name == "autopop" or name == "immediate_autopop" or name == "autochop"
-      or name == "area_normalization" then return tds.setting(name) end
+      or name == "area_normalization" or name == "pop_to_edge" or name == "pop_to_face" then
+    return tds.setting(name)
+  end
   if name == "little_endian" then return endian == "<" end
   if name == "big_endian" then return endian == ">" end
   if name == "transforms" then return show_transforms end
@@ -774,7 +778,8 @@ local function toggle_set(name, on)
   elseif name == "gravity" then local g = tds.gravity(); tds.gravity(g, on)
   elseif name == "check_increase" then tds.setting("check_increase", on)
   elseif name == "autopop" or name == "immediate_autopop" or name == "autochop"
-      or name == "area_normalization" then tds.setting(name, on)
+      or name == "area_normalization" or name == "pop_to_edge" or name == "pop_to_face" then
+    tds.setting(name, on)
   elseif name == "little_endian" then endian = on and "<" or ">"
   elseif name == "big_endian" then endian = on and ">" or "<"
   elseif name == "transforms" then show_transforms = on
@@ -1127,7 +1132,7 @@ for w in ([[J e A a b f k p Q W y Z z s P D F H h X
   itdebug memdebug debug estimate extrapolate set_body_target quantity]]):gmatch("%S+") do UNSUPPORTED[w] = true end
 for w in ([[deturck diffusion hessian_special_normal
   hessian_double_normal sobolev_mode dirichlet_mode metis_factor hessian_quiet pop_disjoin
-  pop_enjoin pop_to_edge pop_to_face septum_flag force_deletion star_finagling
+  pop_enjoin septum_flag force_deletion star_finagling
   force_edgeswap k_altitude_mode assume_oriented calculate_in_3d self_similar
   immediate_autopop autopop_quartic longj simplex_to_fe ooglfile geompipe reorder_storage
   free_discards dump_memlist]]):gmatch("%S+") do

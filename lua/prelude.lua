@@ -400,6 +400,10 @@ autopop = gtoggle("autopop", "Autopopping")
 immediate_autopop = gtoggle("immediate_autopop", "Immediate autopop mode")
 autochop = gtoggle("autochop", "Autochopping")
 area_normalization = gtoggle("area_normalization", "Area normalization")
+-- pop_to_edge(on), pop_to_face(on): how o pops the cone over a triangular
+-- prism frame (doc/commands.md); turning one on turns the other off.
+pop_to_edge = gtoggle("pop_to_edge", "pop_to_edge")
+pop_to_face = gtoggle("pop_to_face", "pop_to_face")
 
 -- recalc(): after assigning parameters, put boundary vertices where their
 -- parameters say and constrained vertices back on their constraints (g, r

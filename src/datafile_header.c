@@ -517,13 +517,15 @@ static int h_string(df *d, const hdr_kw *k) {
   return TDS_OK;
 }
 
-/* VIEW_MATRIX: 16 numbers, display only. */
+/* VIEW_MATRIX: 16 numbers (9 after SPACE_DIMENSION 2, as Evolver dumps
+** a 2-D string model), display only. */
 static int h_view_matrix(df *d, const hdr_kw *k) {
   (void)k;
-  return skip_values(d, 16, "VIEW_MATRIX");
+  return skip_values(d, d->space_dim == 2 ? 9 : 16, "VIEW_MATRIX");
 }
 
-/* slice_coeff = { a, b, c, d } (written by Evolver's dump), display only. */
+/* slice_coeff = { a, b, c, d } (written by Evolver's dump; three values
+** after SPACE_DIMENSION 2), display only. */
 static int h_slice(df *d, const hdr_kw *k) {
   (void)k;
   int have, rc = df_more(d, &have);
@@ -532,7 +534,7 @@ static int h_slice(df *d, const hdr_kw *k) {
   if ((rc = df_more(d, &have))) return rc;
   int brace = have && *d->p == '{';
   if (brace) d->p++;
-  if ((rc = skip_values(d, 4, "SLICE_COEFF"))) return rc;
+  if ((rc = skip_values(d, d->space_dim == 2 ? 3 : 4, "SLICE_COEFF"))) return rc;
   if (brace) {
     if ((rc = df_more(d, &have))) return rc;
     if (!have || *d->p != '}') {

@@ -222,7 +222,8 @@ static int l_setting(lua_State *L) {
                                       "check_increase", "random_seed",
                                       "evolver_line_search", "autopop",
                                       "immediate_autopop", "autochop",
-                                      "autochop_length", "area_normalization", NULL};
+                                      "autochop_length", "area_normalization", "pop_to_edge",
+                                      "pop_to_face", NULL};
   int which = luaL_checkoption(L, 1, NULL, names);
   tds_surf *s = &st->s;
   int set = !lua_isnone(L, 2);
@@ -288,6 +289,16 @@ static int l_setting(lua_State *L) {
     if (set) s->area_normalization = lua_toboolean(L, 2);
     lua_pushboolean(L, s->area_normalization);
     break;
+  case 15: /* Evolver's pop_to_edge and pop_to_face exclude each other */
+  case 16: {
+    int *mine = which == 15 ? &s->pop_to_edge : &s->pop_to_face;
+    if (set) {
+      *mine = lua_toboolean(L, 2);
+      if (*mine) *(which == 15 ? &s->pop_to_face : &s->pop_to_edge) = 0;
+    }
+    lua_pushboolean(L, *mine);
+    break;
+  }
   case 8: /* the jiggle's generator state (jiggle.h) */
     if (set) s->rng = (uint64_t)luaL_checkinteger(L, 2);
     lua_pushinteger(L, (lua_Integer)s->rng);

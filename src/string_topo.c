@@ -3,10 +3,12 @@
 ** where four or more edges meet (Evolver's o / pop for strings).
 **
 ** Evolver's rule, measured on evolver-nox-d (popstr.fe and a 5-edge star):
-** a vertex that is not fixed, on no constraint or boundary, with k >= 4
-** edges splits off the two edges with the smallest angle between them onto
-** a new vertex, joined to the old one by a new edge; repeated until three
-** edges remain (k - 3 pops). The new vertex lies along the bisector of the
+** a vertex on no constraint or boundary, with k >= 4 edges splits off the
+** two edges with the smallest angle between them onto a new vertex,
+** joined to the old one by a new edge; repeated until three edges remain
+** (k - 3 pops). A fixed vertex pops too (a 2-D foam's wall junction after
+** t, tests/evolver/foam_t1.sh), but only its edges that are not fixed
+** move: the new vertex and edge are free. The new vertex lies along the bisector of the
 ** two edges at a tenth of the shorter one's length. Ties in the angle go to
 ** the first pair in the order (first edge, last edge, ..., second edge) of
 ** the vertex's edges by id in 3-D space (Evolver's choice on popstr); in
@@ -84,26 +86,35 @@ static int pop_once(tds_surf *s, tds_id v) {
     if (!(len[i] > 0)) return 0;
     v3_scale(u[i], 1 / len[i]);
   }
+  /* at a fixed vertex only its free edges move (a fixed wall stays) */
+  int movable[MAXSTAR], nm = 0;
+  for (int32_t i = 0; i < k; i++) {
+    movable[i] = !(m->vflags[v] & TDS_FIXED) || !(m->eflags[TDS_OID(ord[i])] & TDS_FIXED);
+    nm += movable[i];
+  }
+  if (nm < 2) return 0;
   int bi = -1, bj = -1;
   if (s->str->space_dim == 2) {
-    /* edges in angular order; the smallest gap between neighbours, ties
-    ** (within rounding) to the later pair, the wrap-around pair last */
-    int idx[MAXSTAR];
+    /* movable edges in angular order; the smallest gap between
+    ** neighbours, ties (within rounding) to the later pair, the
+    ** wrap-around pair last */
+    int idx[MAXSTAR], n = 0;
     double ang[MAXSTAR];
     for (int i = 0; i < k; i++) {
       ang[i] = atan2(u[i][1], u[i][0]);
-      idx[i] = i;
+      if (movable[i]) idx[n++] = i;
     }
-    for (int i = 1; i < k; i++) /* insertion sort: k is small */
+    for (int i = 1; i < n; i++) /* insertion sort: k is small */
       for (int j = i; j > 0 && ang[idx[j]] < ang[idx[j - 1]]; j--) {
         int t = idx[j];
         idx[j] = idx[j - 1];
         idx[j - 1] = t;
       }
     double best = INFINITY;
-    for (int i = 0; i < k; i++) {
-      int p = idx[i], q = idx[(i + 1) % k];
-      double gap = i + 1 < k ? ang[q] - ang[p] : 2 * 3.14159265358979323846 - (ang[p] - ang[q]);
+    for (int i = 0; i < n; i++) {
+      int p = idx[i], q = idx[(i + 1) % n];
+      if (n == 2 && i == 1) break; /* two edges: one pair */
+      double gap = i + 1 < n ? ang[q] - ang[p] : 2 * 3.14159265358979323846 - (ang[p] - ang[q]);
       if (gap <= best + 1e-12) {
         if (gap < best) best = gap;
         bi = p;
@@ -114,6 +125,7 @@ static int pop_once(tds_surf *s, tds_id v) {
     double best = -2;
     for (int i = 0; i < k; i++)
       for (int j = i + 1; j < k; j++) {
+        if (!movable[i] || !movable[j]) continue;
         double d = v3_dot(u[i], u[j]);
         if (d > best) best = d, bi = i, bj = j;
       }
@@ -142,8 +154,7 @@ static int pop_all(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npopp
   tds_mesh *m = &s->m;
   int32_t count = 0, nv = m->nv;
   for (tds_id v = 0; v < nv; v++) {
-    if ((sel && !sel[v]) || !tds_alive(m->vflags, v) || (m->vflags[v] & TDS_FIXED) || m->vcon[v] ||
-        m->vbdry[v] != TDS_NONE)
+    if ((sel && !sel[v]) || !tds_alive(m->vflags, v) || m->vcon[v] || m->vbdry[v] != TDS_NONE)
       continue;
     for (;;) {
       if (tds_mesh_adjacency(m) != TDS_OK) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");

@@ -115,6 +115,8 @@ typedef struct tds_surf {
   int evolver_ls;         /* g's line search: Evolver's bracketing (iterate.c) */
   int autopop;            /* g deletes edges and facets about to vanish, pops */
   int immediate_autopop;  /* ... each as soon as it is found (autopop.h) */
+  int pop_to_edge;        /* o pops a prism cone to an edge (tds_pop_prism) */
+  int pop_to_face;        /* ... or to a triangle (at most one of the two on) */
   int autochop;           /* g bisects edges about to grow past autochop_length */
   double autochop_length;
   int area_normalization; /* g divides each vertex's force by its share of

@@ -84,6 +84,15 @@ int tds_pop_vertices(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
 ** TDS_OK or TDS_ENOMEM (then half changed: callers run under a snapshot). */
 int tds_pop_cone(tds_surf *s, tds_id v, int *done);
 
+/* Pop vertex v if its star is the cone over a triangular prism frame
+** (six triple edges, nine films joining them as a prism's edges): to an
+** edge joining the two triangles' sides (to_face 0, Evolver's pop_to_edge)
+** or to a triangle between the two triangles' regions (to_face 1,
+** pop_to_face) (topo_t1.c). No snapshot, no energy update; adjacency
+** must be current and is stale after. 1 done, 0 not such a cone, or
+** -status. */
+int tds_pop_prism(tds_surf *s, tds_id v, int to_face);
+
 /* O / pop on edges (sel over edges, NULL: all; topo_popedge.c): each
 ** selected live edge with more than three facets, not fixed, on no
 ** constraint (beyond global ones) or boundary, is split into two chains

@@ -102,7 +102,15 @@ static int pop(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npop) {
     if (nc == 1) {
       if (!minimal) {
         int done = 0;
-        rc = tds_pop_cone(s, v, &done);
+        if (s->pop_to_edge || s->pop_to_face) { /* Evolver's prism toggles */
+          int r = tds_pop_prism(s, v, s->pop_to_face);
+          if (r < 0) {
+            rc = tds_seterr(ctx, -r, "out of memory while popping vertex %d", v + 1);
+            break;
+          }
+          done = r;
+        }
+        if (!done) rc = tds_pop_cone(s, v, &done);
         if (rc != TDS_OK) {
           rc = tds_seterr(ctx, rc, "out of memory while popping vertex %d", v + 1);
           break;

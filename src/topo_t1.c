@@ -48,7 +48,7 @@ static tds_id conn_edge(const tds_mesh *m, const tds_id *conn, int nc, tds_id p,
 ** not fans bounded by two listed triple edges each. Room for nt new edges
 ** and facets must be reserved. */
 static int expand(tds_mesh *m, tds_id v, int nt, const tds_id *te, const tds_id *tv,
-                  const tds_id *conn, int nc) {
+                  const tds_id *conn, int nc, int flip) {
   tds_id fl[MAXF];
   int lab[MAXF], nf = 0;
   for (tds_id f = 0; f < m->nf; f++)
@@ -73,17 +73,24 @@ static int expand(tds_mesh *m, tds_id v, int nt, const tds_id *te, const tds_id 
     }
   for (int i = 0; i < nf; i++) lab[i] = root(lab, i);
   /* the two triple edges bounding each fan */
-  int endx[MAXF], endy[MAXF], yfacet[MAXF];
-  for (int i = 0; i < nf; i++) endx[i] = endy[i] = yfacet[i] = -1;
+  int endx[MAXF], endy[MAXF], xfacet[MAXF], yfacet[MAXF];
+  for (int i = 0; i < nf; i++) endx[i] = endy[i] = xfacet[i] = yfacet[i] = -1;
   for (int i = 0; i < nf; i++)
     for (int k = 0; k < 3; k++)
       for (int t = 0; t < nt; t++)
         if (TDS_OID(m->fe[fl[i]][k]) == te[t]) {
           int r = lab[i];
-          if (endx[r] < 0) endx[r] = t;
+          if (endx[r] < 0) { endx[r] = t; xfacet[r] = i; }
           else if (endx[r] != t && endy[r] < 0) { endy[r] = t; yfacet[r] = i; }
           else if (endx[r] != t && endy[r] != t) return TDS_ETOPO;
         }
+  if (flip) /* the fans follow their other end */
+    for (int i = 0; i < nf; i++) {
+      int t = endx[i];
+      endx[i] = endy[i], endy[i] = t;
+      t = xfacet[i];
+      xfacet[i] = yfacet[i], yfacet[i] = t;
+    }
   for (int i = 0; i < nf; i++)
     if (lab[i] == i && (endx[i] < 0 || endy[i] < 0)) return TDS_ETOPO;
   for (int i = 0; i < nf; i++) {
@@ -287,7 +294,7 @@ static int edge_to_tri(tds_surf *s, tds_id e, int dry) {
     v3_add(m->x[p[k]], m->x[v], dir);
   }
   for (int k = 0; k < 3; k++) conn[k] = tds_mesh_add_edge(m, p[k], p[(k + 1) % 3]);
-  int rc = expand(m, v, 6, te, tv, conn, 3);
+  int rc = expand(m, v, 6, te, tv, conn, 3, 0);
   if (rc != TDS_OK) return rc;
   int32_t t3[3] = {TDS_OREF(conn[0], 0), TDS_OREF(conn[1], 0), TDS_OREF(conn[2], 0)};
   tds_id T = tds_mesh_add_facet(m, t3);
@@ -386,7 +393,7 @@ static int tri_to_edge(tds_surf *s, tds_id f, int dry) {
     tv[nt++] = hd ? a : b;
   }
   if (nt != 6) return TDS_ETOPO;
-  int rc = expand(m, v, 6, te, tv, &ab, 1);
+  int rc = expand(m, v, 6, te, tv, &ab, 1, 0);
   if (rc != TDS_OK) return rc;
   tds_motion_enforce(s, a);
   tds_motion_enforce(s, b);
@@ -438,4 +445,151 @@ int tds_pop_edge_to_tri(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *
 int tds_pop_tri_to_edge(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
   if (s->m.torus) return tds_torus_unsupported(ctx, "pop_tri_to_edge");
   return run(ctx, s, TDS_FACET, sel, tri_to_edge, n);
+}
+
+/* The cone over a triangular prism frame at v (Evolver's pop_to_edge and
+** pop_to_face toggles): v free, six triple edges and every other edge at
+** v of valence 2, and the films at v (fans of facets between two triple
+** edges) join the triple edges as the edges of a prism join its corners:
+** two triangles t[0..2] and t[3..5], t[k] joined to t[k + 3]. Fills t;
+** 1 if so, 0 if not. */
+static int prism(const tds_surf *s, tds_id v, tds_id t[6]) {
+  const tds_mesh *m = &s->m;
+  if (!free_vertex(s, v)) return 0;
+  tds_id te[6];
+  int nt = 0;
+  for (tds_id e = 0; e < m->ne; e++) {
+    if (!tds_alive(m->eflags, e) || (m->ev[e][0] != v && m->ev[e][1] != v)) continue;
+    int val = tds_edge_valence(m, e);
+    if (val == 3) {
+      if (nt == 6) return 0;
+      te[nt++] = e;
+    } else if (val != 2) {
+      return 0;
+    }
+  }
+  if (nt != 6) return 0;
+  /* fans: facets at v joined through the valence-2 edges at v */
+  tds_id fl[MAXF];
+  int lab[MAXF], nf = 0;
+  for (tds_id f = 0; f < m->nf; f++)
+    if (tds_alive(m->fflags, f) && (m->fv[f][0] == v || m->fv[f][1] == v || m->fv[f][2] == v)) {
+      if (nf == MAXF) return 0;
+      fl[nf] = f;
+      lab[nf] = nf;
+      nf++;
+    }
+  for (int i = 0; i < nf; i++)
+    for (int k = 0; k < 3; k++) {
+      tds_id e = TDS_OID(m->fe[fl[i]][k]);
+      if ((m->ev[e][0] != v && m->ev[e][1] != v) || tds_edge_valence(m, e) != 2) continue;
+      for (int j = 0; j < nf; j++)
+        for (int q = 0; q < 3; q++)
+          if (j != i && TDS_OID(m->fe[fl[j]][q]) == e) lab[root(lab, j)] = root(lab, i);
+    }
+  int ends[MAXF][2], adj[6][6] = {{0}}, nfan = 0;
+  for (int i = 0; i < nf; i++) ends[i][0] = ends[i][1] = -1;
+  for (int i = 0; i < nf; i++) {
+    int r = root(lab, i);
+    for (int k = 0; k < 3; k++)
+      for (int q = 0; q < 6; q++)
+        if (TDS_OID(m->fe[fl[i]][k]) == te[q] && ends[r][0] != q) {
+          if (ends[r][0] < 0) ends[r][0] = q;
+          else if (ends[r][1] < 0) ends[r][1] = q;
+          else return 0;
+        }
+  }
+  for (int i = 0; i < nf; i++) {
+    if (root(lab, i) != i) continue;
+    if (ends[i][0] < 0 || ends[i][1] < 0 || adj[ends[i][0]][ends[i][1]]) return 0;
+    adj[ends[i][0]][ends[i][1]] = adj[ends[i][1]][ends[i][0]] = 1;
+    nfan++;
+  }
+  if (nfan != 9) return 0;
+  /* the triangle through te[0]; the other one is the rest */
+  int tri[3] = {0, -1, -1}, in1[6] = {1, 0, 0, 0, 0, 0};
+  for (int a = 1; a < 6 && tri[1] < 0; a++)
+    for (int b = a + 1; b < 6; b++)
+      if (adj[0][a] && adj[0][b] && adj[a][b]) {
+        tri[1] = a, tri[2] = b;
+        break;
+      }
+  if (tri[1] < 0) return 0;
+  in1[tri[1]] = in1[tri[2]] = 1;
+  for (int k = 0; k < 3; k++) {
+    t[k] = te[tri[k]];
+    int partner = -1;
+    for (int q = 0; q < 6; q++)
+      if (!in1[q] && adj[tri[k]][q]) {
+        if (partner >= 0) return 0;
+        partner = q;
+      }
+    if (partner < 0) return 0;
+    t[k + 3] = te[partner];
+  }
+  for (int k = 0; k < 3; k++) /* the second triple joined as a triangle */
+    for (int j = k + 1; j < 3; j++) {
+      int a = -1, b = -1;
+      for (int q = 0; q < 6; q++) {
+        if (te[q] == t[k + 3]) a = q;
+        if (te[q] == t[j + 3]) b = q;
+      }
+      if (a < 0 || b < 0 || a == b || !adj[a][b]) return 0;
+    }
+  return 1;
+}
+
+int tds_pop_prism(tds_surf *s, tds_id v, int to_face) {
+  tds_mesh *m = &s->m;
+  tds_id t[6];
+  if (!prism(s, v, t)) return 0;
+  tds_id D = common_body(m, t), E = common_body(m, t + 3);
+  if (to_face && (D == -2 || E == -2)) return 0;
+  if (tds_mesh_room(m, TDS_VERTEX, m->nv + 3) || tds_mesh_room(m, TDS_EDGE, m->ne + 12) ||
+      tds_mesh_room(m, TDS_FACET, m->nf + 8))
+    return -TDS_ENOMEM;
+  double x[3], far[6][3];
+  v3_copy(x, m->x[v]);
+  for (int k = 0; k < 6; k++) v3_copy(far[k], m->x[far_end(m, t[k], v)]);
+  tds_id tv[6], nw[3];
+  int nn = to_face ? 3 : 2;
+  for (int k = 0; k < nn; k++) {
+    /* a quarter of the way toward the far ends the new vertex takes */
+    double c[3] = {0, 0, 0};
+    int cnt = 0;
+    for (int q = 0; q < 6; q++)
+      if (to_face ? q % 3 == k : q / 3 == k) {
+        v3_add(c, c, far[q]);
+        cnt++;
+      }
+    v3_scale(c, 1.0 / cnt);
+    double p[3];
+    for (int i = 0; i < 3; i++) p[i] = x[i] + 0.25 * (c[i] - x[i]);
+    nw[k] = tds_mesh_add_vertex(m, p);
+    m->vcon[nw[k]] = m->vcon[v];
+  }
+  for (int q = 0; q < 6; q++) tv[q] = to_face ? nw[q % 3] : nw[q / 3];
+  tds_id conn[3];
+  int nc = to_face ? 3 : 1;
+  for (int k = 0; k < nc; k++) conn[k] = tds_mesh_add_edge(m, nw[k], nw[(k + 1) % nn]);
+  int rc = expand(m, v, 6, t, tv, conn, nc, to_face); /* as Evolver triangulates */
+  if (rc != TDS_OK) return -rc;
+  if (to_face) {
+    int32_t t3[3] = {TDS_OREF(conn[0], 0), TDS_OREF(conn[1], 0), TDS_OREF(conn[2], 0)};
+    tds_id T = tds_mesh_add_facet(m, t3);
+    double n[3], u1[3], u2[3], d[3] = {0, 0, 0};
+    v3_sub(u1, m->x[nw[1]], m->x[nw[0]]);
+    v3_sub(u2, m->x[nw[2]], m->x[nw[0]]);
+    v3_cross(n, u1, u2);
+    for (int q = 0; q < 3; q++) { /* from the second triangle's side to the first's */
+      v3_add(d, d, far[q]);
+      v3_sub(d, d, far[q + 3]);
+    }
+    int toward_d = v3_dot(n, d) > 0; /* D is enclosed by the first triangle's films */
+    m->fb[T][0] = toward_d ? E : D;
+    m->fb[T][1] = toward_d ? D : E;
+  }
+  for (int k = 0; k < nn; k++) tds_motion_enforce(s, nw[k]);
+  m->coord_gen++;
+  return 1;
 }

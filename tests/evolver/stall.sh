@@ -150,3 +150,25 @@ if [ -n "$n" ] && [ "$n" -lt 30 ] && [ "$(echo "$a" | grep -c "^P ")" -gt 8 ] &&
 else
   echo "FAIL stall/check_increase/restores-exactly: positions after check_increase stopped at step $n differ from $n plain steps"
 fi
+
+# 6. Evolver's line search from a state off its volume target (tankex.fe
+#    with the target 0.666 where the volume is 2/3), fixed scales 0.05 and
+#    0.1: each trial adds the restoring motion to the projected force,
+#    whose multipliers are the pressures (a restoring solve once
+#    overwrote them, so the move was not tangent to the volume: energies
+#    1.6e-3 and 5.6e-3 from Evolver's), and restores the volume as Evolver
+#    does, leaving it off target by Evolver's amount. Energy and volume
+#    equal Evolver's to 1e-12 (measured: to the printed digit).
+sed 's/volume 0.6 /volume 0.666 /' "$FE" > "$dir/t666.fe"
+for sc in 0.05 0.1; do
+  ev=$(evolver_run "$dir/t666.fe" "m $sc; g 1; printf \"E %.17g %.17g\\n\", total_energy, body[1].volume;")
+  e=$(echo "$ev" | grab E)
+  "$TDS" -q "$dir/t666.fe" -e "
+dofile('$ROOT/tests/evolver/compare.lua')
+local e, v = nums('$e')
+tds.setting('evolver_line_search', true)
+m($sc) g(1)
+same('stall/offtarget/$sc', total_energy, e, 1e-12)
+same('stall/offtarget/$sc/volume', body[1].volume, v, 1e-12)
+" 2>/dev/null | grep -v '^Fixed' || echo "FAIL stall/offtarget/$sc: tds exited with an error"
+done

@@ -197,7 +197,17 @@ static char *double_bubble(int perturb, unsigned seed) {
   return buf;
 }
 
-static char bubble_path[64], pbubble_path[64], dump_path[64];
+static char bubble_path[64], pbubble_path[64], dump_path[64], prism_path[64];
+
+/* The cone over a triangular prism frame (pop_to_edge, pop_to_face). */
+static const char prism_fe[] =
+    "vertices\n1 1 0 0 fixed\n2 -0.5 0.8660254 0 fixed\n3 -0.5 -0.8660254 0 fixed\n"
+    "4 1 0 0.6 fixed\n5 -0.5 0.8660254 0.6 fixed\n6 -0.5 -0.8660254 0.6 fixed\n"
+    "7 0.01 0.02 0.31\nedges\n1 1 2 fixed\n2 2 3 fixed\n3 3 1 fixed\n4 4 5 fixed\n"
+    "5 5 6 fixed\n6 6 4 fixed\n7 1 4 fixed\n8 2 5 fixed\n9 3 6 fixed\n10 7 1\n"
+    "11 7 2\n12 7 3\n13 7 4\n14 7 5\n15 7 6\nfaces\n1 10 1 -11\n2 11 2 -12\n"
+    "3 12 3 -10\n4 13 4 -14\n5 14 5 -15\n6 15 6 -13\n7 10 7 -13\n8 11 8 -14\n"
+    "9 12 9 -15\n";
 
 static int write_text(const char *path, const char *text) {
   FILE *f = fopen(path, "w");
@@ -298,7 +308,7 @@ typedef struct opcase {
   const char *file;  /* datafile loaded by the set-up (or by the op) */
   int refine, steps; /* set-up after the load: r's, then g steps */
   char op;           /* 'L' load, 'r', 'g', 'u', 'V', 'd' dump, 'p' pg,
-                        'h' Hessian (assembly, KKT, reduction), 'x' export, 'O' pop edges, 'o' pop edges and vertices, 'N' renumber_all, 'B' rebody,
+                        'h' Hessian (assembly, KKT, reduction), 'x' export, 'O' pop edges, 'o' pop edges and vertices, 'E'/'F' o with pop_to_edge/pop_to_face, 'N' renumber_all, 'B' rebody,
                         'q' and 'c' run-time define of a quantity and of a
                         global constraint with an energy integrand, 'n' a
                         Newton step (hessian), 's' hessian_seek, 'e'
@@ -422,6 +432,13 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
   case 'B': return tds_rebody(ctx, s, &n);
   case 'o': {
     int32_t nv;
+    return tds_pop(ctx, s, &n, &nv);
+  }
+  case 'E': /* o on a prism cone with pop_to_edge, then pop_to_face */
+  case 'F': {
+    int32_t nv;
+    s->pop_to_edge = c->op == 'E';
+    s->pop_to_face = c->op == 'F';
     return tds_pop(ctx, s, &n, &nv);
   }
   case 'D': return tds_torus_detorus(ctx, &s->m);
@@ -687,6 +704,11 @@ static void oom_pop_edges(void) {
   sweep(&c3);
   opcase c4 = {bubble_path, 1, 0, 'B'};
   sweep(&c4);
+  /* the prism cone (refined once: fans of two facets) popped to an edge and to a triangle */
+  opcase c5 = {prism_path, 1, 0, 'E'};
+  sweep(&c5);
+  opcase c6 = {prism_path, 1, 0, 'F'};
+  sweep(&c6);
 }
 static void oom_addload(void) {
   sweep_all('A', 1, 0);
@@ -735,7 +757,8 @@ int main(void) {
   snprintf(pbubble_path, sizeof pbubble_path, "/tmp/tds_oom_%d_pbubble.fe", (int)getpid());
   snprintf(dump_path, sizeof dump_path, "/tmp/tds_oom_%d.dmp", (int)getpid());
   snprintf(foam_path, sizeof foam_path, "/tmp/tds_oom_%d_foam.fe", (int)getpid());
-  if (write_text(bubble_path, double_bubble(0, 0)) ||
+  snprintf(prism_path, sizeof prism_path, "/tmp/tds_oom_%d_prism.fe", (int)getpid());
+  if (write_text(bubble_path, double_bubble(0, 0)) || write_text(prism_path, prism_fe) ||
       write_text(pbubble_path, double_bubble(1, 7)) || write_foam(foam_path)) {
     printf("FAIL oom_inputs: cannot write /tmp\n");
     return 1;
@@ -761,6 +784,7 @@ int main(void) {
   unlink(bubble_path);
   unlink(pbubble_path);
   unlink(dump_path);
+  unlink(prism_path);
   fprintf(stderr, "test_oom: %ld trials over %ld allocations at %ld sites, %ld absorbed\n",
           total_trials, total_allocs, total_sites, total_absorbed);
   return check_done();
