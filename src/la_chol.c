@@ -24,6 +24,8 @@
 #include <string.h>
 #include <suitesparse/cholmod.h>
 
+#include "cholmod_view.h"
+
 struct tds_chol {
   tds_alloc alloc;
   cholmod_common c;
@@ -39,32 +41,6 @@ void tds_chol_free(tds_chol *f) {
   tds_free(&al, f);
 }
 
-/* The smallest pivot of the factor, L_ii^2 (LL^T) or D_ii (LDL^T); -1
-** when a diagonal entry of L is not positive. */
-static double min_pivot(const cholmod_factor *L) {
-  double mn = HUGE_VAL;
-  const double *x = L->x;
-  if (L->is_super) {
-    const int *super = L->super, *pi = L->pi, *px = L->px;
-    for (size_t k = 0; k < L->nsuper; k++) {
-      int nscol = super[k + 1] - super[k], nsrow = pi[k + 1] - pi[k];
-      for (int j = 0; j < nscol; j++) {
-        double d = x[px[k] + (size_t)j * (size_t)nsrow + (size_t)j];
-        if (!(d > 0)) return -1;
-        if (d * d < mn) mn = d * d;
-      }
-    }
-    return mn;
-  }
-  const int *p = L->p;
-  for (size_t j = 0; j < L->n; j++) {
-    double d = x[p[j]];
-    if (!(d > 0)) return -1;
-    double piv = L->is_ll ? d * d : d;
-    if (piv < mn) mn = piv;
-  }
-  return mn;
-}
 
 int tds_chol_factor(tds_ctx *ctx, const tds_spmat *A, double eps, tds_chol **out) {
   *out = NULL;
@@ -100,20 +76,7 @@ int tds_chol_factor(tds_ctx *ctx, const tds_spmat *A, double eps, tds_chol **out
   f->c.zrelax[1] = 0.2;
   f->c.zrelax[2] = 0.1;
   f->c.quick_return_if_not_posdef = 1;
-  /* A as CHOLMOD's upper symmetric matrix, on A's arrays (only read) */
-  cholmod_sparse S;
-  memset(&S, 0, sizeof S);
-  S.nrow = S.ncol = (size_t)n;
-  S.nzmax = (size_t)A->colptr[n];
-  S.p = A->colptr;
-  S.i = A->rowind;
-  S.x = A->val;
-  S.stype = 1;
-  S.itype = CHOLMOD_INT;
-  S.xtype = CHOLMOD_REAL;
-  S.dtype = CHOLMOD_DOUBLE;
-  S.sorted = 1;
-  S.packed = 1;
+  cholmod_sparse S = tds_cholmod_view(A);
   int levels = omp_get_max_active_levels();
   omp_set_max_active_levels(0);
   f->L = cholmod_analyze(&S, &f->c);
@@ -123,7 +86,7 @@ int tds_chol_factor(tds_ctx *ctx, const tds_spmat *A, double eps, tds_chol **out
   if (!f->L || f->c.status == CHOLMOD_OUT_OF_MEMORY)
     rc = tds_seterr(ctx, TDS_ENOMEM, "la: out of memory in the factorisation");
   else if (f->c.status != CHOLMOD_OK || f->L->minor < (size_t)n ||
-           !(min_pivot(f->L) >= eps * amax))
+           !(tds_cholmod_min_pivot(f->L) >= eps * amax))
     rc = TDS_ERANGE; /* not definite, or a pivot counts as zero */
   if (rc != TDS_OK) {
     tds_chol_free(f);
@@ -134,15 +97,7 @@ int tds_chol_factor(tds_ctx *ctx, const tds_spmat *A, double eps, tds_chol **out
 }
 
 int tds_chol_solve(tds_ctx *ctx, tds_chol *f, double *b) {
-  cholmod_dense B;
-  memset(&B, 0, sizeof B);
-  B.nrow = (size_t)f->n;
-  B.ncol = 1;
-  B.nzmax = (size_t)f->n;
-  B.d = (size_t)f->n;
-  B.x = b;
-  B.xtype = CHOLMOD_REAL;
-  B.dtype = CHOLMOD_DOUBLE;
+  cholmod_dense B = tds_cholmod_column(b, f->n);
   int levels = omp_get_max_active_levels();
   omp_set_max_active_levels(0);
   cholmod_dense *X = cholmod_solve(CHOLMOD_A, f->L, &B, &f->c);

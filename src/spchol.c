@@ -5,6 +5,8 @@
 #include <string.h>
 #include <suitesparse/cholmod.h>
 
+#include "cholmod_view.h"
+
 struct tds_spchol {
   tds_alloc alloc;   /* of this and the pattern copy (the ctx's) */
   cholmod_common c;  /* one per factorisation: several may coexist */
@@ -27,25 +29,6 @@ void tds_spchol_free(tds_spchol *f) {
   tds_free(&a, f->colptr);
   tds_free(&a, f->rowind);
   tds_free(&a, f);
-}
-
-/* A as CHOLMOD's symmetric (upper) matrix, sharing A's arrays (CHOLMOD
-** only reads them). */
-static cholmod_sparse view(const tds_spmat *A) {
-  cholmod_sparse S;
-  memset(&S, 0, sizeof S);
-  S.nrow = S.ncol = (size_t)A->nrow;
-  S.nzmax = (size_t)A->colptr[A->ncol];
-  S.p = A->colptr;
-  S.i = A->rowind;
-  S.x = A->val;
-  S.stype = 1;
-  S.itype = CHOLMOD_INT;
-  S.xtype = CHOLMOD_REAL;
-  S.dtype = CHOLMOD_DOUBLE;
-  S.sorted = 1;
-  S.packed = 1;
-  return S;
 }
 
 static int cholmod_rc(tds_ctx *ctx, const cholmod_common *c, const char *what) {
@@ -89,7 +72,7 @@ int tds_spchol_analyse(tds_ctx *ctx, const tds_spmat *A, double eps, tds_spchol 
   memcpy(f->colptr, A->colptr, (size_t)(n + 1) * sizeof *f->colptr);
   if (nnz) memcpy(f->rowind, A->rowind, nnz * sizeof *f->rowind);
   if (n > 0) {
-    cholmod_sparse S = view(A);
+    cholmod_sparse S = tds_cholmod_view(A);
     f->L = cholmod_analyze(&S, &f->c);
     if (!f->L) {
       int rc = cholmod_rc(ctx, &f->c, "analysis");
@@ -101,32 +84,6 @@ int tds_spchol_analyse(tds_ctx *ctx, const tds_spmat *A, double eps, tds_spchol 
   return TDS_OK;
 }
 
-/* The smallest pivot of the factor (D_jj of LDL^T, L_jj^2 of LL^T), or
-** -1 when one is not positive. */
-static double min_pivot(const cholmod_factor *L) {
-  double mn = HUGE_VAL;
-  const double *x = L->x;
-  if (L->is_super) {
-    const int *super = L->super, *pi = L->pi, *px = L->px;
-    for (size_t k = 0; k < L->nsuper; k++) {
-      int ncol = super[k + 1] - super[k], nrow = pi[k + 1] - pi[k];
-      for (int j = 0; j < ncol; j++) {
-        double d = x[px[k] + (size_t)j * (size_t)nrow + (size_t)j];
-        if (!(d > 0)) return -1;
-        if (d * d < mn) mn = d * d;
-      }
-    }
-    return mn;
-  }
-  const int *p = L->p;
-  for (size_t j = 0; j < L->n; j++) {
-    double d = x[p[j]];
-    if (!(d > 0)) return -1;
-    double piv = L->is_ll ? d * d : d;
-    if (piv < mn) mn = piv;
-  }
-  return mn;
-}
 
 int tds_spchol_factor(tds_ctx *ctx, tds_spchol *f, const tds_spmat *A) {
   f->factored = 0;
@@ -149,12 +106,12 @@ int tds_spchol_factor(tds_ctx *ctx, tds_spchol *f, const tds_spmat *A) {
     f->factored = 1;
     return TDS_OK;
   }
-  cholmod_sparse S = view(A);
+  cholmod_sparse S = tds_cholmod_view(A);
   if (!cholmod_factorize(&S, f->L, &f->c) && f->c.status != CHOLMOD_NOT_POSDEF)
     return cholmod_rc(ctx, &f->c, "factorisation");
   if (f->c.status == CHOLMOD_OUT_OF_MEMORY) return cholmod_rc(ctx, &f->c, "factorisation");
   if (f->c.status == CHOLMOD_NOT_POSDEF || f->L->minor < f->L->n ||
-      !(min_pivot(f->L) > f->eps * (dmax > 0 ? dmax : 1)))
+      !(tds_cholmod_min_pivot(f->L) > f->eps * (dmax > 0 ? dmax : 1)))
     return tds_seterr(ctx, TDS_ENUM, "spchol: the matrix is singular or not positive definite");
   f->factored = 1;
   return TDS_OK;
@@ -163,13 +120,7 @@ int tds_spchol_factor(tds_ctx *ctx, tds_spchol *f, const tds_spmat *A) {
 int tds_spchol_solve(tds_ctx *ctx, tds_spchol *f, double *b) {
   if (!f->factored) return tds_seterr(ctx, TDS_ERANGE, "spchol: solve before a factorisation");
   if (f->n == 0) return TDS_OK;
-  cholmod_dense B;
-  memset(&B, 0, sizeof B);
-  B.nrow = B.d = B.nzmax = (size_t)f->n;
-  B.ncol = 1;
-  B.x = b;
-  B.xtype = CHOLMOD_REAL;
-  B.dtype = CHOLMOD_DOUBLE;
+  cholmod_dense B = tds_cholmod_column(b, f->n);
   if (!cholmod_solve2(CHOLMOD_A, f->L, &B, NULL, &f->X, NULL, &f->Y, &f->E, &f->c))
     return cholmod_rc(ctx, &f->c, "solve");
   const double *x = f->X->x;
