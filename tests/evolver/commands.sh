@@ -163,22 +163,28 @@ evolver_run "$EXAMPLES/cube.fe" "$(cat "$tmp/l.cmd")" > "$tmp/ev.out"
 dofile('$ROOT/tests/evolver/numcmp.lua')
 local pat = '^ *//? *[%dI]'
 numcmp('commands/list-cube', lines_of('$tmp/ev.out', pat), lines_of('$tmp/tds.out', pat), 0)"
+# evcmp NAME FILE EVOLVER_CMDS TDS_LUA TOL: run EVOLVER_CMDS in Evolver and
+# the Lua TDS_LUA in tds (both end by printing $K) on FILE; the K lines
+# must agree (numcmp.lua: integers exactly, reals to TOL relative).
+evcmp() {
+  evolver_run "$2" "$3; $K" | grep '^K ' > "$tmp/ev.k"
+  "$TDS" -q "$2" -e "$4; evolver [[ $K ]]" 2>&1 | grep '^K ' > "$tmp/tds.k"
+  "$TDS" -q -e "
+dofile('$ROOT/tests/evolver/numcmp.lua')
+numcmp('commands/$1', lines_of('$tmp/ev.k', '^K'), lines_of('$tmp/tds.k', '^K'), $5)"
+}
 # Each gogo is compared with Evolver running it: the counts are exact;
 # the energies after these few unconverged `g` steps differ by the line
 # search only (up to 1.3e-3 relative, mound after its second refinement;
 # knotty's 40-segment knot 4e-4), so 2e-3; the gogos' Newton steps (hessian) only bring the two closer.
 # (cat's gogo pinches and pops its neck: tests/evolver/topo.sh.)
+K='printf "K %d %d %d %.15g\n", vertex_count, edge_count, facet_count, total_energy'
 for spec in "cube|gogo" "mound|gogo" "qmound|gogo" \
             "quad|gogo" "catbody|gogo" \
             "column|gogo" "knotty|gogo" "metric|gogo" "popstr|gogo" \
             "slidestr|gogo" "twointor|gogo" "phelanc|gogo"; do
   f=${spec%%|*} c=${spec#*|}
-  K='printf "K %d %d %d %.15g\n", vertex_count, edge_count, facet_count, total_energy'
-  evolver_run "$EXAMPLES/$f.fe" "$c; $K" | grep '^K ' > "$tmp/ev.k"
-  "$TDS" -q "$EXAMPLES/$f.fe" -e "pcall(gogo); evolver [[ $K ]]" 2>&1 | grep '^K ' > "$tmp/tds.k"
-  "$TDS" -q -e "
-dofile('$ROOT/tests/evolver/numcmp.lua')
-numcmp('commands/gogo-compare/$f', lines_of('$tmp/ev.k', '^K'), lines_of('$tmp/tds.k', '^K'), 2e-3)"
+  evcmp "gogo-compare/$f" "$EXAMPLES/$f.fe" "$c" "pcall(gogo)" 2e-3
 done
 # With Evolver's line search (tds.setting("evolver_line_search", true))
 # tds takes Evolver's steps, so the gogos end on Evolver's energies to
@@ -186,35 +192,20 @@ done
 # order); cat's gogo pinches its neck in 120 steps, where any difference
 # in a step would grow.
 for f in cat mound qmound catbody; do
-  K='printf "K %d %d %d %.15g\n", vertex_count, edge_count, facet_count, total_energy'
-  evolver_run "$EXAMPLES/$f.fe" "gogo; $K" | grep '^K ' > "$tmp/ev.k"
-  "$TDS" -q "$EXAMPLES/$f.fe" -e "tds.setting('evolver_line_search', true); pcall(gogo); evolver [[ $K ]]" 2>&1 |
-    grep '^K ' > "$tmp/tds.k"
-  "$TDS" -q -e "
-dofile('$ROOT/tests/evolver/numcmp.lua')
-numcmp('commands/evolver-search/$f', lines_of('$tmp/ev.k', '^K'), lines_of('$tmp/tds.k', '^K'), 1e-10)"
+  evcmp "evolver-search/$f" "$EXAMPLES/$f.fe" gogo "tds.setting('evolver_line_search', true); pcall(gogo)" 1e-10
 done
 # knotty.fe's gogo (g 50; U; g 50) from a length 2.7 off its target:
 # measured 9e-9 apart (its long trials are projected exactly where
 # Evolver's restoring moves are not known, doc/commands.md), so 1e-7.
 K='printf "K %d %d %.15g\n", vertex_count, edge_count, total_energy'
-evolver_run "$EXAMPLES/knotty.fe" "gogo; $K" | grep '^K ' > "$tmp/ev.k"
-"$TDS" -q "$EXAMPLES/knotty.fe" -e "tds.setting('evolver_line_search', true); gogo(); evolver [[ $K ]]" 2>&1 |
-  grep '^K ' > "$tmp/tds.k"
-"$TDS" -q -e "
-dofile('$ROOT/tests/evolver/numcmp.lua')
-numcmp('commands/evolver-search/knotty', lines_of('$tmp/ev.k', '^K'), lines_of('$tmp/tds.k', '^K'), 1e-7)"
+evcmp evolver-search/knotty "$EXAMPLES/knotty.fe" gogo "tds.setting('evolver_line_search', true); gogo()" 1e-7
 # tankex.fe, g 10; r; g 2000: with Evolver's search tds ends where
 # Evolver does (measured 1.1e-7 apart: over 2000 steps near a stall on a
 # folded facet the rounding differences grow), so 1e-6; tds's own search
 # stalls 3e-4 higher (doc/commands.md).
 K='printf "K %.15g\n", total_energy'
-evolver_run "$EXAMPLES/tankex.fe" "g 10; r; g 2000; $K" | grep '^K ' > "$tmp/ev.k"
-"$TDS" -q "$EXAMPLES/tankex.fe" -e "tds.setting('evolver_line_search', true); g(10); r(); g(2000); evolver [[ $K ]]" 2>&1 |
-  grep '^K ' > "$tmp/tds.k"
-"$TDS" -q -e "
-dofile('$ROOT/tests/evolver/numcmp.lua')
-numcmp('commands/evolver-search/tankex', lines_of('$tmp/ev.k', '^K'), lines_of('$tmp/tds.k', '^K'), 1e-6)"
+evcmp evolver-search/tankex "$EXAMPLES/tankex.fe" "g 10; r; g 2000" \
+  "tds.setting('evolver_line_search', true); g(10); r(); g(2000)" 1e-6
 # list with constraints and flags (mound.fe, after setting some).
 cat > "$tmp/l2.cmd" <<'CMDS'
 set vertex[1] fixed; set edge[1] fixed; set edge[2] no_refine; set edge[5] constraint 1; set edge[6] fixed; set edge[6] constraint 1; set edge[6] no_refine
