@@ -606,8 +606,7 @@ int tds_eval_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int facet_core)
   return TDS_OK;
 }
 
-/* The total edge length of a string surface (in the metric with METRIC):
-** Evolver's total_area in the string model. */
+/* The total edge length of a string surface (in the metric with METRIC). */
 static double string_length(const tds_surf *s) {
   const tds_mesh *m = &s->m;
   double sum = 0;
@@ -636,9 +635,11 @@ int tds_eval(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
   if (out->fq) tds_fixq_clear(out->fq);
   for (tds_id b = 0; b < m->nb; b++)
     m->bvol[b] = (m->bflags[b] & TDS_DEAD) ? 0 : m->bvolconst[b];
-  int rc = tds_eval_terms(ctx, s, out, 1);
-  if (s->str) out->area = string_length(s);
-  return rc;
+  return tds_eval_terms(ctx, s, out, 1);
+}
+
+double tds_surf_area(const tds_surf *s) {
+  return s->str ? string_length(s) : s->area;
 }
 
 int tds_surf_update(tds_ctx *ctx, tds_surf *s) {
@@ -646,5 +647,6 @@ int tds_surf_update(tds_ctx *ctx, tds_surf *s) {
   int rc = tds_eval(ctx, s, &out);
   s->energy = out.energy;
   s->area = out.area;
+  if (s->str) s->area = string_length(s);
   return rc;
 }

@@ -45,6 +45,11 @@ typedef struct tds_eval_out {
                            when quantities are weighted, fq) */
 } tds_eval_out;
 
+/* Total facet area, or in the string model the total edge length (in the
+** metric with METRIC; Evolver's total_area there), computed on demand
+** rather than in every evaluation. */
+double tds_surf_area(const tds_surf *s);
+
 /* Evaluate at the current positions. Also stores body volumes in m.bvol
 ** and named quantity values. TDS_OK, or TDS_ENUM when a value is not
 ** finite (the message names the first bad element). */

@@ -604,7 +604,7 @@ int tds_iterate(tds_ctx *ctx, tds_surf *s, int n) {
     last = i;
     if (!tds_progress_step(ctx, n - i + 1, s->energy, s->scale))
       tds_printf(ctx, "%3d. %s: %#17.15g energy: %#17.15g  scale: %#g\n", i,
-                 s->str ? "length" : "area", s->area, s->energy, s->scale);
+                 s->str ? "length" : "area", tds_surf_area(s), s->energy, s->scale);
     if (ctx->step) ctx->step(ctx->step_ud, s->energy);
     if (w.unconverged) {
       tds_progress_erase(ctx);
@@ -635,7 +635,7 @@ int tds_iterate(tds_ctx *ctx, tds_surf *s, int n) {
   if (!warned && rc == TDS_OK) s->stall_facet = 0; /* healthy again */
   if (tds_progress_end(ctx) > 0) /* the live line replaced them: the last */
     tds_printf(ctx, "%3d. %s: %#17.15g energy: %#17.15g  scale: %#g\n", last,
-               s->str ? "length" : "area", s->area, s->energy, s->scale);
+               s->str ? "length" : "area", tds_surf_area(s), s->energy, s->scale);
   work_free(&w);
   /* After a step, energy, area and volumes are those of its last trial,
   ** which is where the vertices are; after an interruption compute them.

@@ -1,6 +1,8 @@
 /* live_snap.c: the live view's snapshot of a surface (see live_snap.h). */
 #include "live_snap.h"
 
+#include "eval.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -74,7 +76,7 @@ int tds_live_snap_build(tds_ctx *ctx, tds_surf *s, uint64_t version,
   /* Header, with a placeholder for the fields' ranges filled below. */
   char head[4096], num[3][40];
   json_num(num[0], sizeof num[0], energy);
-  json_num(num[1], sizeof num[1], s->area);
+  json_num(num[1], sizeof num[1], tds_surf_area(s));
   int hn = snprintf(head, sizeof head,
                     "{\"version\":%llu,\"energy\":%s,\"area\":%s,"
                     "\"iterations\":%lld,\"vertices\":%u,\"edges\":%u,"
