@@ -31,10 +31,5 @@ set -- $ev
 ev_sec=$2 ev_energy=$3 cells=$4
 set -- $td
 td_sec=$2 td_energy=$3
-echo "2-D foam (string model): $cells cells, $STEPS steps of g"
-printf '%-10s %14s %20s\n' program "s per step" "energy after $STEPS"
-printf '%-10s %14s %20s\n' evolver "$ev_sec" "$ev_energy"
-printf '%-10s %14s %20s\n' tds "$td_sec" "$td_energy"
-awk -v e="$ev_sec" -v t="$td_sec" -v ee="$ev_energy" -v te="$td_energy" 'BEGIN {
-  printf "speed ratio (Evolver / tds): %.1fx (goal: at least 10x)\n", e / t
-  printf "energy: tds %s that of Evolver (goal: no worse)\n", (te <= ee ? "at or below" : "ABOVE") }'
+. "$(dirname "$0")/report.sh"
+report "2-D foam (string model): $cells cells, $STEPS steps of g" "$STEPS" "$ev_sec" "$ev_energy" "$td_sec" "$td_energy"
