@@ -155,24 +155,27 @@ static int frame(tds_ctx *ctx, const tds_mesh *m, const tds_render_opts *o,
     return tds_seterr(ctx, TDS_ERANGE, "snapshot: the surface is too large to draw");
   if (!(R > 0)) R = 1;
   in->radius = R;
-  double a = o->azimuth * TDS_PI / 180, e = o->elevation * TDS_PI / 180;
+  tds_render_camera(o, o->azimuth * TDS_PI / 180, o->elevation * TDS_PI / 180, 1, plotw, in);
+  return TDS_OK;
+}
+
+void tds_render_camera(const tds_render_opts *o, double a, double e, int persp, int plotw,
+                       tds_render_info *in) {
   double d[3] = {cos(e) * cos(a), cos(e) * sin(a), sin(e)};
   double r[3] = {-sin(a), cos(a), 0};
   v3_copy(in->toward, d);
   v3_copy(in->right, r);
   v3_cross(in->up, d, r);
   double fit = 0.46 * (plotw < o->height ? plotw : o->height);
-  double apparent = R; /* radius of the bounding sphere's image */
-  if (o->distance > 0) apparent = R / sqrt(1 - 1 / (o->distance * o->distance));
+  double apparent = in->radius; /* radius of the bounding sphere's image */
+  if (persp && o->distance > 0) apparent = in->radius / sqrt(1 - 1 / (o->distance * o->distance));
   in->scale = fit / apparent;
   in->cx = 0.5 * plotw;
   in->cy = 0.5 * o->height;
-  return TDS_OK;
 }
 
-/* Project p to pixel coordinates and view depth (larger: nearer). */
-static void project(const tds_render_info *in, const tds_render_opts *o,
-                    const double p[3], float *x, float *y, float *z) {
+void tds_render_project(const tds_render_info *in, const tds_render_opts *o, const double p[3],
+                        double *x, double *y, double *z) {
   double q[3];
   v3_sub(q, p, in->center);
   double u = v3_dot(q, in->right), w = v3_dot(q, in->up), dz = v3_dot(q, in->toward);
@@ -181,9 +184,9 @@ static void project(const tds_render_info *in, const tds_render_opts *o,
     double D = o->distance * in->radius;
     k *= D / (D - dz);
   }
-  *x = (float)(in->cx + k * u);
-  *y = (float)(in->cy - k * w);
-  *z = (float)dz;
+  *x = in->cx + k * u;
+  *y = in->cy - k * w;
+  *z = dz;
 }
 
 static void facet_color(const tds_mesh *m, tds_id f, int mode, double v,
@@ -357,7 +360,11 @@ int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
     float z[3];
     tds_corners C;
     tds_gather_facet(m, f, &C);
-    for (int k = 0; k < 3; k++) project(&in, o, C.x[k], &r->x[k], &r->y[k], &z[k]);
+    for (int k = 0; k < 3; k++) {
+      double px, py, pz;
+      tds_render_project(&in, o, C.x[k], &px, &py, &pz);
+      r->x[k] = (float)px, r->y[k] = (float)py, z[k] = (float)pz;
+    }
     r->depth = (z[0] + z[1] + z[2]) / 3;
     double rgb[3], N[3];
     facet_color(m, f, o->color, val[f], lo, hi, rgb);

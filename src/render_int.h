@@ -26,4 +26,15 @@ struct tds_render_info;
 int tds_render_strings(tds_ctx *ctx, struct tds_surf *s, const struct tds_render_opts *o,
                        const char *path, struct tds_render_info *info);
 
+/* The camera of render.h's info: looking from azimuth a, elevation e
+** (radians) at in->center, fitting the bounding sphere (in->radius; seen
+** in perspective when persp and o->distance > 0) into plotw x o->height
+** pixels (render.c). */
+void tds_render_camera(const struct tds_render_opts *o, double a, double e, int persp, int plotw,
+                       struct tds_render_info *in);
+
+/* Pixel position of p and its view depth (larger: nearer). */
+void tds_render_project(const struct tds_render_info *in, const struct tds_render_opts *o,
+                        const double p[3], double *x, double *y, double *z);
+
 #endif

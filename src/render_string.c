@@ -30,22 +30,6 @@ static int by_depth(const void *a, const void *b) {
   return (da > db) - (da < db);
 }
 
-/* Pixel position of p (render.h's projection). */
-static void project(const tds_render_info *in, const tds_render_opts *o, const double p[3],
-                    double *x, double *y, double *z) {
-  double q[3];
-  v3_sub(q, p, in->center);
-  double u = v3_dot(q, in->right), w = v3_dot(q, in->up), dz = v3_dot(q, in->toward);
-  double k = in->scale;
-  if (o->distance > 0) {
-    double D = o->distance * in->radius;
-    k *= D / (D - dz);
-  }
-  *x = in->cx + k * u;
-  *y = in->cy - k * w;
-  *z = dz;
-}
-
 /* The camera and the fit of the edges' bounding sphere into plotw x h. */
 static int frame(tds_ctx *ctx, const tds_surf *s, const tds_render_opts *o, int plotw,
                  tds_render_info *in) {
@@ -86,22 +70,12 @@ static int frame(tds_ctx *ctx, const tds_surf *s, const tds_render_opts *o, int 
     }
   }
   double a = o->azimuth * TDS_PI / 180, e = o->elevation * TDS_PI / 180;
-  if (s->str->space_dim == 2) { /* the plane from +z: x right, y up */
+  int plane = s->str->space_dim == 2;
+  if (plane) { /* the plane from +z: x right, y up */
     a = -TDS_PI / 2;
     e = TDS_PI / 2;
   }
-  double d[3] = {cos(e) * cos(a), cos(e) * sin(a), sin(e)};
-  double r[3] = {-sin(a), cos(a), 0};
-  v3_copy(in->toward, d);
-  v3_copy(in->right, r);
-  v3_cross(in->up, d, r);
-  double fit = 0.46 * (plotw < o->height ? plotw : o->height);
-  double apparent = in->radius;
-  if (o->distance > 0 && s->str->space_dim == 3)
-    apparent = in->radius / sqrt(1 - 1 / (o->distance * o->distance));
-  in->scale = fit / apparent;
-  in->cx = 0.5 * plotw;
-  in->cy = 0.5 * o->height;
+  tds_render_camera(o, a, e, !plane, plotw, in);
   return TDS_OK;
 }
 
@@ -153,7 +127,7 @@ static int paint(tds_ctx *ctx, const tds_surf *s, const tds_render_opts *o,
     v3_copy(p, C.x[0]);
     for (int32_t k = st->start[f]; k < st->start[f + 1]; k++) {
       double d[3], x, y, z;
-      project(in, o, p, &x, &y, &z);
+      tds_render_project(in, o, p, &x, &y, &z);
       sum += z;
       tds_edge_vec(m, st->oe[k], d);
       v3_add(p, p, d);
@@ -170,13 +144,13 @@ static int paint(tds_ctx *ctx, const tds_surf *s, const tds_render_opts *o,
     tds_corners C;
     tds_gather_edge(m, st->oe[st->start[f]], &C);
     v3_copy(p, C.x[0]);
-    project(in, o, p, &x, &y, &z);
+    tds_render_project(in, o, p, &x, &y, &z);
     cairo_move_to(cr, x, y);
     for (int32_t k = st->start[f]; k < st->start[f + 1]; k++) {
       double d[3];
       tds_edge_vec(m, st->oe[k], d);
       v3_add(p, p, d);
-      project(in, o, p, &x, &y, &z);
+      tds_render_project(in, o, p, &x, &y, &z);
       cairo_line_to(cr, x, y);
     }
     cairo_close_path(cr);
@@ -193,8 +167,8 @@ static int paint(tds_ctx *ctx, const tds_surf *s, const tds_render_opts *o,
     tds_corners C;
     tds_gather_edge(m, TDS_OREF(e, 0), &C);
     double x0, y0, x1, y1, z, rgb[3];
-    project(in, o, C.x[0], &x0, &y0, &z);
-    project(in, o, C.x[1], &x1, &y1, &z);
+    tds_render_project(in, o, C.x[0], &x0, &y0, &z);
+    tds_render_project(in, o, C.x[1], &x1, &y1, &z);
     edge_color(m, e, o->color, in->lo, in->hi, rgb);
     cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
     cairo_move_to(cr, x0, y0);
