@@ -43,6 +43,20 @@ static tds_id conn_edge(const tds_mesh *m, const tds_id *conn, int nc, tds_id p,
 
 #define MAXF 256
 
+/* The live facets at v into fl (at most MAXF), each its own label in lab
+** (for joining into fans); their count, or -1 when there are more. */
+static int star_facets(const tds_mesh *m, tds_id v, tds_id *fl, int *lab) {
+  int nf = 0;
+  for (tds_id f = 0; f < m->nf; f++)
+    if (tds_alive(m->fflags, f) && (m->fv[f][0] == v || m->fv[f][1] == v || m->fv[f][2] == v)) {
+      if (nf == MAXF) return -1;
+      fl[nf] = f;
+      lab[nf] = nf;
+      nf++;
+    }
+  return nf;
+}
+
 /* Expand vertex v: triple edge te[i] goes to new vertex tv[i]; conn are
 ** the edges among new vertices. TDS_OK, or TDS_ETOPO when the star is
 ** not fans bounded by two listed triple edges each. Room for nt new edges
@@ -50,14 +64,8 @@ static tds_id conn_edge(const tds_mesh *m, const tds_id *conn, int nc, tds_id p,
 static int expand(tds_mesh *m, tds_id v, int nt, const tds_id *te, const tds_id *tv,
                   const tds_id *conn, int nc, int flip) {
   tds_id fl[MAXF];
-  int lab[MAXF], nf = 0;
-  for (tds_id f = 0; f < m->nf; f++)
-    if (tds_alive(m->fflags, f) && (m->fv[f][0] == v || m->fv[f][1] == v || m->fv[f][2] == v)) {
-      if (nf == MAXF) return TDS_ETOPO;
-      fl[nf] = f;
-      lab[nf] = nf;
-      nf++;
-    }
+  int lab[MAXF], nf = star_facets(m, v, fl, lab);
+  if (nf < 0) return TDS_ETOPO;
   /* join facets through non-triple edges at v */
   for (int i = 0; i < nf; i++)
     for (int k = 0; k < 3; k++) {
@@ -471,14 +479,8 @@ static int prism(const tds_surf *s, tds_id v, tds_id t[6]) {
   if (nt != 6) return 0;
   /* fans: facets at v joined through the valence-2 edges at v */
   tds_id fl[MAXF];
-  int lab[MAXF], nf = 0;
-  for (tds_id f = 0; f < m->nf; f++)
-    if (tds_alive(m->fflags, f) && (m->fv[f][0] == v || m->fv[f][1] == v || m->fv[f][2] == v)) {
-      if (nf == MAXF) return 0;
-      fl[nf] = f;
-      lab[nf] = nf;
-      nf++;
-    }
+  int lab[MAXF], nf = star_facets(m, v, fl, lab);
+  if (nf < 0) return 0;
   for (int i = 0; i < nf; i++)
     for (int k = 0; k < 3; k++) {
       tds_id e = TDS_OID(m->fe[fl[i]][k]);
