@@ -8,7 +8,8 @@
 --                    Evolver statement word that is not Lua: `printf`,
 --                    `foreach`, `set`, or is a bare built-in Evolver
 --                    command (`U`, `v`, `r`) or one tds has no Lua global
---                    for: `C`, `i`, `hessian`)
+--                    for: `C`, `i`, `hessian`, or a bare name that names
+--                    nothing, which Evolver's runtime reports)
 --   "auto", line     Lua if it compiles as Lua, else Evolver
 --   "mode", message  a mode switch (`.lua`, `.evolver`, `.auto` alone)
 -- tds.translate(text) -> Lua source | nil, message, incomplete
@@ -68,6 +69,10 @@ function tds.repl_classify(line)
     local gv = rawget(_G, word)
     if after == "" and (gv == nil or type(gv) == "function") and tds.param(word) == nil
        and (E.B[word] or gv == nil and evolver_command(word)) then
+      return "evolver", line
+    end
+    -- a bare name that names nothing: Evolver's error naming it, not Lua's nil
+    if after == "" and not LUA_KEYWORDS[word] and _G[word] == nil and tds.param(word) == nil then
       return "evolver", line
     end
   end

@@ -1,6 +1,7 @@
 # The prompt with Evolver lines (issue 9): the first tutorial commands,
 # the rule for lines that are both Lua and Evolver, the mode switches,
-# multi-line Evolver input, and errors that leave the session running.
+# multi-line Evolver input, and errors that leave the session running
+# (a bare name that names nothing is Evolver's error, not Lua's nil).
 printf '%s\n' \
   'gogo' \
   'print 2^3^2' \
@@ -31,6 +32,7 @@ printf '%s\n' \
   'print iteration_counter' \
   'x = 5' \
   'x' \
+  'nosuchthing' \
   'print "still here"' | "$TDS" -q -i ../../scripts/cube.tds 2>&1
 echo "exit $?"
 # The tutorial's first commands on the datafiles themselves.
