@@ -124,8 +124,12 @@ int tds_autopop(tds_ctx *ctx, tds_surf *s, const double (*vel)[3], int32_t nvel,
   tds_free(&m->alloc, flag);
   if (!cnt) return TDS_OK;
   *changed = 1;
+  /* immediate_autopop on films pops no vertices afterwards (Evolver:
+  ** cat.fe's collapsed neck stays one vertex where two cones meet, which
+  ** o then pops) */
   int32_t pe = 0, pv = 0;
-  int rc = s->str ? tds_strings_pop_raw(ctx, s, &pv) : tds_pop_raw(ctx, s, &pe, &pv);
+  int rc = s->str ? tds_strings_pop_raw(ctx, s, &pv)
+           : s->immediate_autopop ? TDS_OK : tds_pop_raw(ctx, s, &pe, &pv);
   if (rc != TDS_OK) return rc;
   tds_printf(ctx, "Edges popped: %d\nAutopopped %d edges, %d vertices.\n", pe, cnt, pv);
   return tds_surf_update(ctx, s);
