@@ -31,6 +31,7 @@ typedef struct work {
   double slope;      /* dE/ds along vel at the start (negative) */
   int undone;        /* check_increase took the last step back */
   int keep_vel;      /* autochop: vel is the motion from before the chop */
+  int32_t pop_after; /* string autopop: edges removed, pops due after the move */
   double *mob;       /* area normalization: 1/sqrt(a_v) (mobility.h), or NULL */
   tds_alloc al;      /* the ctx's allocator */
 } work;
@@ -470,20 +471,23 @@ static int maintain(tds_ctx *ctx, tds_surf *s, work *w) {
       memcpy(keep, w->vel, (size_t)nkeep * sizeof *keep);
     }
     const double(*vel)[3] = (const double(*)[3])w->vel;
-    int32_t *ends = NULL, nv0 = s->m.nv;
+    int32_t *ends = NULL, *mix = NULL, nmix = 0, deferred = 0, nv0 = s->m.nv;
     rc = pass ? tds_autochop(ctx, s, vel, w->nv, s->scale, s->autochop_length, &ends, &changed)
-              : tds_autopop(ctx, s, vel, w->nv, s->scale, &changed);
+              : tds_autopop(ctx, s, vel, w->nv, s->scale, &mix, &nmix, &deferred, &changed);
     if (rc != TDS_OK || !changed) {
       tds_free(&s->m.alloc, ends);
+      tds_free(&s->m.alloc, mix);
       continue;
     }
     if (!pass && !s->str) { /* soap films: the motion is found again */
       tds_free(&w->al, keep);
       keep = NULL;
-    } else { /* new vertices: a chop's the mean of its ends', a pop's none */
+    } else { /* new vertices: a chop's the mean of its ends', a pop's as
+             ** autopop's rules say (none by default) */
       double (*k2)[3] = tds_realloc(&w->al, keep, (size_t)(s->m.nv > 0 ? s->m.nv : 1) * sizeof *k2);
       if (!k2) {
         tds_free(&s->m.alloc, ends);
+        tds_free(&s->m.alloc, mix);
         rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory");
         break;
       }
@@ -492,10 +496,15 @@ static int maintain(tds_ctx *ctx, tds_surf *s, work *w) {
         for (int k = 0; k < 3; k++)
           keep[v][k] = ends ? 0.5 * (keep[ends[2 * (v - nv0)]][k] + keep[ends[2 * (v - nv0) + 1]][k])
                             : 0;
+      for (int32_t i = 0; i < nmix; i++)
+        for (int k = 0; k < 3; k++)
+          keep[mix[3 * i]][k] = 0.5 * (keep[mix[3 * i + 1]][k] + keep[mix[3 * i + 2]][k]);
       nkeep = s->m.nv;
     }
     tds_free(&s->m.alloc, ends);
+    tds_free(&s->m.alloc, mix);
     tds_alloc al = w->al;
+    int32_t pop_after = deferred ? deferred : w->pop_after;
     work_free(w);
     rc = work_init(ctx, s, w);
     if (rc != TDS_OK) {
@@ -504,6 +513,7 @@ static int maintain(tds_ctx *ctx, tds_surf *s, work *w) {
       return rc;
     }
     w->keep_vel = keep != NULL;
+    w->pop_after = pop_after;
   }
   if (rc == TDS_OK && w->keep_vel) {
     memcpy(w->vel, keep, (size_t)nkeep * sizeof *keep);
@@ -553,6 +563,21 @@ static int step(tds_ctx *ctx, tds_surf *s, work *w) {
     m->coord_gen++;
     w->undone = 1;
     return tds_surf_update(ctx, s);
+  }
+  if (w->pop_after) { /* string autopop: Evolver pops in the moved positions */
+    int32_t cnt = w->pop_after, nv = m->nv;
+    w->pop_after = 0;
+    if ((rc = tds_autopop_pop(ctx, s, cnt)) != TDS_OK) return rc;
+    E = s->energy;
+    if (m->nv != nv) { /* new vertices: the work arrays are made again */
+      tds_alloc al = w->al;
+      work_free(w);
+      if ((rc = work_init(ctx, s, w)) != TDS_OK) {
+        memset(w, 0, sizeof *w);
+        w->al = al;
+        return rc;
+      }
+    }
   }
   /* Changed parameters: as Evolver, the step is taken from the positions
   ** as they were, then the surface follows the parameters. */
