@@ -117,10 +117,11 @@ int tds_autopop(tds_ctx *ctx, tds_surf *s, const double (*vel)[3], int32_t nvel,
     if (!tds_alive(m->eflags, e)) continue;
     if (flag ? !flag[e] : !short_edge(m, vel, nvel, dt, e, L)) continue;
     /* strings (Evolver's choices, measured on 100grain.fe): an end
-    ** where only two edges meet goes and the other stays where it is
-    ** (both such: the one with the lower id stays); between two
-    ** junctions the tail stays at the midpoint and moves with the mean
-    ** of both ends' motions. Films: the midpoint, as t. */
+    ** where only two edges meet goes and the other stays where it is;
+    ** otherwise (two junctions, or two ends of two edges each: a
+    ** vanishing cell's last edge) the tail stays at the midpoint and
+    ** moves with the mean of both ends' motions. Films: the midpoint,
+    ** as t. */
     int end = -1;
     tds_id t = m->ev[e][0], h = m->ev[e][1];
     if (s->str) {
@@ -180,11 +181,6 @@ int tds_autochop(tds_ctx *ctx, tds_surf *s, const double (*vel)[3], int32_t nvel
   tds_mesh *m = &s->m;
   *changed = 0;
   *ends = NULL;
-  /* Evolver looks two steps ahead: measured on 100grain.fe, with and
-  ** without area normalization, its chops are those of the edges longer
-  ** than len after a move of 2 dt (tests/evolver/strtorus.sh); the
-  ** soapfilm cases of tests/evolver/autochop.sh agree with either. */
-  dt *= 2;
   int32_t ne0 = m->ne, cnt = 0;
   for (tds_id e = 0; e < ne0; e++)
     cnt += tds_alive(m->eflags, e) && new_length(m, vel, nvel, dt, e) > len;
