@@ -82,10 +82,39 @@ static int small_facet(const tds_mesh *m, const double (*vel)[3], int32_t nvel, 
   return 0.5 * v3_norm(n) < L * per / 4 && v3_dot(n, dn) < 0;
 }
 
+/* How many live edges end at v (a loop counts twice). */
+static int valence(const tds_mesh *m, tds_id v) {
+  int k = 0;
+  for (tds_id d = 0; d < m->ne; d++)
+    if (tds_alive(m->eflags, d)) k += (m->ev[d][0] == v) + (m->ev[d][1] == v);
+  return k;
+}
+
+/* Append the motion rule (dst, a, b) to *mix (3 ints each). */
+static int mix_add(tds_mesh *m, int32_t **mix, int32_t *nmix, int32_t *cap, tds_id dst,
+                   tds_id a, tds_id b) {
+  if (*nmix == *cap) {
+    int32_t nc = *cap ? 2 * *cap : 16;
+    int32_t *p = tds_realloc(&m->alloc, *mix, (size_t)nc * 3 * sizeof *p);
+    if (!p) return -1;
+    *mix = p;
+    *cap = nc;
+  }
+  (*mix)[3 * *nmix] = dst;
+  (*mix)[3 * *nmix + 1] = a;
+  (*mix)[3 * *nmix + 2] = b;
+  (*nmix)++;
+  return 0;
+}
+
 int tds_autopop(tds_ctx *ctx, tds_surf *s, const double (*vel)[3], int32_t nvel,
-                double dt, int *changed) {
+                double dt, int32_t **mixp, int32_t *nmixp, int32_t *deferred, int *changed) {
   tds_mesh *m = &s->m;
   *changed = 0;
+  *deferred = 0;
+  *mixp = NULL;
+  *nmixp = 0;
+  int32_t *mix = NULL, nmix = 0, cap = 0;
   if (!(dt > 0)) return TDS_OK;
   double L = sqrt(2 * dt);
   int32_t ne0 = m->ne, nf0 = m->nf, cnt = 0;
@@ -101,11 +130,23 @@ int tds_autopop(tds_ctx *ctx, tds_surf *s, const double (*vel)[3], int32_t nvel,
   for (tds_id e = 0; e < ne0; e++) {
     if (!tds_alive(m->eflags, e)) continue;
     if (flag ? !flag[e] : !short_edge(m, vel, nvel, dt, e, L)) continue;
-    /* strings: the end with the lower id stays where it is (Evolver's
-    ** choice, measured on 100grain.fe); films: the midpoint, as t */
-    int r = tds_collapse_edge_at(s, e, s->str ? m->ev[e][1] < m->ev[e][0] : -1);
+    /* strings (Evolver's choices, measured on 100grain.fe): an end
+    ** where only two edges meet goes and the other stays where it is;
+    ** otherwise (two junctions, or two ends of two edges each: a
+    ** vanishing cell's last edge) the tail stays at the midpoint and
+    ** moves with the mean of both ends' motions. Films: the midpoint,
+    ** as t. */
+    int end = -1;
+    tds_id t = m->ev[e][0], h = m->ev[e][1];
+    if (s->str) {
+      int vt = valence(m, t), vh = valence(m, h);
+      if ((vt == 2) != (vh == 2)) end = vt != 2 ? 0 : 1;
+    }
+    int r = tds_collapse_edge_at(s, e, end);
+    if (r > 0 && s->str && end < 0 && mix_add(m, &mix, &nmix, &cap, t, t, h)) r = -1;
     if (r < 0) {
       tds_free(&m->alloc, flag);
+      tds_free(&m->alloc, mix);
       return tds_seterr(ctx, TDS_ENOMEM, "out of memory in autopop");
     }
     cnt += r;
@@ -117,21 +158,38 @@ int tds_autopop(tds_ctx *ctx, tds_surf *s, const double (*vel)[3], int32_t nvel,
     int r = tds_delete_facet_raw(s, f);
     if (r < 0) {
       tds_free(&m->alloc, flag);
+      tds_free(&m->alloc, mix);
       return tds_seterr(ctx, TDS_ENOMEM, "out of memory in autopop");
     }
     cnt += r;
   }
   tds_free(&m->alloc, flag);
-  if (!cnt) return TDS_OK;
+  if (!cnt) {
+    tds_free(&m->alloc, mix);
+    return TDS_OK;
+  }
   *changed = 1;
+  if (s->str) { /* Evolver pops after the step's move (tds_autopop_pop) */
+    *mixp = mix;
+    *nmixp = nmix;
+    *deferred = cnt;
+    return tds_surf_update(ctx, s);
+  }
   /* immediate_autopop on films pops no vertices afterwards (Evolver:
   ** cat.fe's collapsed neck stays one vertex where two cones meet, which
   ** o then pops) */
   int32_t pe = 0, pv = 0;
-  int rc = s->str ? tds_strings_pop_raw(ctx, s, &pv)
-           : s->immediate_autopop ? TDS_OK : tds_pop_raw(ctx, s, &pe, &pv);
+  int rc = s->immediate_autopop ? TDS_OK : tds_pop_raw(ctx, s, &pe, &pv);
   if (rc != TDS_OK) return rc;
   tds_printf(ctx, "Edges popped: %d\nAutopopped %d edges, %d vertices.\n", pe, cnt, pv);
+  return tds_surf_update(ctx, s);
+}
+
+int tds_autopop_pop(tds_ctx *ctx, tds_surf *s, int32_t cnt) {
+  int32_t pv = 0;
+  int rc = tds_strings_pop_raw(ctx, s, &pv);
+  if (rc != TDS_OK) return rc;
+  tds_printf(ctx, "Autopopped %d edges, %d vertices.\n", cnt, pv);
   return tds_surf_update(ctx, s);
 }
 
@@ -140,11 +198,6 @@ int tds_autochop(tds_ctx *ctx, tds_surf *s, const double (*vel)[3], int32_t nvel
   tds_mesh *m = &s->m;
   *changed = 0;
   *ends = NULL;
-  /* Evolver looks two steps ahead: measured on 100grain.fe, with and
-  ** without area normalization, its chops are those of the edges longer
-  ** than len after a move of 2 dt (tests/evolver/strtorus.sh); the
-  ** soapfilm cases of tests/evolver/autochop.sh agree with either. */
-  dt *= 2;
   int32_t ne0 = m->ne, cnt = 0;
   for (tds_id e = 0; e < ne0; e++)
     cnt += tds_alive(m->eflags, e) && new_length(m, vel, nvel, dt, e) > len;
