@@ -129,6 +129,14 @@ int tds_model_constraint(tds_ctx *ctx, tds_surf *s, int number, int flags,
                                  : "constraint %d: at most 64 constraints are supported",
                       number);
   }
+  if (s->str && content && content[0] && tds_expr_uses_attrs(content[0])) {
+    tds_expr_free(formula);
+    free3(energy);
+    free3(content);
+    return tds_seterr(ctx, TDS_ESYNTAX,
+                      "constraint %d: element attributes in the string model's content are "
+                      "not supported yet", number);
+  }
   if ((flags & TDS_CON_CONVEX) && tds_expr_uses_attrs(formula)) {
     tds_expr_free(formula);
     free3(energy);

@@ -67,12 +67,13 @@ int tds_xattr_slot(tds_surf *s, int kind, const char *name, size_t len, char *wh
   }
   for (int k = 0; k < TDS_BODY; k++)
     if (k != kind && find(s, k, name, len, &col, &row) && (col >= 0 || row_ok(row))) {
+      static const char *const plural[] = {"vertices", "edges", "facets"};
       if (kind < 0)
-        snprintf(why, cap, "%.*s is a %s attribute, not usable here", (int)len, name,
-                 tds_kind_name[k]);
+        snprintf(why, cap, "%.*s is %s %s attribute, not usable here", (int)len, name,
+                 k == TDS_EDGE ? "an" : "a", tds_kind_name[k]);
       else
-        snprintf(why, cap, "%.*s is a %s attribute, and this expression is evaluated on %ss",
-                 (int)len, name, tds_kind_name[k], tds_kind_name[kind]);
+        snprintf(why, cap, "%.*s is %s %s attribute, but this expression is evaluated on %s",
+                 (int)len, name, k == TDS_EDGE ? "an" : "a", tds_kind_name[k], plural[kind]);
       return -2;
     }
   return -1;
