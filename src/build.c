@@ -99,6 +99,9 @@ int tds_build_face(tds_ctx *ctx, tds_surf *s, tds_id f, int n,
       tds_mesh_set_facet(m, f, t);
     }
   }
+  /* Evolver's facet-edge loop on the first spoke starts at the face's own
+  ** facet (the ring order ee.facet reports, mesh.h) */
+  m->eside[spoke0] = 3 * f + 2;
   if (m->vcon[cv]) tds_motion_enforce(s, cv);
   m->coord_gen++;
   return TDS_OK;
