@@ -6,6 +6,7 @@
 ** datafiles. The pieces are listed in datafile_int.h.
 */
 #include "datafile_int.h"
+#include "ring.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -169,6 +170,7 @@ static int finish(df *d) {
                   d->name, v + 1);
     }
   /* gravity_on: set by the body density setter (attr_rows.c) */
+  if (!s->str) tds_ring_sort_angular(m, d->ne0); /* Evolver's facet order (ring.h) */
   if (s->str) {
     int rc = df_string_finish(d);
     if (rc) return rc;
