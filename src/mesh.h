@@ -192,6 +192,23 @@ int32_t tds_mesh_count(const tds_mesh *m, int kind);
 /* Rebuild derived adjacency if stale. TDS_OK or TDS_ENOMEM. */
 int tds_mesh_adjacency(tds_mesh *m);
 
+/* The corner (0, 1 or 2) at which facet f has vertex v (2 if not 0 or 1). */
+static inline int tds_facet_corner(const tds_mesh *m, tds_id f, tds_id v) {
+  return m->fv[f][0] == v ? 0 : m->fv[f][1] == v ? 1 : 2;
+}
+
+/* Evolver's order of the facets around a vertex v (as measured for its V
+** and vertex_normal on surfaces loaded from a file): by the edge on which
+** each facet leaves v (the facet's edge k, from its corner k = v), v's
+** lowest-numbered edge emin first, then the others from the highest id
+** down; ties by facet id. tds_star_key is that order's key. */
+static inline int32_t tds_star_key(const tds_mesh *m, tds_id f, int k, tds_id emin) {
+  tds_id e = TDS_OID(m->fe[f][k]);
+  return e == emin ? INT32_MIN : -e;
+}
+/* v's lowest edge id (adjacency current), or INT32_MAX without edges. */
+tds_id tds_vertex_min_edge(const tds_mesh *m, tds_id v);
+
 /* Validate every invariant of the store (links, rings, orientation, body
 ** references, derived adjacency if current). Returns TDS_OK or TDS_ETOPO
 ** with a message naming the broken relation in ctx. */

@@ -59,3 +59,10 @@ int tds_mesh_adjacency(tds_mesh *m) {
   m->adj_gen = m->topo_gen;
   return TDS_OK;
 }
+
+tds_id tds_vertex_min_edge(const tds_mesh *m, tds_id v) {
+  tds_id emin = INT32_MAX;
+  for (int32_t i = m->ve_start[v]; i < m->ve_start[v + 1]; i++)
+    if (TDS_OID(m->ve[i]) < emin) emin = TDS_OID(m->ve[i]);
+  return emin;
+}

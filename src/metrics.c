@@ -77,7 +77,7 @@ static int star_sums(const tds_surf *s, tds_id v, double K[3], double S[3],
   for (int c = 0; c < 3; c++) K[c] = S[c] = 0;
   for (int32_t i = m->vf_start[v]; i < m->vf_start[v + 1]; i++) {
     tds_id f = m->vf[i];
-    int k = m->fv[f][0] == v ? 0 : m->fv[f][1] == v ? 1 : 2;
+    int k = tds_facet_corner(m, f, v);
     tds_corners C;
     tds_gather_facet(m, f, &C);
     const double *xi = C.x[k], *xj = C.x[(k + 1) % 3], *xk = C.x[(k + 2) % 3];

@@ -109,11 +109,8 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
       nfk += vn[v].nf;
     }
   if (nbad) {
-    /* Evolver's order at a vertex: its facets by their leading edge (the
-    ** one leaving the vertex along the facet's orientation) in the
-    ** vertex's edge list, which is the edge with the lowest id, then the
-    ** others by decreasing id (each edge read is inserted right after
-    ** the first: the order of a surface loaded from a file) */
+    /* Evolver's order at a vertex (tds_star_key: each edge read is
+    ** inserted right after the first in the vertex's edge list) */
     int32_t *emin = tds_malloc(al, ((size_t)m->nv + 1) * sizeof *emin);
     int32_t *at = tds_malloc(al, ((size_t)m->nv + 2) * sizeof *at);
     tds_fkey *fk = tds_malloc(al, ((size_t)nfk + 1) * sizeof *fk);
@@ -137,8 +134,7 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
       for (int k = 0; k < 3; k++) {
         tds_id v = m->fv[f][k];
         if (!bad[v]) continue;
-        int32_t e = TDS_OID(m->fe[f][k]);
-        tds_fkey x = {e == emin[v] ? INT32_MIN : -e, f, k};
+        tds_fkey x = {tds_star_key(m, f, k, emin[v]), f, k};
         fk[at[v]++] = x;
       }
     }

@@ -44,16 +44,13 @@ int tds_vertex_normal_at(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, td
     if (!(v3_dot(c, w.an) >= 0.8660254037844386 * v3_norm(c) * l)) bad = 1;
   }
   if (bad) {
-    int32_t emin = INT32_MAX;
-    for (int32_t i = 0; i < ne; i++)
-      if (TDS_OID(es[i]) < emin) emin = TDS_OID(es[i]);
+    tds_id emin = tds_vertex_min_edge(m, v);
     tds_fkey *a = tds_malloc(&ctx->alloc, (size_t)nf * sizeof *a);
     if (!a) return tds_seterr(ctx, TDS_ENOMEM, "vertex_normal: out of memory");
     for (int32_t i = 0; i < nf; i++) {
       tds_id f = fs[i];
-      int k = m->fv[f][0] == v ? 0 : m->fv[f][1] == v ? 1 : 2;
-      int32_t e = TDS_OID(m->fe[f][k]);
-      a[i] = (tds_fkey){e == emin ? INT32_MIN : -e, f, k};
+      int k = tds_facet_corner(m, f, v);
+      a[i] = (tds_fkey){tds_star_key(m, f, k, emin), f, k};
     }
     tds_evolver_sum(m, a, nf, w.an);
     tds_free(&ctx->alloc, a);

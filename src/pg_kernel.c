@@ -69,17 +69,13 @@ static inline void star_term(const tds_mesh *m, tds_id f, int k,
   *A2 += ten * 0.5 * (ww * nn - nw * nw) / (nn * nl);
 }
 
-static int corner_of(const tds_mesh *m, tds_id f, tds_id v) {
-  return m->fv[f][0] == v ? 0 : m->fv[f][1] == v ? 1 : 2;
-}
-
 void tds_pg_star_model(const tds_mesh *m, tds_id v, const double d[3],
                        double *A0, double *A1, double *A2) {
   *A0 = *A1 = *A2 = 0;
   for (int32_t i = m->vf_start[v]; i < m->vf_start[v + 1]; i++) {
     tds_id f = m->vf[i];
     if (m->ften[f] == 0) continue;
-    star_term(m, f, corner_of(m, f, v), d, A0, A1, A2);
+    star_term(m, f, tds_facet_corner(m, f, v), d, A0, A1, A2);
   }
 }
 

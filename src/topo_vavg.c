@@ -40,7 +40,7 @@ static int over_facets(const tds_mesh *m, tds_id v, double out[3]) {
     tds_id f = m->vf[i];
     if (m->fcon[f] != m->vcon[v]) continue;
     double P[3][3]; /* the facet in v's frame (v's copy on a torus) */
-    tds_torus_facet_at(m, f, m->fv[f][0] == v ? 0 : m->fv[f][1] == v ? 1 : 2, P);
+    tds_torus_facet_at(m, f, tds_facet_corner(m, f, v), P);
     const double *a = P[0], *b = P[1], *c = P[2];
     double ab[3], ac[3], N[3];
     v3_sub(ab, b, a);

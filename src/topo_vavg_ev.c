@@ -46,26 +46,17 @@ static int edge_slot(const tds_mesh *m, tds_id v, int32_t oe) {
   return -1;
 }
 
-/* v's facets into ord, in the order Evolver visits them as far as
-** measurements show: by the edge on which each leaves v, v's
-** lowest-numbered edge first and then the others from the highest number
-** down (the order in which a datafile's edges link into Evolver's list of
-** v's edges). Returns their number. */
+/* v's facets into ord in Evolver's order (tds_star_key). Returns their
+** number. */
 static int star_order(const tds_mesh *m, tds_id v, int32_t *ord) {
   int32_t f0 = m->vf_start[v], n = m->vf_start[v + 1] - f0;
-  tds_id e1 = -1;
-  for (int32_t i = m->ve_start[v]; i < m->ve_start[v + 1]; i++)
-    if (e1 < 0 || TDS_OID(m->ve[i]) < e1) e1 = TDS_OID(m->ve[i]);
+  tds_id e1 = tds_vertex_min_edge(m, v);
   for (int32_t i = 0; i < n; i++) { /* insertion sort on the key */
     tds_id f = m->vf[f0 + i];
-    int k = m->fv[f][0] == v ? 0 : m->fv[f][1] == v ? 1 : 2;
-    tds_id e = TDS_OID(m->fe[f][k]);
-    int32_t key = e == e1 ? INT32_MIN : -e, j = i;
+    int32_t key = tds_star_key(m, f, tds_facet_corner(m, f, v), e1), j = i;
     for (; j > 0; j--) {
       tds_id g = ord[j - 1];
-      int kg = m->fv[g][0] == v ? 0 : m->fv[g][1] == v ? 1 : 2;
-      tds_id eg = TDS_OID(m->fe[g][kg]);
-      if ((eg == e1 ? INT32_MIN : -eg) <= key) break;
+      if (tds_star_key(m, g, tds_facet_corner(m, g, v), e1) <= key) break;
       ord[j] = g;
     }
     ord[j] = f;
@@ -90,7 +81,7 @@ int tds_vavg_target(const tds_surf *s, tds_id v, int mode, double *g,
   int nf = star_order(m, v, ord);
   for (int i = 0; i < nf; i++) {
     tds_id f = ord[i];
-    int k = m->fv[f][0] == v ? 0 : m->fv[f][1] == v ? 1 : 2;
+    int k = tds_facet_corner(m, f, v);
     double P[3][3]; /* the facet in v's frame (a group may rotate it) */
     tds_torus_facet_at(m, f, k, P);
     double ab[3], ac[3], N[3];
