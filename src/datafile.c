@@ -259,7 +259,9 @@ int tds_datafile_load_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
     return tds_seterr(ctx, TDS_ERANGE,
                       "%s: a surface is already loaded; datafiles load into an "
                       "empty surface", name);
-  return read_text(ctx, s, name, text, len, 0);
+  int rc = read_text(ctx, s, name, text, len, 0);
+  if (rc == TDS_OK) s->evolver_ls = 1; /* a datafile's surface takes Evolver's steps */
+  return rc;
 }
 
 int tds_datafile_addload_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
