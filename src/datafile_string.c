@@ -120,8 +120,8 @@ int df_string_finish(df *d) {
 int df_metric(df *d, const char *at) {
   if (!d->string_model)
     return df_err(d, at, TDS_ESYNTAX,
-                  "METRIC is supported only in the string model: give STRING (and "
-                  "SPACE_DIMENSION) before METRIC");
+                  "METRIC on a soapfilm surface is not supported yet (the string model "
+                  "has it: give STRING and SPACE_DIMENSION before METRIC)");
   if (d->s->metric_on) return df_err(d, at, TDS_ESYNTAX, "METRIC given twice");
   int n = d->space_dim ? d->space_dim : 3;
   tds_expr *e[9] = {NULL};

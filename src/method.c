@@ -200,7 +200,7 @@ const tds_method tds_methods[TDS_M_NROWS] = {
                      NULL},
     [TDS_M_HOOKE2] = {"hooke2_energy", TDS_EL_EDGE, TDS_MF_USER, tds_mk_hooke, TDS_IT_EDGE_K,
                       NULL},
-    [TDS_M_FACET_VOLUME] = {"facet_volume", TDS_EL_FACET, 0, tds_mk_volume},
+    [TDS_M_FACET_VOLUME] = {"facet_volume", TDS_EL_FACET, TDS_MF_USER, tds_mk_volume},
     [TDS_M_FACET_VOLUME_SYM] = {"facet_volume_symmetric", TDS_EL_FACET, 0, tds_mk_volume_sym},
     [TDS_M_EDGE_GAP] = {"edge_gap", TDS_EL_EDGE, TDS_MF_FORMULA | TDS_MF_HESS_FD,
                         tds_mk_edge_gap},

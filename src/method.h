@@ -67,9 +67,10 @@ enum {
   TDS_M_EDGE_SCALAR_INTEGRAL, TDS_M_GRAVITY, TDS_M_FULL_GRAVITY,
   TDS_M_KNOT, TDS_M_EDGE_KNOT, TDS_M_BUCK_KNOT, TDS_M_PROJ_KNOT,
   TDS_M_CIRCLE_KNOT, TDS_M_SQCURVE_STRING, TDS_M_HOOKE, TDS_M_HOOKE2,
+  TDS_M_FACET_VOLUME,               /* int z dx dy: body content, and
+                                       Evolver's facet_volume method */
   TDS_M_COUNT,
-  TDS_M_FACET_VOLUME = TDS_M_COUNT, /* body content int z dx dy */
-  TDS_M_FACET_VOLUME_SYM,           /* symmetric content (x,y,z)/3 . dS */
+  TDS_M_FACET_VOLUME_SYM = TDS_M_COUNT, /* symmetric content (x,y,z)/3 . dS */
   TDS_M_EDGE_GAP,                   /* gap energy on a convex constraint */
   TDS_M_EDGE_AREA,                  /* string model: -int y dx (body area) */
   TDS_M_STRING_GRAVITY,             /* string model: -int y^2/2 dx */

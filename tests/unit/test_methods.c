@@ -358,7 +358,7 @@ static void quantity_many_methods(void) {
   CHECK_NEAR(s.quant[qi].value, 63, 1e-13);
   CHECK_NEAR(out.energy, e0 + 63, 1e-13);
   /* an internal row is not a user method */
-  CHECK(tds_model_method(&ctx, &s, qi, TDS_M_FACET_VOLUME, 1, NULL) == TDS_ESYNTAX);
+  CHECK(tds_model_method(&ctx, &s, qi, TDS_M_FACET_VOLUME_SYM, 1, NULL) == TDS_ESYNTAX);
   CHECK(s.quant[qi].ninst == 6);
   tds_surf_free(&s);
 }
