@@ -78,6 +78,3 @@ int tds_sym_unsupported(tds_ctx *ctx, const tds_mesh *m, const char *what) {
                     tds_sym_name(m->sym));
 }
 
-int tds_sym_content_ok(const tds_mesh *m) {
-  return m->sym == TDS_SYM_NONE || m->sym == TDS_SYM_ROTATE;
-}
