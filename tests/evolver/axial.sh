@@ -7,6 +7,7 @@
 # identity, which only an axial point allows.
 # * load, r, r: counts, energy, volume (1e-12: the same sums in another
 #   order; refining composes the wraps from the axial corner);
+# * u after 10 steps: the same flips (edges' ends) and energy;
 # * 50 steps at a fixed scale (the film free; with the body held at its
 #   volume, evolver_line_search): energy, volume, pressure and the centre's
 #   height (1e-10; measured equal to 1e-15);
@@ -37,6 +38,9 @@ PB="$P"' printf "K2 %.15g %.15g\n", body[1].volume, body[1].pressure;'
 for f in o5 o6; do
   kcompare "axial/$f/load" "$tmp/$f.fe" 1e-12 "$P r; $P r; $P"
   kcompare "axial/$f/g50" "$tmp/$f.fe" 1e-10 "r; r; m 0.005; g 50; $P"' printf "K3 %.15g\n", vertex[1].z;'
+  # u: the same flips (each edge's two ends; Evolver may run a flipped
+  # edge the other way, with the inverse wrap), energy 1e-10
+  kcompare "axial/$f/u" "$tmp/$f.fe" 1e-10 "r; r; m 0.005; g 10; u; $P"' foreach edge ee do printf "K4 %d %d %d\n", ee.id, minimum(ee.vertex[1].id, ee.vertex[2].id), maximum(ee.vertex[1].id, ee.vertex[2].id);'
 done
 for f in b5 b6; do
   kcompare "axial/$f/load" "$tmp/$f.fe" 1e-12 'printf "K %.15g\n", body[1].volume; '"$P r; $P r; $P"
