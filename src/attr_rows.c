@@ -225,6 +225,7 @@ static const tds_attr vertex_rows[] = {
         .get = get_cons, .set = vcon_set),
     FLAGROW(TDS_VERTEX, "fixed", NULL, NULL, TDS_FIXED, FE_DECL),
     FLAGROW(TDS_VERTEX, "bare", NULL, NULL, TDS_BARE, FE_DECL),
+    FLAGROW(TDS_VERTEX, "axial_point", NULL, NULL, TDS_AXIAL, FE_DECL),
     RO(TDS_VERTEX, "valence", TDS_AT_INT, 1, v_valence),
     ORIGINAL(TDS_VERTEX),
 };

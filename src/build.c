@@ -46,7 +46,15 @@ int tds_build_face(tds_ctx *ctx, tds_surf *s, tds_id f, int n,
         return tds_seterr(ctx, TDS_ERANGE, "face %d: wraps out of range", f + 1);
       wsum = tds_wrap_mul(m, wsum, tds_oe_wrap(m, oe[k])); /* in order: groups need not commute */
     }
-    if (wsum != 0)
+    int axial = 0; /* axial_point at the tail of the first edge: any product */
+    if (wsum != 0 && (m->vflags[tds_oe_tail(m, oe[0])] & TDS_AXIAL)) {
+      if (n != 3)
+        return tds_seterr(ctx, TDS_ETOPO,
+                          "face %d: a face at an axial_point whose wraps do not multiply to "
+                          "the identity must be a triangle", f + 1);
+      axial = 1;
+    }
+    if (wsum != 0 && !axial)
       return tds_seterr(ctx, TDS_ETOPO,
                         tds_mesh_rotates(m)
                             ? "face %d: the product of its edges' wraps is not the identity "

@@ -34,7 +34,7 @@ static const char *const unsupported[] = {
     "area_fixed", "load_library", "interp_bdry_param",
     "function", "procedure",
     "gradient_mode", "parameter_file", "ideal_gas", "knot_energy",
-    "conserved", "on_assign_call", "nonwall", "content_rank", "axial_point",
+    "conserved", "on_assign_call", "nonwall", "content_rank",
     "phase", "actual_volume", "form_integrand", "k_form_order",
     "parameter_1", "element_modulus", "clip_coeff", NULL};
 

@@ -150,10 +150,6 @@ int df_torus_start(df *d, const char *at) {
     return df_err_line(d, d->periods_line, TDS_ESYNTAX,
                        "PERIODS with SYMMETRY_GROUP \"%s\" (only the torus group has periods)",
                        tds_sym_name(d->s->m.sym));
-  if (d->s->symmetric_content && !tds_sym_content_ok(&d->s->m))
-    return df_err_line(d, d->torus_line, TDS_ESYNTAX,
-                       "SYMMETRIC_CONTENT with SYMMETRY_GROUP \"%s\" is not supported yet",
-                       tds_sym_name(d->s->m.sym));
   /* the group's parameters (rotation_order, ...) as the top section left them */
   if (d->s->m.sym && tds_sym_read_params(d->ctx, d->s) != TDS_OK)
     return df_core(d, d->torus_line, TDS_ERANGE, NULL);

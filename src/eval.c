@@ -128,10 +128,11 @@ static inline int want_grad(const tds_eval_out *out, const term *t, const sink *
 ** kernels and sink functions for the fused facet pass, and with the
 ** row's own for every other term. t1 shares t0's constants (L): only
 ** rows without integrands are fused. TDS_OK or TDS_ERANGE (too many
-** bodies on an edge). */
+** bodies on an edge). raw: the corners are the vertices' stored positions,
+** wraps ignored (SYMMETRIC_CONTENT under the torus group). */
 static inline __attribute__((always_inline)) int
 assemble_k(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int kind, term *t0,
-           tds_mkernel k0, sink_fn f0, term *t1, tds_mkernel k1, sink_fn f1) {
+           tds_mkernel k0, sink_fn f0, term *t1, tds_mkernel k1, sink_fn f1, int raw) {
   tds_mesh *m = &s->m;
   const tds_id n = kind == TDS_EL_FACET ? m->nf : m->ne;
   const uint32_t *flags = kind == TDS_EL_FACET ? m->fflags : m->eflags;
@@ -148,7 +149,9 @@ assemble_k(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int kind, term *t0,
                         (int)el + 1, MAX_SINKS - 1);
     const tds_id *vs = kind == TDS_EL_FACET ? m->fv[el] : m->ev[el];
     tds_corners C;
-    if (kind == TDS_EL_FACET)
+    if (raw) /* the stored positions, wraps ignored */
+      for (int c = 0; c < kind; c++) C.x[c] = m->x[vs[c]];
+    else if (kind == TDS_EL_FACET)
       tds_gather_facet(m, el, &C);
     else
       tds_gather_edge(m, TDS_OREF(el, 0), &C);
@@ -174,7 +177,7 @@ assemble_k(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int kind, term *t0,
 
 /* One term, any row. */
 static int assemble(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, term *t) {
-  return assemble_k(ctx, s, out, t->row->kind, t, t->row->eval, t->sinks, NULL, NULL, NULL);
+  return assemble_k(ctx, s, out, t->row->kind, t, t->row->eval, t->sinks, NULL, NULL, NULL, 0);
 }
 
 /* ---- sink functions ---- */
@@ -379,13 +382,23 @@ static int facet_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
   if (!out->grad) ten.gq = vol.gq = -2;
   int rc;
   if (s->m.nb == 0)
-    rc = assemble_k(ctx, s, out, TDS_EL_FACET, &ten, tds_mk_area, s_tension, NULL, NULL, NULL);
-  else if (sym)
+    rc = assemble_k(ctx, s, out, TDS_EL_FACET, &ten, tds_mk_area, s_tension, NULL, NULL, NULL, 0);
+  else if (sym && s->m.sym == TDS_SYM_TORUS) {
+    /* Evolver 2.70's symmetric content under SYMMETRY_GROUP "torus": each
+    ** facet's (x,y,z)/3 flux from its vertices' stored positions, the
+    ** wraps ignored (measured on symtest.fe and skewed, perturbed copies:
+    ** tests/evolver/symmetry.sh); under the other groups the facets are
+    ** gathered as for every other term */
+    rc = assemble_k(ctx, s, out, TDS_EL_FACET, &ten, tds_mk_area, s_tension, NULL, NULL, NULL, 0);
+    if (rc == TDS_OK)
+      rc = assemble_k(ctx, s, out, TDS_EL_FACET, &vol, tds_mk_volume_sym, s_volume, NULL, NULL,
+                      NULL, 1);
+  } else if (sym)
     rc = assemble_k(ctx, s, out, TDS_EL_FACET, &ten, tds_mk_area, s_tension, &vol,
-                    tds_mk_volume_sym, s_volume);
+                    tds_mk_volume_sym, s_volume, 0);
   else
     rc = assemble_k(ctx, s, out, TDS_EL_FACET, &ten, tds_mk_area, s_tension, &vol,
-                    tds_mk_volume, s_volume);
+                    tds_mk_volume, s_volume, 0);
   out->energy += ten.total + vol.total;
   out->area += ten.sum;
   /* SYMMETRY_GROUP: Evolver's Euclidean volumes, each facet's integral
@@ -508,7 +521,7 @@ static int string_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int tensio
     term ten = make(s, TDS_M_EDGE_LENGTH, s_edge_tension, NULL, 0);
     if (!out->grad) area.gq = ten.gq = -2;
     rc = assemble_k(ctx, s, out, TDS_EL_EDGE, &area, tds_mk_edge_area, s_str_area, &ten,
-                    ten.row->eval, s_edge_tension);
+                    ten.row->eval, s_edge_tension, 0);
     out->energy += ten.total + area.total;
   } else {
     rc = energy_term(ctx, s, out, area);

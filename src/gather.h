@@ -89,6 +89,17 @@ static inline const double *tds_wrap_point(const tds_mesh *m, const double *x, i
   return out;
 }
 
+/* The group element that takes facet f's third vertex to its corner,
+** seen from the first: back along the third edge, or, when the first
+** vertex is an axial_point (the wraps' product then need not be the
+** identity, only fix that vertex), forward along the first two. */
+static inline int32_t tds_corner2_wrap(const tds_mesh *m, tds_id f) {
+  const int32_t *fe = m->fe[f];
+  if (__builtin_expect((m->vflags[m->fv[f][0]] & TDS_AXIAL) != 0, 0))
+    return tds_wrap_mul(m, tds_oe_wrap(m, fe[0]), tds_oe_wrap(m, fe[1]));
+  return tds_wrap_inv(m, tds_oe_wrap(m, fe[2]));
+}
+
 /* Corners of facet f in its orientation: x[k] is vertex fv[f][k]. On a
 ** torus the corners are unwrapped from the first: x[0] is the first
 ** vertex's position, x[1] and x[2] follow the facet's edges (so they may
@@ -101,7 +112,7 @@ tds_gather_facet(const tds_mesh *m, tds_id f, tds_corners *c) {
     const int32_t *fe = m->fe[f];
     c->x[0] = m->x[fv[0]];
     c->x[1] = tds_wrap_point(m, m->x[fv[1]], tds_oe_wrap(m, fe[0]), c->tmp[1]);
-    c->x[2] = tds_wrap_point(m, m->x[fv[2]], tds_wrap_inv(m, tds_oe_wrap(m, fe[2])), c->tmp[2]);
+    c->x[2] = tds_wrap_point(m, m->x[fv[2]], tds_corner2_wrap(m, f), c->tmp[2]);
     return;
   }
   c->x[0] = m->x[fv[0]];

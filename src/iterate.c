@@ -635,6 +635,7 @@ static int step(tds_ctx *ctx, tds_surf *s, work *w) {
     }
     m->coord_gen++;
     w->undone = 1;
+    if (w->pop_after && (rc = after_move(ctx, s, w, &E)) != TDS_OK) return rc;
     return tds_surf_update(ctx, s);
   }
   if (w->pop_after && (rc = after_move(ctx, s, w, &E)) != TDS_OK) return rc;

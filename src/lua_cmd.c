@@ -229,9 +229,6 @@ static int l_setting(lua_State *L) {
   int set = !lua_isnone(L, 2);
   switch (which) {
   case 0:
-    if (set && lua_toboolean(L, 2) && !tds_sym_content_ok(&s->m))
-      return luaL_error(L, "symmetric_content with SYMMETRY_GROUP \"%s\" is not supported yet",
-                        tds_sym_name(s->m.sym));
     if (set) s->symmetric_content = lua_toboolean(L, 2);
     lua_pushboolean(L, s->symmetric_content);
     break;

@@ -29,6 +29,8 @@ enum {                      /* element flags (any kind) */
   TDS_TARGET = 1u << 5,     /* body volume is constrained to btarget */
   TDS_PRESSURE = 1u << 6,   /* body has a prescribed pressure */
   TDS_NONCONTENT = 1u << 7, /* facet or edge excluded from volumes */
+  TDS_AXIAL = 1u << 8,      /* vertex on a symmetry group's axis (axial_point):
+                               its facets' wraps need not multiply to 1 */
   TDS_VOLCONST = 1u << 9,   /* body has an explicit volconst */
   TDS_CONREV = 1u << 10     /* edge: constraint integrals run reversed */
 };

@@ -20,7 +20,7 @@ void tds_sym_pullback(const tds_mesh *m, int kind, tds_id el, double g[3][3], do
   int n = kind == TDS_EL_FACET ? 3 : 2;
   if (kind == TDS_EL_FACET) {
     w[1] = tds_oe_wrap(m, m->fe[el][0]);
-    w[2] = tds_wrap_inv(m, tds_oe_wrap(m, m->fe[el][2]));
+    w[2] = tds_corner2_wrap(m, el);
   } else {
     w[1] = m->ewrap[el];
   }
@@ -78,6 +78,3 @@ int tds_sym_unsupported(tds_ctx *ctx, const tds_mesh *m, const char *what) {
                     tds_sym_name(m->sym));
 }
 
-int tds_sym_content_ok(const tds_mesh *m) {
-  return m->sym == TDS_SYM_NONE || m->sym == TDS_SYM_ROTATE;
-}

@@ -16,7 +16,9 @@
 ** assembly. Bodies get Evolver's Euclidean volumes: each facet's integral
 ** where its corners are gathered, no lifts (Evolver 2.70 does the same:
 ** its manual asks for named quantities where that is not the volume
-** wanted).
+** wanted). SYMMETRIC_CONTENT: the facets gathered the same way, except
+** under the torus group, where Evolver takes the stored positions
+** (eval.c).
 */
 #ifndef TDS_SYMMETRY_H
 #define TDS_SYMMETRY_H
@@ -39,9 +41,5 @@ int tds_sym_read_params(tds_ctx *ctx, tds_surf *s);
 ** commands that treat wraps as translations call it first. */
 int tds_sym_unsupported(tds_ctx *ctx, const tds_mesh *m, const char *what);
 
-/* Whether SYMMETRIC_CONTENT volumes are Evolver's under the mesh's group:
-** yes without a group and under "rotate" (measured); the others differ
-** from Evolver 2.70's and are refused. */
-int tds_sym_content_ok(const tds_mesh *m);
 
 #endif

@@ -72,6 +72,21 @@ static double dist2(const tds_mesh *m, tds_id a, int32_t wa, tds_id b, int32_t w
   return v3_dot(d, d);
 }
 
+/* The product of the wraps round a facet with corners a and edges o, all
+** three split (halves in e2), walked from its axial_point corner; 0 when
+** it has none. */
+static int32_t holonomy(const tds_mesh *m, const tds_id *a, const int32_t *o,
+                        const int32_t *e2) {
+  int ax = 0;
+  while (ax < 3 && !(m->vflags[a[ax]] & TDS_AXIAL)) ax++;
+  if (ax == 3) return 0;
+  int32_t w = 0;
+  for (int i = 0, k = ax; i < 3; i++, k = (k + 1) % 3)
+    w = tds_wrap_mul(m, w, tds_wrap_mul(m, tds_oe_wrap(m, half(e2, o[k], 0)),
+                                        tds_oe_wrap(m, half(e2, o[k], 1))));
+  return w;
+}
+
 /* Subdivide facet f, whose edges k have midpoint mid[k] (TDS_NONE if not
 ** split). Rotates so the split edges come first, then builds triangles. */
 static void split_facet(tds_mesh *m, tds_id f, const tds_id *midv,
@@ -97,7 +112,31 @@ static void split_facet(tds_mesh *m, tds_id f, const tds_id *midv,
     a[k] = v[(k + r) % 3];
     mm[k] = mid[(k + r) % 3];
   }
-  if (nsplit == 3) {
+  if (nsplit == 3 && m->torus && holonomy(m, a, o, e2) != 0) {
+    /* A facet at an axial_point whose wraps do not multiply to the
+    ** identity: the corners' group elements (frames) walked forward from
+    ** the axial corner, where the holonomy is absorbed; each inner edge
+    ** gets the wrap from its tail's frame to its head's. Otherwise as
+    ** below. */
+    int ax = 0;
+    while (ax < 2 && !(m->vflags[a[ax]] & TDS_AXIAL)) ax++;
+    int32_t Fm[3], w = 0;
+    for (int i = 0, k = ax; i < 3; i++, k = (k + 1) % 3) {
+      w = tds_wrap_mul(m, w, tds_oe_wrap(m, half(e2, o[k], 0)));
+      Fm[k] = w;
+      w = tds_wrap_mul(m, w, tds_oe_wrap(m, half(e2, o[k], 1)));
+    }
+    tds_id c0 = inner_edge(m, f, mm[0], mm[2]);
+    tds_id c1 = inner_edge(m, f, mm[1], mm[0]);
+    tds_id c2 = inner_edge(m, f, mm[2], mm[1]);
+    m->ewrap[c0] = tds_wrap_mul(m, tds_wrap_inv(m, Fm[0]), Fm[2]);
+    m->ewrap[c1] = tds_wrap_mul(m, tds_wrap_inv(m, Fm[1]), Fm[0]);
+    m->ewrap[c2] = tds_wrap_mul(m, tds_wrap_inv(m, Fm[2]), Fm[1]);
+    new_facet(m, f, half(e2, o[0], 0), TDS_OREF(c0, 0), half(e2, o[2], 1), -1);
+    new_facet(m, f, half(e2, o[0], 1), half(e2, o[1], 0), TDS_OREF(c1, 0), -1);
+    new_facet(m, f, TDS_OREF(c2, 0), half(e2, o[1], 1), half(e2, o[2], 0), -1);
+    set3(m, f, TDS_OREF(c2, 1), TDS_OREF(c0, 1), TDS_OREF(c1, 1));
+  } else if (nsplit == 3) {
     /* Numbered as Evolver numbers them, so element ids after r agree: the
     ** inner edges cut off the corners a0, a1, a2 in turn, each oriented
     ** along its corner triangle; the corner triangles are new facets in

@@ -19,7 +19,7 @@ double tds_torus_cell_volume(const tds_mesh *m) {
 int32_t tds_torus_corner_wrap(const tds_mesh *m, tds_id f, int k) {
   if (k == 0) return 0;
   if (k == 1) return tds_oe_wrap(m, m->fe[f][0]);
-  return tds_wrap_inv(m, tds_oe_wrap(m, m->fe[f][2]));
+  return tds_corner2_wrap(m, f);
 }
 
 void tds_torus_facet_corner(const tds_mesh *m, tds_id f, int k, double out[3]) {
@@ -224,7 +224,7 @@ void tds_torus_settle(tds_surf *s) {
 int tds_torus_check(tds_ctx *ctx, const tds_mesh *m) {
   for (tds_id f = 0; f < m->nf; f++) {
     if (!tds_alive(m->fflags, f)) continue;
-    if (tds_facet_wrap(m, f) != 0)
+    if (tds_facet_wrap(m, f) != 0 && !tds_facet_axial(m, f))
       return tds_seterr(ctx, TDS_ETOPO,
                         m->sym > TDS_SYM_TORUS
                             ? "facet %d: the product of its edges' wraps is not the identity"
@@ -248,6 +248,12 @@ void tds_torus_close(tds_mesh *m, tds_id f, int k) {
   int32_t w = tds_wrap_mul(m, tds_oe_wrap(m, m->fe[f][(k + 1) % 3]),
                            tds_oe_wrap(m, m->fe[f][(k + 2) % 3]));
   m->ewrap[TDS_OID(oe)] = TDS_OREV(oe) ? w : tds_wrap_inv(m, w);
+}
+
+int tds_facet_axial(const tds_mesh *m, tds_id f) {
+  for (int k = 0; k < 3; k++)
+    if (m->vflags[m->fv[f][k]] & TDS_AXIAL) return 1;
+  return 0;
 }
 
 int32_t tds_facet_wrap(const tds_mesh *m, tds_id f) {

@@ -80,6 +80,10 @@ void tds_torus_close(tds_mesh *m, tds_id f, int k);
 /* The product of facet f's edge wraps in order (tds_wrap_mul): 0 when
 ** the facet closes (in the torus: the lattice counts add up to zero). */
 int32_t tds_facet_wrap(const tds_mesh *m, tds_id f);
+/* Whether facet f has a vertex on a symmetry axis (axial_point): its
+** wraps' product may then be any element fixing that vertex (Evolver's
+** rule), and its corners gathered from any vertex are still the facet. */
+int tds_facet_axial(const tds_mesh *m, tds_id f);
 
 /* Evolver's wrap code of a packed wrap (the `wrap` edge attribute): 6 bits
 ** per period from the lowest, each count in 5-bit two's complement

@@ -618,6 +618,30 @@ static void oom_strings(void) {
     }
 }
 
+/* 100grain.fe stepped to just before the string autopop's rarer cases
+** (without failures, once) and dumped: g then merges two junctions at a
+** midpoint and pops in the moved positions (steps 245-246), or moves a
+** chop's new vertex after a collapse (steps 818-819; autopop.h). */
+static void oom_autopop_string(void) {
+  const int upto[] = {244, 817};
+  for (size_t i = 0; i < 2 && !check_failed_; i++) {
+    char path[64];
+    snprintf(path, sizeof path, "/tmp/tds_oom_%d_grain%d.fe", (int)getpid(), upto[i]);
+    tds_ctx ctx;
+    tds_surf s;
+    h_setup(&ctx, &s);
+    int rc = tds_datafile_load(&ctx, &s, EX "100grain.fe");
+    if (rc == TDS_OK) rc = tds_iterate(&ctx, &s, upto[i]);
+    if (rc == TDS_OK) rc = tds_datafile_dump(&ctx, &s, path);
+    tds_surf_free(&s);
+    CHECK(rc == TDS_OK);
+    if (rc != TDS_OK) return;
+    opcase c = {path, 0, 0, 'g'};
+    sweep(&c);
+    unlink(path);
+  }
+}
+
 /* A 2-D foam of 21 x 20 square cells, each a body of area 1, the inner
 ** junctions moved by up to 0.1 (seeded), the four corners fixed (fixing
 ** the whole rim would fix the total area: dependent targets): more bodies
@@ -776,6 +800,7 @@ int main(void) {
   RUN(oom_inputs);
   RUN(oom_load);
   RUN(oom_strings);
+  RUN(oom_autopop_string);
   RUN(oom_refine);
   RUN(oom_iterate);
   RUN(oom_equiangulate);
