@@ -182,7 +182,7 @@ K='printf "K %d %d %d %.15g\n", vertex_count, edge_count, facet_count, total_ene
 for spec in "cube|gogo" "mound|gogo" "qmound|gogo" \
             "quad|gogo" "catbody|gogo" \
             "column|gogo" "knotty|gogo" "metric|gogo" "popstr|gogo" \
-            "slidestr|gogo" "twointor|gogo" "phelanc|gogo"; do
+            "slidestr|gogo" "twointor|gogo" "phelanc|gogo" "octa|gogo"; do
   f=${spec%%|*} c=${spec#*|}
   evcmp "gogo-compare/$f" "$EXAMPLES/$f.fe" "$c" "pcall(gogo)" 2e-3
 done
