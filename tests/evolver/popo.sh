@@ -2,10 +2,12 @@
 # popo.sh: o (pop non-minimal vertices and edges) as Evolver does it, on
 # octa.fe's gogo and on seeded random states.
 # * octa/gogo-trace: octa.fe's gogo run command by command (five o with
-#   U, g, t, u, V between): the counts after every command equal Evolver's
-#   exactly; the energies part by the line searches in between (up to
-#   2e-3), so only the last is compared: both end on the film with a
-#   tetrahedral point, of area 16 sqrt(2) (measured 2e-14 apart), 1e-9.
+#   U, g, t, u, V between), with tds's own line search (with Evolver's,
+#   tds's U steps are 1e-5 from Evolver's and t .1 then deletes other
+#   edges): the counts after every command equal Evolver's exactly; the
+#   energies part by the line searches in between (up to 2e-3), so only
+#   the last is compared: both end on the film with a tetrahedral point,
+#   of area 16 sqrt(2) (measured 2e-14 apart), 1e-9.
 # * octa/dN-o: o from Evolver's own dumps before the gogo's second o (a
 #   cone over a prism frame among refined films: Evolver pops it to a
 #   triangle) and third o (a run of two 4-facet edges ending where it
@@ -33,12 +35,13 @@ C='recalc; printf "K %d %d %d\n", vertex_count, edge_count, facet_count'
 E='recalc; printf "K %d %d %d %.15g\n", vertex_count, edge_count, facet_count, total_energy'
 S='recalc; printf "K %d %d %d %.15g\n", vertex_count, edge_count, facet_count, total_energy; printf "KS %.15g %.15g %.15g %.15g %.15g\n", sum(vertex, x), sum(vertex, y), sum(vertex, z), sum(vertex, x*x+2*y*y+3*z*z), sum(vertex, x*y*z)'
 
-# cmp NAME FE CMDS TOL: CMDS run on FE by both programs, K lines compared
+# cmp NAME FE CMDS TOL [LUA]: CMDS run on FE by both programs (tds after
+# the Lua LUA), K lines compared
 cmp() {
   evolver_run "$2" "$3" | grep '^K' > "$tmp/ev.k"
   printf '%s\n' "$3" > "$tmp/c.cmd"
   cp "$2" "$tmp/run.fe"
-  (cd "$tmp" && "$TDS" -q run.fe -f c.cmd) 2>&1 | grep '^K' > "$tmp/tds.k"
+  (cd "$tmp" && "$TDS" -q run.fe -e "${5:-}" -f c.cmd) 2>&1 | grep '^K' > "$tmp/tds.k"
   "$TDS" -q -e "
 dofile('$ROOT/tests/evolver/numcmp.lua')
 numcmp('popo/$1', lines_of('$tmp/ev.k', '^K'), lines_of('$tmp/tds.k', '^K'), $4)"
@@ -48,7 +51,7 @@ OCTA=$EXAMPLES/octa.fe
 T="o; $C; U; g 20; $C; t .1; $C; g 10; $C; o; $C; g 20; $C; u; $C; V; $C; t .1; $C;
 o; $C; g 12; $C; o; $C; u; V; u; V; $C; g 10; $C; t .1; $C; o; $C; V; g 10; $C;
 t .1; u; V; $C; g 10; t .1; $C; g 10; $E"
-cmp octa/gogo-trace "$OCTA" "$T" 1e-9
+cmp octa/gogo-trace "$OCTA" "$T" 1e-9 "tds.setting('evolver_line_search', false)"
 # the exact answer too
 "$TDS" -q "$OCTA" -e "
 dofile('$ROOT/tests/evolver/compare.lua')
