@@ -90,7 +90,8 @@ int tds_pop_cone(tds_surf *s, tds_id v, int *done);
 ** (six triple edges, nine films joining them as a prism's edges): to an
 ** edge joining the two triangles' sides (to_face 0, Evolver's pop_to_edge)
 ** or to a triangle between the two triangles' regions (to_face 1,
-** pop_to_face) (topo_t1.c). No snapshot, no energy update; adjacency
+** pop_to_face), or (to_face -1) as Evolver chooses with neither toggle
+** on (topo_t1.c). No snapshot, no energy update; adjacency
 ** must be current and is stale after. 1 done, 0 not such a cone, or
 ** -status. */
 int tds_pop_prism(tds_surf *s, tds_id v, int to_face);

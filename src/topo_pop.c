@@ -102,8 +102,8 @@ static int pop(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npop) {
     if (nc == 1) {
       if (!minimal) {
         int done = 0;
-        if (s->pop_to_edge || s->pop_to_face) { /* Evolver's prism toggles */
-          int r = tds_pop_prism(s, v, s->pop_to_face);
+        { /* the cone over a prism: Evolver's toggles, or its own choice */
+          int r = tds_pop_prism(s, v, s->pop_to_face ? 1 : s->pop_to_edge ? 0 : -1);
           if (r < 0) {
             rc = tds_seterr(ctx, -r, "out of memory while popping vertex %d", v + 1);
             break;

@@ -12,10 +12,15 @@
 **   chain goes on. A chain with no such interior vertex is first split at
 **   its midpoint (the facets on it split in their angular order; each
 **   keeps its head part and the tail part is a new facet).
-** * Each interior vertex v, from the tail end of the chain to the head
-**   end, is pulled apart: a new vertex v' = v + 0.01 |ein| (u1 + u2)
-**   (ein the chain edge coming in, u1, u2 the unit directions of the two
-**   wedge facets on it, perpendicular to it) takes the wedge's fins; a
+** * Where the chain stops at a free vertex at which the wedge's two fins
+**   both end on one other edge (a run of 4 facets parting into two triple
+**   edges), that end vertex is pulled too (measured on octa.fe's gogo:
+**   tests/evolver/popo.sh).
+** * Each such vertex v, from the popped edge outwards (head side first),
+**   is pulled apart: a new vertex v' = v + 0.01 |e| (u1 + u2) (e the
+**   popped edge, u1, u2 the unit directions of the two wedge facets on
+**   it, perpendicular to it: one offset for the whole chain) takes the
+**   wedge's fins; a
 **   spoke edge v -> v', copies of the incoming and outgoing chain edges
 **   for the other facets, and two triangles (a, v, v') and (v, b, v')
 **   between the two chains are new, in that order. Each vertex pulled
@@ -189,6 +194,27 @@ static int goes_on(const tds_surf *s, tds_id v, tds_id ein, int val, const tds_i
   return 1;
 }
 
+/* Where the chain stops at v (coming in along ein with wedge facets w[0],
+** w[1]): Evolver still pulls v when it is free and the wedge's two fins
+** at v both end on the same edge *eout (a run of 4 facets ending where it
+** parts into two triple edges); wn as for goes_on. */
+static int end_pull(const tds_surf *s, tds_id v, tds_id ein, const tds_id w[2], tds_id *eout,
+                    tds_id wn[2]) {
+  const tds_mesh *m = &s->m;
+  if (!free_vertex(s, v)) return 0;
+  tds_id g[2];
+  for (int j = 0; j < 2; j++) {
+    tds_id scratch[MAXVAL], last = TDS_NONE;
+    int ns = 0;
+    g[j] = fin(m, v, ein, w[j], scratch, &ns, MAXVAL, &last);
+    if (g[j] == TDS_NONE || g[j] == ein) return 0;
+    wn[j] = last;
+  }
+  if (g[0] != g[1] || other_end(m, g[0], v) == v) return 0;
+  *eout = g[0];
+  return 1;
+}
+
 typedef struct chain {
   int n;           /* interior vertices */
   tds_id v[MAXVAL];
@@ -217,6 +243,14 @@ static int trace(const tds_surf *s, tds_id e, tds_id w0, tds_id w1, chain *c) {
     w[0] = wn[0];
     w[1] = wn[1];
   }
+  if (end_pull(s, v, ein, w, &eo, wn)) { /* the tail end is pulled too */
+    if (nb == MAXVAL - 1) return 0;
+    bv[nb] = v;
+    be[nb] = eo;
+    bw[nb][0] = wn[0];
+    bw[nb][1] = wn[1];
+    nb++;
+  }
   c->n = 0;
   for (int i = nb - 1; i >= 0; i--) {
     c->e[c->n] = be[i];
@@ -241,6 +275,13 @@ static int trace(const tds_surf *s, tds_id e, tds_id w0, tds_id w1, chain *c) {
     ein = eo;
     w[0] = wn[0];
     w[1] = wn[1];
+  }
+  if (end_pull(s, v, ein, w, &eo, wn)) { /* the head end */
+    if (c->n >= MAXVAL - 1) return 0;
+    c->v[c->n++] = v;
+    c->e[c->n] = eo;
+    c->w[c->n][0] = wn[0];
+    c->w[c->n][1] = wn[1];
   }
   return 1;
 }
@@ -463,14 +504,13 @@ int tds_pop_one_edge(tds_surf *s, tds_id e, int32_t *npulled) {
   /* every new place from the chain as it is: v + 0.01 len (u1 + u2) */
   double (*pos)[3] = tds_malloc(&m->alloc, (size_t)(c->n + 1) * sizeof *pos);
   if (!pos) rc = TDS_ENOMEM;
-  for (int i = 0; i < c->n && rc == TDS_OK; i++) {
-    tds_id v = c->v[i], a = other_end(m, c->e[i], v);
-    double u1[3], u2[3];
-    perp(m, c->w[i][0], c->e[i], a, v, u1);
-    perp(m, c->w[i][1], c->e[i], a, v, u2);
-    v3_add(pos[i], u1, u2);
-    v3_scale(pos[i], 0.01 * len);
-    v3_add(pos[i], pos[i], m->x[v]);
+  if (rc == TDS_OK) { /* one offset for the whole chain, from the popped edge's wedge */
+    double u1[3], u2[3], off[3];
+    perp(m, c->w[p][0], e, m->ev[e][0], m->ev[e][1], u1);
+    perp(m, c->w[p][1], e, m->ev[e][0], m->ev[e][1], u2);
+    v3_add(off, u1, u2);
+    v3_scale(off, 0.01 * len);
+    for (int i = 0; i < c->n; i++) v3_add(pos[i], m->x[c->v[i]], off);
   }
   for (int k = 0; k < c->n && rc == TDS_OK; k++) {
     int i = p + k < c->n ? p + k : p - 1 - (k - (c->n - p));

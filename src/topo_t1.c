@@ -541,10 +541,29 @@ static int prism(const tds_surf *s, tds_id v, tds_id t[6]) {
   return 1;
 }
 
+/* Evolver's choice with neither toggle on, as measured (doc/commands.md):
+** a triangle when the sums of the unit directions from v to the two
+** triangles' corners have squared lengths adding up to less than 3. */
+static int face_wins(const tds_mesh *m, tds_id v, const tds_id t[6]) {
+  double q = 0;
+  for (int h = 0; h < 2; h++) {
+    double sum[3] = {0, 0, 0};
+    for (int k = 0; k < 3; k++) {
+      double u[3];
+      v3_sub(u, m->x[far_end(m, t[3 * h + k], v)], m->x[v]);
+      double n = v3_norm(u);
+      if (n > 0) v3_axpy(sum, 1 / n, u);
+    }
+    q += v3_dot(sum, sum);
+  }
+  return q < 3;
+}
+
 int tds_pop_prism(tds_surf *s, tds_id v, int to_face) {
   tds_mesh *m = &s->m;
   tds_id t[6];
   if (!prism(s, v, t)) return 0;
+  if (to_face < 0) to_face = face_wins(m, v, t);
   tds_id D = common_body(m, t), E = common_body(m, t + 3);
   if (to_face && (D == -2 || E == -2)) return 0;
   if (tds_mesh_room(m, TDS_VERTEX, m->nv + 3) || tds_mesh_room(m, TDS_EDGE, m->ne + 12) ||
@@ -566,7 +585,8 @@ int tds_pop_prism(tds_surf *s, tds_id v, int to_face) {
       }
     v3_scale(c, 1.0 / cnt);
     double p[3];
-    for (int i = 0; i < 3; i++) p[i] = x[i] + 0.25 * (c[i] - x[i]);
+    double w = to_face ? 1.0 / 3 : 0.25;
+    for (int i = 0; i < 3; i++) p[i] = x[i] + w * (c[i] - x[i]);
     nw[k] = tds_mesh_add_vertex(m, p);
     m->vcon[nw[k]] = m->vcon[v];
   }
