@@ -72,14 +72,12 @@ static inline int32_t tds_oe_wrap(const tds_mesh *m, int32_t oe) {
 /* Point x of the mesh moved by wrap w (translated in the torus, the
 ** group element's isometry otherwise), into out (or x itself when w is
 ** 0); returns the pointer to use. */
-static inline const double *tds_wrap_point(const tds_mesh *m, const double *x, int32_t w,
-                                           double out[3]) {
+static inline __attribute__((always_inline)) const double *
+tds_wrap_point(const tds_mesh *m, const double *x, int32_t w, double out[3]) {
   if (!w) return x;
   double d[3];
-  if (__builtin_expect(tds_mesh_rotates(m), 0)) {
-    double R[3][3];
-    tds_sym_affine(m->sym, m->symp, m->period, w, R, d);
-    for (int i = 0; i < 3; i++) out[i] = R[i][0] * x[0] + R[i][1] * x[1] + R[i][2] * x[2] + d[i];
+  if (__builtin_expect(tds_mesh_rotates(m), 0)) { /* out of line: rare */
+    tds_sym_apply(m->sym, m->symp, m->period, w, x, out);
     return out;
   }
   tds_wrap_vec(m->period, w, d);

@@ -174,6 +174,23 @@ tds_mk_volume(const tds_mlocal *L, double g[3][3], double h[9][9]) {
   if (h) tds_mk_volume_hess(L->x, h);
   return V;
 }
+/* facet_volume of the facet translated by L->k along z (the torus's
+** lifted volumes, eval.c); no row of its own. */
+static inline __attribute__((always_inline)) double
+tds_mk_volume_zshift(const tds_mlocal *L, double g[3][3], double h[9][9]) {
+  double V = geom_volume_zshift(L->x[0], L->x[1], L->x[2], L->k, g);
+  if (h) {
+    double y[3][3];
+    const double *yp[3] = {y[0], y[1], y[2]};
+    for (int c = 0; c < 3; c++) {
+      y[c][0] = L->x[c][0];
+      y[c][1] = L->x[c][1];
+      y[c][2] = L->x[c][2] + L->k;
+    }
+    tds_mk_volume_hess(yp, h);
+  }
+  return V;
+}
 static inline __attribute__((always_inline)) double
 tds_mk_volume_sym(const tds_mlocal *L, double g[3][3], double h[9][9]) {
   double V = geom_volume_sym(L->x[0], L->x[1], L->x[2], g);
