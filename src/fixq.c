@@ -171,6 +171,12 @@ nomem:
   return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
 }
 
+void tds_fixq_values(const tds_surf *s, tds_fixq *fq) {
+  for (int32_t q = 0; q < fq->nq; q++)
+    fq->value[q] = fq->qbody[q] != TDS_NONE ? s->m.bvol[fq->qbody[q]]
+                                            : s->quant[fq->qquant[q]].value;
+}
+
 void tds_fixq_clear(tds_fixq *fq) {
   if (fq->nent) memset(fq->g, 0, (size_t)fq->nent * sizeof *fq->g);
 }

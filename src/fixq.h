@@ -73,6 +73,11 @@ typedef struct tds_fixq {
 int tds_fixq_build(tds_ctx *ctx, tds_surf *s, tds_fixq *fq);
 void tds_fixq_free(tds_fixq *fq);
 
+/* The quantities' values (fq->value) from an evaluation made without fq
+** (the bodies' volumes in m.bvol, the named quantities' values): the
+** same numbers an evaluation with fq stores, without the gradients. */
+void tds_fixq_values(const tds_surf *s, tds_fixq *fq);
+
 /* Zero all entry gradients. */
 void tds_fixq_clear(tds_fixq *fq);
 /* Add gv to the gradient of quantity q at vertex v (entry must exist in the
