@@ -233,7 +233,8 @@ static int s_gravity(const tds_surf *s, const term *t, tds_id f, sink *o) {
   return w != 0;
 }
 
-static int s_edge_tension(const tds_surf *s, const term *t, tds_id e, sink *o) {
+static inline __attribute__((always_inline)) int
+s_edge_tension(const tds_surf *s, const term *t, tds_id e, sink *o) {
   (void)t;
   o[0] = (sink){TDS_NONE, 0, s->m.eten[e], 0};
   return s->m.eten[e] != 0;
@@ -464,7 +465,8 @@ static int integrand_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int slo
 
 /* Edge e's body weights from the cells' loops, times w; with `pressure`
 ** also the energy -p A of bodies with a prescribed pressure. */
-static int str_bodies(const tds_surf *s, tds_id e, double w, int pressure, sink *o) {
+static inline __attribute__((always_inline)) int
+str_bodies(const tds_surf *s, tds_id e, double w, int pressure, sink *o) {
   const tds_strings *st = s->str;
   const tds_mesh *m = &s->m;
   int n = 0;
@@ -479,7 +481,8 @@ static int str_bodies(const tds_surf *s, tds_id e, double w, int pressure, sink 
   return n;
 }
 
-static int s_str_area(const tds_surf *s, const term *t, tds_id e, sink *o) {
+static inline __attribute__((always_inline)) int
+s_str_area(const tds_surf *s, const term *t, tds_id e, sink *o) {
   (void)t;
   return str_bodies(s, e, 1, 1, o);
 }
@@ -549,7 +552,7 @@ static int string_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int tensio
     term ten = make(s, TDS_M_EDGE_LENGTH, s_edge_tension, NULL, 0);
     if (!out->grad) area.gq = ten.gq = -2;
     rc = assemble_k(ctx, s, out, TDS_EL_EDGE, &area, tds_mk_edge_area, s_str_area, &ten,
-                    ten.row->eval, s_edge_tension);
+                    tds_mk_length, s_edge_tension);
     out->energy += ten.total + area.total;
   } else {
     rc = energy_term(ctx, s, out, area);
