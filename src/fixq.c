@@ -33,6 +33,7 @@ void tds_fixq_free(tds_fixq *fq) {
   tds_free(&a, fq->gmap);
   tds_free(&a, fq->gold);
   tds_free(&a, fq->gwork);
+  tds_free(&a, fq->glam);
   tds_spchol_free(fq->gf);
   memset(fq, 0, sizeof *fq);
 }
@@ -253,7 +254,9 @@ static int gram_pattern(tds_ctx *ctx, tds_fixq *fq) {
     fq->gmap = tds_malloc(&fq->alloc, (size_t)(npair > 0 ? npair : 1) * sizeof *fq->gmap);
     fq->gold = tds_calloc(&fq->alloc, (size_t)(nnz > 0 ? nnz : 1), sizeof *fq->gold);
     fq->gwork = tds_malloc(&fq->alloc, 4 * (size_t)fq->nq * sizeof *fq->gwork);
-    if (!fq->gmap || !fq->gold || !fq->gwork) rc = TDS_ENOMEM;
+    fq->glam = tds_malloc(&fq->alloc, (size_t)fq->nq * sizeof *fq->glam);
+    fq->glam_ok = 0;
+    if (!fq->gmap || !fq->gold || !fq->gwork || !fq->glam) rc = TDS_ENOMEM;
   }
   if (rc == TDS_OK) {
     int32_t *map = fq->gmap;
@@ -281,9 +284,11 @@ static int gram_pattern(tds_ctx *ctx, tds_fixq *fq) {
     tds_free(&fq->alloc, fq->gmap);
     tds_free(&fq->alloc, fq->gold);
     tds_free(&fq->alloc, fq->gwork);
+    tds_free(&fq->alloc, fq->glam);
     fq->gmap = NULL;
     fq->gold = NULL;
     fq->gwork = NULL;
+    fq->glam = NULL;
   }
   return rc;
 }
@@ -306,7 +311,7 @@ static int gram_pattern(tds_ctx *ctx, tds_fixq *fq) {
 ** move a lot relative to themselves when the vertices move a little.
 ** Conjugate gradients without a factorisation were measured 4x slower
 ** than factoring every time. */
-static int solve_sparse(tds_ctx *ctx, tds_fixq *fq, double *rhs, double rtol) {
+static int solve_sparse(tds_ctx *ctx, tds_fixq *fq, double *rhs, double rtol, int mults) {
   int rc = TDS_OK;
   if (!fq->gf && (rc = gram_pattern(ctx, fq)) != TDS_OK) return rc;
   double *val = fq->gm.val;
@@ -322,7 +327,9 @@ static int solve_sparse(tds_ctx *ctx, tds_fixq *fq, double *rhs, double rtol) {
       }
   if (fq->gfok && memcmp(val, fq->gold, nnz * sizeof *val) != 0) {
     int its;
-    rc = tds_spchol_solve_near(ctx, fq->gf, &fq->gm, rhs, rtol, fq->gwork, FIXQ_PCG_MAXIT, &its);
+    const double *x0 = mults && fq->glam_ok ? fq->glam : NULL;
+    rc = tds_spchol_solve_near(ctx, fq->gf, &fq->gm, rhs, x0, rtol, fq->gwork, FIXQ_PCG_MAXIT,
+                               &its);
     if (rc != TDS_OK || its >= 0) goto done;
     fq->gfok = 0;
   }
@@ -335,6 +342,10 @@ static int solve_sparse(tds_ctx *ctx, tds_fixq *fq, double *rhs, double rtol) {
   }
   if (rc == TDS_OK) rc = tds_spchol_solve(ctx, fq->gf, rhs);
 done:
+  if (rc == TDS_OK && mults) {
+    memcpy(fq->glam, rhs, (size_t)fq->nq * sizeof *rhs);
+    fq->glam_ok = 1;
+  }
   if (rc == TDS_ENUM)
     return tds_seterr(ctx, TDS_ENUM,
                       "volume constraints are dependent (singular Gram "
@@ -365,8 +376,8 @@ static int dense_chol(tds_fixq *fq, double *rhs) {
   return info == 0 ? 0 : -1;
 }
 
-static int solve(tds_ctx *ctx, tds_fixq *fq, double *rhs, double rtol) {
-  if (!fq->gram) return solve_sparse(ctx, fq, rhs, rtol);
+static int solve(tds_ctx *ctx, tds_fixq *fq, double *rhs, double rtol, int mults) {
+  if (!fq->gram) return solve_sparse(ctx, fq, rhs, rtol, mults);
   gram(fq);
   if (fq->nq >= FIXQ_CHOL_MIN && dense_chol(fq, rhs) == 0) return TDS_OK;
   if (fq->nq >= FIXQ_CHOL_MIN) gram(fq); /* not definite: the elimination says */
@@ -385,7 +396,7 @@ int tds_fixq_multipliers(tds_ctx *ctx, tds_fixq *fq, double (*gradE)[3]) {
     for (int32_t i = fq->start[v]; i < fq->start[v + 1]; i++)
       b[fq->eq[i]] += fq->g[i][0] * gradE[v][0] + fq->g[i][1] * gradE[v][1] +
                       fq->g[i][2] * gradE[v][2];
-  return solve(ctx, fq, b, 0);
+  return solve(ctx, fq, b, 0, 1);
 }
 
 int tds_fixq_restore(tds_ctx *ctx, tds_fixq *fq, int32_t nv, double (*dx)[3]) {
@@ -394,7 +405,7 @@ int tds_fixq_restore(tds_ctx *ctx, tds_fixq *fq, int32_t nv, double (*dx)[3]) {
   if (fq->nq == 0) return TDS_OK;
   double *mu = fq->mult;
   for (int32_t q = 0; q < fq->nq; q++) mu[q] = fq->target[q] - fq->value[q];
-  int rc = solve(ctx, fq, mu, fq->restore_rtol);
+  int rc = solve(ctx, fq, mu, fq->restore_rtol, 0);
   if (rc != TDS_OK) return rc;
   for (int32_t v = 0; v < fq->nv; v++)
     for (int32_t i = fq->start[v]; i < fq->start[v + 1]; i++) {

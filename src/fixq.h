@@ -56,6 +56,9 @@ typedef struct tds_fixq {
   int32_t *gmap;
   double *gold;
   double *gwork;        /* 4 nq: conjugate gradients' vectors */
+  double *glam;         /* nq: the last multipliers solved for on this
+                           path, the next ones' first guess (glam_ok) */
+  int glam_ok;
   struct tds_spchol *gf;
   int gfok;             /* gf holds the factors of gold */
   /* The relative residual tds_fixq_restore's sparse solve may leave

@@ -132,23 +132,23 @@ static void spchol_near(void) {
   tds_spmat_mulv(&B, xs, b);
   int its = -2;
   memcpy(x, b, sizeof x);
-  CHECK(tds_spchol_solve_near(&ctx, f, &B, x, 0, work, 50, &its) == TDS_OK);
+  CHECK(tds_spchol_solve_near(&ctx, f, &B, x, NULL, 0, work, 50, &its) == TDS_OK);
   CHECK(its > 0 && its <= 50);
   CHECK(backward(&B, x, b) <= 1e-13);
   memcpy(x, b, sizeof x);
-  CHECK(tds_spchol_solve_near(&ctx, f, &B, x, 1e-6, work, 50, &its) == TDS_OK);
+  CHECK(tds_spchol_solve_near(&ctx, f, &B, x, NULL, 1e-6, work, 50, &its) == TDS_OK);
   CHECK(its >= 0);
   tds_spmat_mulv(&B, x, r);
   for (int i = 0; i < N; i++) r[i] -= b[i];
   CHECK(norm(N, r) <= 1e-6 * norm(N, b));
   memcpy(x, b, sizeof x);
-  CHECK(tds_spchol_solve_near(&ctx, f, &B, x, 0, work, 1, &its) == TDS_OK);
+  CHECK(tds_spchol_solve_near(&ctx, f, &B, x, NULL, 0, work, 1, &its) == TDS_OK);
   CHECK(its == -1);
   CHECK(memcmp(x, b, sizeof x) == 0);
   /* on the factored matrix itself: no iteration */
   tds_spmat_mulv(&A, xs, b);
   memcpy(x, b, sizeof x);
-  CHECK(tds_spchol_solve_near(&ctx, f, &A, x, 0, work, 50, &its) == TDS_OK);
+  CHECK(tds_spchol_solve_near(&ctx, f, &A, x, NULL, 0, work, 50, &its) == TDS_OK);
   CHECK(its == 0);
   tds_spchol_free(f);
   tds_spmat_free(&A);
