@@ -221,9 +221,16 @@ static int project_quantities(tds_ctx *ctx, tds_surf *s, work *w) {
       if (tds_eval(ctx, s, &out) != TDS_OK) return -1;
     }
     project_qgrad(s, fq);
-    /* loose: the loop repeats the move until on target (measured on the
-    ** 10,000-cell foam: 1e-3 to 1e-6 equally fast) */
-    fq->restore_rtol = 1e-6;
+    /* The sparse solve's tolerance (relative residual; tds_fixq_restore):
+    ** as loose as leaves the next error where it would be anyway. A move
+    ** leaves Newton's remainder, about 1e-12 worst^2 tolerances (measured:
+    ** 0.25 to 0.3 times that on the 2-D and 3-D foams), plus the residual,
+    ** rtol worst: so 1e-13 worst while another move will follow, and 0.2
+    ** / worst for the move that should be the last. Within [1e-6, 1e-3]
+    ** (1e-6 everywhere before: on the 10,000-cell foam each move then
+    ** took about one iteration of conjugate gradients more). */
+    double rq = 1e-13 * worst, rl = 0.2 / worst, rt = rq > rl ? rq : rl;
+    fq->restore_rtol = rt < 1e-6 ? 1e-6 : rt > 1e-3 ? 1e-3 : rt;
     int bad = restore_move(ctx, s, w);
     fq->restore_rtol = 0;
     if (bad != 0) return -1;
