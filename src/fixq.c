@@ -213,14 +213,17 @@ int tds_dense_solve(int n, double *A, double *b) {
   return 0;
 }
 
-/* Assemble the Gram matrix of the entry gradients into fq->gram. */
-static void gram(tds_fixq *fq) {
+/* Assemble the Gram matrix of the entry gradients into fq->gram; with
+** `lower` only the entries (q, r) with q >= r (the others are then
+** undefined; each is the same sum in the same order as its mirror). */
+static void gram(tds_fixq *fq, int lower) {
   int32_t nq = fq->nq;
   memset(fq->gram, 0, (size_t)nq * (size_t)nq * sizeof *fq->gram);
   for (int32_t v = 0; v < fq->nv; v++)
     for (int32_t i = fq->start[v]; i < fq->start[v + 1]; i++)
       for (int32_t j = fq->start[v]; j < fq->start[v + 1]; j++)
-        fq->gram[fq->eq[i] * nq + fq->eq[j]] +=
+        if (!lower || fq->eq[i] >= fq->eq[j])
+          fq->gram[fq->eq[i] * nq + fq->eq[j]] +=
             fq->g[i][0] * fq->g[j][0] + fq->g[i][1] * fq->g[j][1] +
             fq->g[i][2] * fq->g[j][2];
 }
@@ -360,7 +363,8 @@ void dpotrs_(const char *uplo, const int *n, const int *nrhs, const double *a, c
              double *b, const int *ldb, int *info);
 
 /* The dense Gram system by LAPACK's Cholesky (G is symmetric, so its
-** row-major array is its column-major one), from this many quantities: a
+** row-major array is its column-major one; gram(fq, 1)'s triangle is the
+** column-major upper one), from this many quantities: a
 ** third of the operations of tds_dense_solve's elimination, in blocked
 ** code (on a 128-cell foam 12% of a g step took 1.5%). Below it the
 ** elimination, as before. Returns 0, or -1 when G is not numerically
@@ -378,9 +382,10 @@ static int dense_chol(tds_fixq *fq, double *rhs) {
 
 static int solve(tds_ctx *ctx, tds_fixq *fq, double *rhs, double rtol, int mults) {
   if (!fq->gram) return solve_sparse(ctx, fq, rhs, rtol, mults);
-  gram(fq);
-  if (fq->nq >= FIXQ_CHOL_MIN && dense_chol(fq, rhs) == 0) return TDS_OK;
-  if (fq->nq >= FIXQ_CHOL_MIN) gram(fq); /* not definite: the elimination says */
+  int chol = fq->nq >= FIXQ_CHOL_MIN;
+  gram(fq, chol);
+  if (chol && dense_chol(fq, rhs) == 0) return TDS_OK;
+  if (chol) gram(fq, 0); /* not definite: the elimination says */
   if (tds_dense_solve(fq->nq, fq->gram, rhs) != 0)
     return tds_seterr(ctx, TDS_ENUM,
                       "volume constraints are dependent (singular Gram "
