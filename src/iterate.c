@@ -32,6 +32,13 @@ typedef struct work {
   int undone;        /* check_increase took the last step back */
   int keep_vel;      /* autochop: vel is the motion from before the chop */
   double *mob;       /* area normalization: 1/sqrt(a_v) (mobility.h), or NULL */
+  /* A trial likely to be the step's last (line_search_tds's second)
+  ** evaluates its final positions with the energy's gradient too (spec):
+  ** then the next direction() finds grad, fq and their energy (spec_E)
+  ** already made at these positions (spec_gen: m.coord_gen then; 0 none) */
+  int spec;
+  uint64_t spec_gen;
+  double spec_E;
   tds_alloc al;      /* the ctx's allocator */
 } work;
 
@@ -126,7 +133,12 @@ static int start_gradients(tds_ctx *ctx, tds_surf *s, work *w) {
 static int direction(tds_ctx *ctx, tds_surf *s, work *w) {
   tds_mesh *m = &s->m;
   tds_eval_out out = {.grad = w->grad, .fq = &w->fq};
-  int rc = tds_eval(ctx, s, &out);
+  int rc = TDS_OK;
+  if (w->spec_gen != 0 && w->spec_gen == m->coord_gen) /* made by the last trial */
+    out.energy = w->spec_E;
+  else
+    rc = tds_eval(ctx, s, &out);
+  w->spec_gen = 0;
   if (rc != TDS_OK) return rc;
   tds_fixq *fq = &w->fq;
   w->E0 = out.energy;
@@ -198,9 +210,15 @@ static int project_quantities(tds_ctx *ctx, tds_surf *s, work *w) {
     ** sparse solve's 1e-6 times the error): evaluate without them, and
     ** again with them if a move is needed after all (the same values). */
     int grads = fq->nq && !(prev < 1e5);
-    tds_eval_out out = {.fq = grads ? fq : NULL};
+    int spec = w->spec && !grads; /* expected final: with grad for direction() */
+    tds_eval_out out = {.fq = grads || spec ? fq : NULL, .grad = spec ? w->grad : NULL};
     if (tds_eval(ctx, s, &out) != TDS_OK) return -1;
-    if (fq->nq && !grads) tds_fixq_values(s, fq);
+    if (fq->nq && !grads && !spec) tds_fixq_values(s, fq);
+    if (spec) {
+      w->spec_gen = s->m.coord_gen;
+      w->spec_E = out.energy;
+      grads = 1;
+    }
     s->energy = out.energy;
     s->area = out.area;
     double worst = 0;
@@ -406,7 +424,9 @@ static double line_search_tds(tds_ctx *ctx, tds_surf *s, work *w, double E0,
     *E = E1;
     return s1;
   }
+  w->spec = 1; /* usually the step's last trial */
   double Et = trial(ctx, s, w, t);
+  w->spec = 0;
   if (Et < E1) {
     *E = Et;
     return t;
@@ -569,12 +589,14 @@ static int step(tds_ctx *ctx, tds_surf *s, work *w) {
       memcpy(m->vp, w->p0, (size_t)m->nv * sizeof *w->p0);
     }
     m->coord_gen++;
+    w->spec_gen = 0;
     w->undone = 1;
     return tds_surf_update(ctx, s);
   }
   /* Changed parameters: as Evolver, the step is taken from the positions
   ** as they were, then the surface follows the parameters. */
   if (s->placed_gen != s->param_gen) {
+    w->spec_gen = 0; /* other parameters: other values */
     if ((rc = tds_recalc(ctx, s)) != TDS_OK) return rc;
     E = s->energy;
   }
