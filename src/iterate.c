@@ -110,7 +110,7 @@ static double evolver_off(const tds_fixq *fq) {
 /* Map the quantities' gradients into each vertex's motion space. */
 static void project_qgrad(const tds_surf *s, tds_fixq *fq) {
   for (tds_id v = 0; v < fq->nv; v++) {
-    if (s->m.vflags[v] & TDS_DEAD) continue;
+    if ((s->m.vflags[v] & TDS_DEAD) || tds_vertex_plain(s, v)) continue;
     for (int32_t i = fq->start[v]; i < fq->start[v + 1]; i++)
       tds_motion_project(s, v, fq->g[i]);
   }
@@ -147,7 +147,8 @@ static int direction(tds_ctx *ctx, tds_surf *s, work *w) {
     if (!(fabs(fq->target[q] - fq->value[q]) <= target_tol(fq->target[q])))
       w->at_target = 0;
   for (tds_id v = 0; v < m->nv; v++)
-    if (!(m->vflags[v] & TDS_DEAD)) tds_motion_project(s, v, w->grad[v]);
+    if (!(m->vflags[v] & TDS_DEAD) && !tds_vertex_plain(s, v))
+      tds_motion_project(s, v, w->grad[v]);
   project_qgrad(s, fq);
   /* the projected gradients, for evolver_line_search's restoring moves
   ** (before area normalization weights them) */
@@ -185,6 +186,10 @@ static int restore_move(tds_ctx *ctx, tds_surf *s, work *w) {
   tds_mesh *m = &s->m;
   if (tds_fixq_restore(ctx, &w->fq, m->nv, w->rest) != TDS_OK) return -1;
   for (tds_id v = 0; v < m->nv; v++) {
+    if (tds_vertex_plain(s, v)) {
+      v3_add(m->x[v], m->x[v], w->rest[v]);
+      continue;
+    }
     if (!tds_vertex_free(s, v)) continue;
     double x[3], p[2] = {m->vp[v][0], m->vp[v][1]};
     v3_copy(x, m->x[v]);
@@ -302,7 +307,10 @@ static double trial(tds_ctx *ctx, tds_surf *s, work *w, double scale) {
     if (!tds_vertex_free(s, v)) continue;
     double d[3] = {scale * w->vel[v][0], scale * w->vel[v][1],
                    scale * w->vel[v][2]};
-    if (tds_motion_apply(s, v, w->x0[v], w->p0[v], d) != TDS_OK) bad = 1;
+    if (tds_vertex_plain(s, v)) /* tds_motion_apply's sum */
+      v3_add(m->x[v], w->x0[v], d);
+    else if (tds_motion_apply(s, v, w->x0[v], w->p0[v], d) != TDS_OK)
+      bad = 1;
   }
   m->coord_gen++;
   int rc = w->g0 ? restore_evolver(ctx, s, w) : project_quantities(ctx, s, w);
