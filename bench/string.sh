@@ -6,7 +6,9 @@
 # area, the outer corners fixed. Both programs load the same datafile, take
 # 20 `g` steps and report process CPU seconds per step; the ratio is
 # Evolver / tds. Also prints both energies after the steps (the faster
-# program must not be worse). tds takes its own line search (exact
+# program must not be worse), and each program's peak memory (whole
+# process, /usr/bin/time) with tds's mesh storage per cell (tds.memory()
+# after the steps). tds takes its own line search (exact
 # projection onto the areas), as in the cube bench: a datafile would
 # otherwise take Evolver's, which makes about 1.5 times the trials.
 # Usage: bench/string.sh [TDS_BINARY]
@@ -23,16 +25,23 @@ t0 := clock; g $STEPS; t1 := clock;
 printf "EVOLVER %.6f %.15g %d\n", (t1 - t0)/$STEPS, total_energy, facet_count;
 q
 EOC
-ev=$(cd "$dir" && evolver-nox-d -f cmds foam.fe < /dev/null 2>&1 | grep '^EVOLVER ')
-td=$("$TDS" -q "$dir/foam.fe" -e "
+evo=$(cd "$dir" && /usr/bin/time -f "MAXRSS %M" evolver-nox-d -f cmds foam.fe < /dev/null 2>&1)
+ev=$(echo "$evo" | grep '^EVOLVER ')
+td=$( { /usr/bin/time -f "MAXRSS %M" "$TDS" -q "$dir/foam.fe" -e "
 tds.setting('evolver_line_search', false) -- tds's own search, as the cube bench
 local t0 = os.clock()
 g($STEPS)
 local t1 = os.clock()
-print(('TDS %.6f %.15g %d'):format((t1 - t0) / $STEPS, total_energy, facet_count))")
-set -- $ev
+print(('TDS %.6f %.15g %d %d'):format((t1 - t0) / $STEPS, total_energy, facet_count, tds.memory()))"; } 2>&1)
+set -- $(echo "$ev")
 ev_sec=$2 ev_energy=$3 cells=$4
-set -- $td
-td_sec=$2 td_energy=$3
+set -- $(echo "$td" | grep '^TDS ')
+td_sec=$2 td_energy=$3 td_mesh=$5
+# (after Evolver's prompt, on its line)
+ev_rss=$(echo "$evo" | sed -n 's/.*MAXRSS \([0-9]*\).*/\1/p')
+td_rss=$(echo "$td" | sed -n 's/.*MAXRSS \([0-9]*\).*/\1/p')
 . "$(dirname "$0")/report.sh"
 report "2-D foam (string model): $cells cells, $STEPS steps of g" "$STEPS" "$ev_sec" "$ev_energy" "$td_sec" "$td_energy"
+awk -v e="$ev_rss" -v t="$td_rss" -v m="$td_mesh" -v n="$cells" 'BEGIN {
+  printf "peak memory (whole process): evolver %.1f MB, tds %.1f MB; tds mesh %.0f bytes per cell\n",
+    e / 1024, t / 1024, m / n }'

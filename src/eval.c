@@ -35,10 +35,15 @@
 #include "xattr.h"
 
 /* Where a weighted value goes: body b (its volume and, if constrained,
-** its fixq gradient), or with b == TDS_NONE the term's own total. */
+** its fixq gradient), or with b == TDS_NONE the term's own total. mslot:
+** 1 + the slot of the body's entries in fixq.h's emap (for the row's
+** element kind), or 0 (the entries are searched). k: the row constant
+** for this sink, for a term whose kernel depends on the sink (ksink). */
 typedef struct sink {
   tds_id body;
+  int32_t mslot;
   double w;
+  double k;
 } sink;
 
 #define MAX_SINKS 64 /* bodies around one edge, and the own total */
@@ -54,6 +59,7 @@ struct term {
   tds_mlocal L;   /* constants for the row; x is filled per element */
   int slot;       /* constraint or boundary slot, for the sink function */
   double w;       /* weight for the sink function (sign, modulus) */
+  int ksink;      /* the kernel runs once per sink, with the sink's k */
   int32_t gq;     /* own total's gradient: -1 the energy gradient,
                      q >= 0 fixq quantity q, -2 none */
   double total;   /* out: sum of w * value to the own total */
@@ -101,11 +107,15 @@ scatter(tds_surf *s, tds_eval_out *out, term *t, const tds_id *vs, int kind,
     else s->m.bvol[b] += w * v;
     if (q == -1)
       for (int c = 0; c < kind; c++) v3_axpy(out->grad[vs[c]], w, g[c]);
-    else if (q >= 0)
+    else if (q >= 0) {
+      const int32_t *mp =
+          sk[k].mslot && fq->emap_kind == kind ? fq->emap + kind * (sk[k].mslot - 1) : NULL;
       for (int c = 0; c < kind; c++) {
         double gc[3] = {w * g[c][0], w * g[c][1], w * g[c][2]};
-        tds_fixq_add(fq, vs[c], q, gc);
+        if (mp) tds_fixq_add_at(fq, mp[c], q, gc);
+        else tds_fixq_add(fq, vs[c], q, gc);
       }
+    }
     if (out->hess) {
       tds_hess_acc *ha = out->hess;
       double hw = q == -1 ? ha->ew : q >= 0 && ha->qw ? ha->qw[q] : 0;
@@ -127,9 +137,11 @@ static inline int want_grad(const tds_eval_out *out, const term *t, const sink *
 ** scatter. Written once and instantiated (always_inline) with constant
 ** kernels and sink functions for the fused facet pass, and with the
 ** row's own for every other term. t1 shares t0's constants (L): only
-** rows without integrands are fused. TDS_OK or TDS_ERANGE (too many
-** bodies on an edge). raw: the corners are the vertices' stored positions,
-** wraps ignored (SYMMETRIC_CONTENT under the torus group). */
+** rows without integrands are fused; with t1->ksink its kernel runs per
+** sink with L.k the sink's k (the torus's lifted volumes), so t0's row
+** must read no k. TDS_OK or TDS_ERANGE (too many bodies on an edge).
+** raw: the corners are the vertices' stored positions, wraps ignored
+** (SYMMETRIC_CONTENT under the torus group). */
 static inline __attribute__((always_inline)) int
 assemble_k(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int kind, term *t0,
            tds_mkernel k0, sink_fn f0, term *t1, tds_mkernel k1, sink_fn f1, int raw) {
@@ -137,7 +149,7 @@ assemble_k(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int kind, term *t0,
   const tds_id n = kind == TDS_EL_FACET ? m->nf : m->ne;
   const uint32_t *flags = kind == TDS_EL_FACET ? m->fflags : m->eflags;
   tds_mlocal L = t0->L;
-  sink sk0[MAX_SINKS], sk1[4]; /* a fused t1 (body volumes) has at most 3 */
+  sink sk0[MAX_SINKS], sk1[4]; /* a fused t1 (body volumes) has at most 4 */
   double g[3][3], h[9][9];
   double (*hp)[9] = out->hess ? h : NULL;
   for (tds_id el = 0; el < n; el++) {
@@ -165,7 +177,15 @@ assemble_k(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int kind, term *t0,
       if (want && tds_mesh_rotates(m)) tds_sym_pullback(m, kind, el, g, hp);
       scatter(s, out, t0, vs, kind, sk0, n0, v, g, hp);
     }
-    if (n1) {
+    if (n1 && t1->ksink) {
+      for (int i = 0; i < n1; i++) {
+        L.k = sk1[i].k;
+        int want = want_grad(out, t1, sk1 + i, 1);
+        double v = k1(&L, want ? g : NULL, hp);
+        if (want && tds_mesh_rotates(m)) tds_sym_pullback(m, kind, el, g, hp);
+        scatter(s, out, t1, vs, kind, sk1 + i, 1, v, g, hp);
+      }
+    } else if (n1) {
       int want = want_grad(out, t1, sk1, n1);
       double v = k1(&L, want ? g : NULL, hp);
       if (want && tds_mesh_rotates(m)) tds_sym_pullback(m, kind, el, g, hp);
@@ -185,7 +205,7 @@ static int assemble(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, term *t) {
 static inline __attribute__((always_inline)) int
 s_tension(const tds_surf *s, const term *t, tds_id f, sink *o) {
   (void)t;
-  o[0] = (sink){TDS_NONE, s->m.ften[f]};
+  o[0] = (sink){TDS_NONE, 0, s->m.ften[f], 0};
   return 1;
 }
 
@@ -202,10 +222,10 @@ s_volume(const tds_surf *s, const term *t, tds_id f, sink *o) {
     tds_id b = m->fb[f][j];
     if (b == TDS_NONE) continue;
     double sign = j ? -1.0 : 1.0;
-    o[n++] = (sink){b, sign};
+    o[n++] = (sink){b, 2 * f + j + 1, sign, 0};
     if (m->bflags[b] & TDS_PRESSURE) pw -= sign * m->bpressure[b];
   }
-  if (pw != 0) o[n++] = (sink){TDS_NONE, pw};
+  if (pw != 0) o[n++] = (sink){TDS_NONE, 0, pw, 0};
   return n;
 }
 
@@ -217,13 +237,14 @@ static int s_gravity(const tds_surf *s, const term *t, tds_id f, sink *o) {
   double w = 0;
   if (m->fb[f][0] != TDS_NONE) w += m->bdensity[m->fb[f][0]];
   if (m->fb[f][1] != TDS_NONE) w -= m->bdensity[m->fb[f][1]];
-  o[0] = (sink){TDS_NONE, s->gravity * w};
+  o[0] = (sink){TDS_NONE, 0, s->gravity * w, 0};
   return w != 0;
 }
 
-static int s_edge_tension(const tds_surf *s, const term *t, tds_id e, sink *o) {
+static inline __attribute__((always_inline)) int
+s_edge_tension(const tds_surf *s, const term *t, tds_id e, sink *o) {
   (void)t;
-  o[0] = (sink){TDS_NONE, s->m.eten[e]};
+  o[0] = (sink){TDS_NONE, 0, s->m.eten[e], 0};
   return s->m.eten[e] != 0;
 }
 
@@ -237,13 +258,13 @@ static int on_con(const tds_mesh *m, const term *t, tds_id e) {
 
 static int s_con_energy(const tds_surf *s, const term *t, tds_id e, sink *o) {
   if (!on_con(&s->m, t, e)) return 0;
-  o[0] = (sink){TDS_NONE, conrev(&s->m, e)};
+  o[0] = (sink){TDS_NONE, 0, conrev(&s->m, e), 0};
   return 1;
 }
 
 static int s_gap(const tds_surf *s, const term *t, tds_id e, sink *o) {
   if (!on_con(&s->m, t, e)) return 0;
-  o[0] = (sink){TDS_NONE, 1};
+  o[0] = (sink){TDS_NONE, 0, 1, 0};
   return 1;
 }
 
@@ -266,7 +287,7 @@ static int edge_bodies(const tds_mesh *m, tds_id e, double w, sink *o) {
       while (k < n && o[k].body != b) k++;
       if (k == n) {
         if (n == MAX_SINKS) return -1;
-        o[n++] = (sink){b, 0};
+        o[n++] = (sink){b, 0, 0, 0};
       }
       o[k].w += sg;
     }
@@ -285,7 +306,7 @@ static int s_con_content(const tds_surf *s, const term *t, tds_id e, sink *o) {
 
 static int s_bdry_energy(const tds_surf *s, const term *t, tds_id e, sink *o) {
   if (s->m.ebdry[e] != (tds_id)t->slot) return 0;
-  o[0] = (sink){TDS_NONE, conrev(&s->m, e)};
+  o[0] = (sink){TDS_NONE, 0, conrev(&s->m, e), 0};
   return 1;
 }
 
@@ -299,7 +320,7 @@ static int s_bdry_content(const tds_surf *s, const term *t, tds_id e, sink *o) {
 static int s_quantity(const tds_surf *s, const term *t, tds_id el, sink *o) {
   (void)s;
   (void)el;
-  o[0] = (sink){TDS_NONE, t->w};
+  o[0] = (sink){TDS_NONE, 0, t->w, 0};
   return 1;
 }
 
@@ -311,7 +332,7 @@ static int s_quantity_density(const tds_surf *s, const term *t, tds_id f, sink *
   if (m->fb[f][0] != TDS_NONE) rho += m->bdensity[m->fb[f][0]];
   if (m->fb[f][1] != TDS_NONE) rho -= m->bdensity[m->fb[f][1]];
   if (t->row->flags & TDS_MF_TIMES_G) rho *= s->gravity_on ? s->gravity : 0;
-  o[0] = (sink){TDS_NONE, t->w * rho};
+  o[0] = (sink){TDS_NONE, 0, t->w * rho, 0};
   return rho != 0;
 }
 
@@ -337,11 +358,11 @@ static term make(const tds_surf *s, int row, sink_fn fn, tds_expr *const *ig, in
   return t;
 }
 
-/* Torus lifts (torus.h): the facet's volume translated by its body's
-** lattice translation t exceeds the untranslated one by t_z times the
-** facet_flux row with d = 2 (int z dx dy), or by t_d / 3 times the row with
-** d (symmetric content); t->slot is d. Weighted as s_volume weights the
-** volume, with the energy -p of a prescribed pressure. */
+/* Torus lifts (torus.h), symmetric content: the facet's volume
+** translated by its body's lattice translation t exceeds the
+** untranslated one by t_d / 3 times the facet_flux row with d; t->slot is
+** d. Weighted as s_volume weights the volume, with the energy -p of a
+** prescribed pressure. */
 static int s_torus_lift(const tds_surf *s, const term *t, tds_id f, sink *o) {
   const tds_mesh *m = &s->m;
   if (m->fflags[f] & TDS_NONCONTENT) return 0;
@@ -355,10 +376,35 @@ static int s_torus_lift(const tds_surf *s, const term *t, tds_id f, sink *o) {
     tds_wrap_vec(m->period, w, tv);
     double c = tv[t->slot] * t->w * (j ? -1.0 : 1.0);
     if (c == 0) continue;
-    o[n++] = (sink){b, c};
+    o[n++] = (sink){b, 2 * f + j + 1, c, 0};
     if (m->bflags[b] & TDS_PRESSURE) pw -= c * m->bpressure[b];
   }
-  if (pw != 0) o[n++] = (sink){TDS_NONE, pw};
+  if (pw != 0) o[n++] = (sink){TDS_NONE, 0, pw, 0};
+  return n;
+}
+
+/* Torus lifts (torus.h), z content: s_volume's sinks, each with the z
+** of its body's lattice translation of the facet as k for
+** tds_mk_volume_zshift (the facet's int z dx dy translated by t is its
+** own plus t_z N_z / 2, and only t_z matters). Every side gets its sinks
+** whether lifted or not: on a foam 40% of the facets are, in no order a
+** branch could predict. */
+static inline __attribute__((always_inline)) int
+s_volume_lift(const tds_surf *s, const term *t, tds_id f, sink *o) {
+  const tds_mesh *m = &s->m;
+  (void)t;
+  if (m->fflags[f] & TDS_NONCONTENT) return 0;
+  int n = 0;
+  for (int j = 0; j < 2; j++) {
+    tds_id b = m->fb[f][j];
+    if (b == TDS_NONE) continue;
+    int k[3];
+    tds_wrap_unpack(s->tlift[2 * f + j], k);
+    double tz = k[0] * m->period[0][2] + k[1] * m->period[1][2] + k[2] * m->period[2][2];
+    double sign = j ? -1.0 : 1.0;
+    o[n++] = (sink){b, 2 * f + j + 1, sign, tz};
+    if (m->bflags[b] & TDS_PRESSURE) o[n++] = (sink){TDS_NONE, 0, -sign * m->bpressure[b], tz};
+  }
   return n;
 }
 
@@ -380,10 +426,17 @@ static int facet_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
   int sym = s->symmetric_content;
   term vol = make(s, sym ? TDS_M_FACET_VOLUME_SYM : TDS_M_FACET_VOLUME, s_volume, NULL, 0);
   if (!out->grad) ten.gq = vol.gq = -2;
+  /* SYMMETRY_GROUP: Evolver's Euclidean volumes, each facet's integral
+  ** where its corners are gathered (no lifts; model.htm) */
+  int lifts = s->m.torus && !s->m.sym && s->m.nb > 0;
+  if (lifts) {
+    int bad = tds_torus_lifts(ctx, s);
+    if (bad < 0) return -bad;
+  }
   int rc;
-  if (s->m.nb == 0)
+  if (s->m.nb == 0) {
     rc = assemble_k(ctx, s, out, TDS_EL_FACET, &ten, tds_mk_area, s_tension, NULL, NULL, NULL, 0);
-  else if (sym && s->m.sym == TDS_SYM_TORUS) {
+  } else if (sym && s->m.sym == TDS_SYM_TORUS) {
     /* Evolver 2.70's symmetric content under SYMMETRY_GROUP "torus": each
     ** facet's (x,y,z)/3 flux from its vertices' stored positions, the
     ** wraps ignored (measured on symtest.fe and skewed, perturbed copies:
@@ -393,26 +446,26 @@ static int facet_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
     if (rc == TDS_OK)
       rc = assemble_k(ctx, s, out, TDS_EL_FACET, &vol, tds_mk_volume_sym, s_volume, NULL, NULL,
                       NULL, 1);
-  } else if (sym)
+  } else if (sym) {
     rc = assemble_k(ctx, s, out, TDS_EL_FACET, &ten, tds_mk_area, s_tension, &vol,
                     tds_mk_volume_sym, s_volume, 0);
-  else
+  } else if (lifts) { /* each body's volume of the facet lifted (torus.h) */
+    vol.ksink = 1;
+    rc = assemble_k(ctx, s, out, TDS_EL_FACET, &ten, tds_mk_area, s_tension, &vol,
+                    tds_mk_volume_zshift, s_volume_lift, 0);
+  } else {
     rc = assemble_k(ctx, s, out, TDS_EL_FACET, &ten, tds_mk_area, s_tension, &vol,
                     tds_mk_volume, s_volume, 0);
+  }
   out->energy += ten.total + vol.total;
   out->area += ten.sum;
-  /* SYMMETRY_GROUP: Evolver's Euclidean volumes, each facet's integral
-  ** where its corners are gathered (no lifts; model.htm) */
-  if (rc == TDS_OK && s->m.torus && !s->m.sym && s->m.nb > 0) {
-    int bad = tds_torus_lifts(ctx, s);
-    if (bad < 0) return -bad;
-    for (int d = sym ? 0 : 2; d < 3 && rc == TDS_OK; d++) {
-      term t = make(s, TDS_M_FACET_FLUX, s_torus_lift, NULL, 0);
-      t.slot = d;
-      t.L.k = d;
-      t.w = sym ? 1.0 / 3 : 1;
-      rc = energy_term(ctx, s, out, t);
-    }
+  /* symmetric content: the lifts' fluxes t . N / 6, a pass per direction */
+  for (int d = 0; lifts && sym && d < 3 && rc == TDS_OK; d++) {
+    term t = make(s, TDS_M_FACET_FLUX, s_torus_lift, NULL, 0);
+    t.slot = d;
+    t.L.k = d;
+    t.w = 1.0 / 3;
+    rc = energy_term(ctx, s, out, t);
   }
   if (rc == TDS_OK && s->gravity_on && s->gravity != 0 && s->m.nb > 0)
     rc = energy_term(ctx, s, out, make(s, TDS_M_FULL_GRAVITY, s_gravity, NULL, 0));
@@ -441,7 +494,8 @@ static int integrand_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int slo
 
 /* Edge e's body weights from the cells' loops, times w; with `pressure`
 ** also the energy -p A of bodies with a prescribed pressure. */
-static int str_bodies(const tds_surf *s, tds_id e, double w, int pressure, sink *o) {
+static inline __attribute__((always_inline)) int
+str_bodies(const tds_surf *s, tds_id e, double w, int pressure, sink *o) {
   const tds_strings *st = s->str;
   const tds_mesh *m = &s->m;
   int n = 0;
@@ -449,14 +503,15 @@ static int str_bodies(const tds_surf *s, tds_id e, double w, int pressure, sink 
   for (int32_t k = st->eb_start[e]; k < st->eb_start[e + 1]; k++) {
     if (n == MAX_SINKS - 1) return -1;
     tds_id b = st->eb_body[k];
-    o[n++] = (sink){b, w * st->eb_w[k]};
+    o[n++] = (sink){b, k + 1, w * st->eb_w[k], 0};
     if (pressure && (m->bflags[b] & TDS_PRESSURE)) pw -= w * st->eb_w[k] * m->bpressure[b];
   }
-  if (pw != 0) o[n++] = (sink){TDS_NONE, pw};
+  if (pw != 0) o[n++] = (sink){TDS_NONE, 0, pw, 0};
   return n;
 }
 
-static int s_str_area(const tds_surf *s, const term *t, tds_id e, sink *o) {
+static inline __attribute__((always_inline)) int
+s_str_area(const tds_surf *s, const term *t, tds_id e, sink *o) {
   (void)t;
   return str_bodies(s, e, 1, 1, o);
 }
@@ -474,10 +529,10 @@ static int s_str_lift(const tds_surf *s, const term *t, tds_id e, sink *o) {
     if (c == 0) continue;
     if (n == MAX_SINKS - 1) return -1;
     tds_id b = st->eb_body[k];
-    o[n++] = (sink){b, c};
+    o[n++] = (sink){b, k + 1, c, 0};
     if (m->bflags[b] & TDS_PRESSURE) pw -= c * m->bpressure[b];
   }
-  if (pw != 0) o[n++] = (sink){TDS_NONE, pw};
+  if (pw != 0) o[n++] = (sink){TDS_NONE, 0, pw, 0};
   return n;
 }
 
@@ -488,7 +543,7 @@ static int s_str_gravity(const tds_surf *s, const term *t, tds_id e, sink *o) {
   double w = 0;
   for (int32_t k = st->eb_start[e]; k < st->eb_start[e + 1]; k++)
     w += st->eb_w[k] * s->m.bdensity[st->eb_body[k]];
-  o[0] = (sink){TDS_NONE, s->gravity * w};
+  o[0] = (sink){TDS_NONE, 0, s->gravity * w, 0};
   return w != 0;
 }
 
@@ -513,6 +568,11 @@ static int s_str_tail(const tds_surf *s, const term *t, tds_id e, sink *o) {
 static int string_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int tension) {
   int rc = tds_strings_index(ctx, s);
   if (rc != TDS_OK) return rc;
+  tds_fixq *fq = out->fq;
+  if (fq && fq->emap_kind == TDS_EL_EDGE &&
+      (fq->emap_gen != s->str->idx_gen || fq->emap_topo != s->str->idx_topo ||
+       fq->emap_ne != s->str->idx_ne))
+    fq->emap_kind = 0; /* the index was made again: search */
   if (s->m.nb == 0)
     return tension ? energy_term(ctx, s, out, make(s, TDS_M_EDGE_LENGTH, s_edge_tension, NULL, 0))
                    : TDS_OK;
@@ -521,7 +581,7 @@ static int string_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int tensio
     term ten = make(s, TDS_M_EDGE_LENGTH, s_edge_tension, NULL, 0);
     if (!out->grad) area.gq = ten.gq = -2;
     rc = assemble_k(ctx, s, out, TDS_EL_EDGE, &area, tds_mk_edge_area, s_str_area, &ten,
-                    ten.row->eval, s_edge_tension, 0);
+                    tds_mk_length, s_edge_tension, 0);
     out->energy += ten.total + area.total;
   } else {
     rc = energy_term(ctx, s, out, area);

@@ -34,6 +34,20 @@ typedef struct tds_fixq {
   int32_t *eq;          /* entry -> q */
   double (*g)[3];       /* entry -> gradient */
   int32_t nent;
+  /* Where the assembly adds a body's gradient without searching the
+  ** vertex's entries (eval.c): emap[emap_kind * slot + c] is the entry of
+  ** corner c for slot `slot` (-1: the body holds no target). Facets
+  ** (emap_kind 3): slot 2f + j for facet f's body on side j (fb[f][j]),
+  ** corner c at fv[f][c]. The string model (emap_kind 2): slot k of the
+  ** cells' edge index (string_model.h's eb_body[k] on the edge e with
+  ** eb_start[e] <= k < eb_start[e + 1]), corner c at ev[e][c]; valid for
+  ** that index only (emap_gen, emap_topo, emap_ne: its idx_gen, idx_topo,
+  ** idx_ne at the build; eval.c sets emap_kind 0 if they differ). 0: none
+  ** (no body holds a target, or out of memory: the assembly searches). */
+  int32_t *emap;
+  int emap_kind;
+  uint64_t emap_gen, emap_topo;
+  int32_t emap_ne;
   /* The sparse path's Gram matrix (fixq.c), made at its first solve and
   ** kept with the pattern: its upper triangle (CSC), where each vertex's
   ** entry pairs add (gmap), the values last factored (gold) and their
@@ -42,6 +56,9 @@ typedef struct tds_fixq {
   int32_t *gmap;
   double *gold;
   double *gwork;        /* 4 nq: conjugate gradients' vectors */
+  double *glam;         /* nq: the last multipliers solved for on this
+                           path, the next ones' first guess (glam_ok) */
+  int glam_ok;
   struct tds_spchol *gf;
   int gfok;             /* gf holds the factors of gold */
   /* The relative residual tds_fixq_restore's sparse solve may leave
@@ -59,6 +76,11 @@ typedef struct tds_fixq {
 int tds_fixq_build(tds_ctx *ctx, tds_surf *s, tds_fixq *fq);
 void tds_fixq_free(tds_fixq *fq);
 
+/* The quantities' values (fq->value) from an evaluation made without fq
+** (the bodies' volumes in m.bvol, the named quantities' values): the
+** same numbers an evaluation with fq stores, without the gradients. */
+void tds_fixq_values(const tds_surf *s, tds_fixq *fq);
+
 /* Zero all entry gradients. */
 void tds_fixq_clear(tds_fixq *fq);
 /* Add gv to the gradient of quantity q at vertex v (entry must exist in the
@@ -74,6 +96,15 @@ static inline void tds_fixq_add(tds_fixq *fq, tds_id v, int32_t q, const double 
       return;
     }
   TDS_ASSERT(!"the pattern holds (v, q)");
+}
+
+/* Add gv to the entry e of quantity q (an emap entry). */
+static inline void tds_fixq_add_at(tds_fixq *fq, int32_t e, int32_t q, const double gv[3]) {
+  TDS_ASSERT(e >= 0 && e < fq->nent && fq->eq[e] == q);
+  (void)q;
+  fq->g[e][0] += gv[0];
+  fq->g[e][1] += gv[1];
+  fq->g[e][2] += gv[2];
 }
 
 /* Restoring motion dx = sum_q mu_q g_q with G mu = target - value (dx, of

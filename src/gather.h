@@ -72,14 +72,12 @@ static inline int32_t tds_oe_wrap(const tds_mesh *m, int32_t oe) {
 /* Point x of the mesh moved by wrap w (translated in the torus, the
 ** group element's isometry otherwise), into out (or x itself when w is
 ** 0); returns the pointer to use. */
-static inline const double *tds_wrap_point(const tds_mesh *m, const double *x, int32_t w,
-                                           double out[3]) {
+static inline __attribute__((always_inline)) const double *
+tds_wrap_point(const tds_mesh *m, const double *x, int32_t w, double out[3]) {
   if (!w) return x;
   double d[3];
-  if (__builtin_expect(tds_mesh_rotates(m), 0)) {
-    double R[3][3];
-    tds_sym_affine(m->sym, m->symp, m->period, w, R, d);
-    for (int i = 0; i < 3; i++) out[i] = R[i][0] * x[0] + R[i][1] * x[1] + R[i][2] * x[2] + d[i];
+  if (__builtin_expect(tds_mesh_rotates(m), 0)) { /* out of line: rare */
+    tds_sym_apply(m->sym, m->symp, m->period, w, x, out);
     return out;
   }
   tds_wrap_vec(m->period, w, d);
@@ -100,6 +98,19 @@ static inline int32_t tds_corner2_wrap(const tds_mesh *m, tds_id f) {
   return tds_wrap_inv(m, tds_oe_wrap(m, fe[2]));
 }
 
+/* x + sg w . periods into out (x itself when w is 0): a translation of
+** the torus, sg = -1 for the inverse. */
+static inline __attribute__((always_inline)) const double *
+tds_torus_shift(const tds_mesh *m, const double *x, double sg, int32_t w, double out[3]) {
+  if (!w) return x;
+  int k[3];
+  tds_wrap_unpack(w, k);
+  for (int j = 0; j < 3; j++)
+    out[j] = x[j] + sg * (k[0] * m->period[0][j] + k[1] * m->period[1][j] +
+                          k[2] * m->period[2][j]);
+  return out;
+}
+
 /* Corners of facet f in its orientation: x[k] is vertex fv[f][k]. On a
 ** torus the corners are unwrapped from the first: x[0] is the first
 ** vertex's position, x[1] and x[2] follow the facet's edges (so they may
@@ -108,6 +119,17 @@ static inline __attribute__((always_inline)) void
 tds_gather_facet(const tds_mesh *m, tds_id f, tds_corners *c) {
   TDS_ASSERT(f >= 0 && f < m->nf);
   const tds_id *fv = m->fv[f];
+  if (__builtin_expect(m->torus != 0, 0) && !tds_mesh_rotates(m)) {
+    /* translations: the lattice vectors of the edges' wraps, negated
+    ** as the edges run (the same numbers as through tds_wrap_inv) */
+    const int32_t *fe = m->fe[f];
+    c->x[0] = m->x[fv[0]];
+    c->x[1] = tds_torus_shift(m, m->x[fv[1]], TDS_OREV(fe[0]) ? -1.0 : 1.0,
+                              m->ewrap ? m->ewrap[TDS_OID(fe[0])] : 0, c->tmp[1]);
+    c->x[2] = tds_torus_shift(m, m->x[fv[2]], TDS_OREV(fe[2]) ? 1.0 : -1.0,
+                              m->ewrap ? m->ewrap[TDS_OID(fe[2])] : 0, c->tmp[2]);
+    return;
+  }
   if (__builtin_expect(m->torus != 0, 0)) {
     const int32_t *fe = m->fe[f];
     c->x[0] = m->x[fv[0]];

@@ -58,6 +58,25 @@ geom_volume_z(const double a[3], const double b[3],
   return zs * Nz / 6;
 }
 
+/* geom_volume_z of the facet translated by tz along z (the torus's lifted
+** facets): only the sum of the z's changes, by 3 tz. */
+static inline __attribute__((always_inline)) double
+geom_volume_zshift(const double a[3], const double b[3], const double c[3], double tz,
+                   double g[3][3]) {
+  double Nz = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+  double zs = a[2] + b[2] + c[2] + 3 * tz;
+  if (g) {
+    const double *p[3] = {a, b, c};
+    for (int k = 0; k < 3; k++) {
+      const double *q = p[(k + 1) % 3], *r = p[(k + 2) % 3];
+      g[k][0] = zs / 6 * (q[1] - r[1]);
+      g[k][1] = zs / 6 * (r[0] - q[0]);
+      g[k][2] = Nz / 6;
+    }
+  }
+  return zs * Nz / 6;
+}
+
 /* Signed volume of the cone from the origin, symmetric content
 ** (x, y, z)/3 . dS: V = a . (b x c) / 6. */
 static inline __attribute__((always_inline)) double

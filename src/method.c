@@ -77,25 +77,13 @@ void tds_mk_area_hess(const double *const *x, double (*h)[9]) {
     }
 }
 
-static double k_length(const tds_mlocal *L, double g[3][3], double h[9][9]) {
-  double d[3];
-  v3_sub(d, L->x[1], L->x[0]);
-  double len = v3_norm(d);
-  if (g) {
-    double t[3] = {0, 0, 0};
-    if (len > 0) t[0] = d[0] / len, t[1] = d[1] / len, t[2] = d[2] / len;
-    for (int i = 0; i < 3; i++) g[1][i] = t[i], g[0][i] = -t[i];
-    if (h) {
-      static const double s[2] = {-1, 1};
-      for (int c = 0; c < 2; c++)
-        for (int i = 0; i < 3; i++)
-          for (int e = 0; e < 2; e++)
-            for (int j = 0; j < 3; j++)
-              h[3 * c + i][3 * e + j] =
-                  len > 0 ? s[c] * s[e] * ((i == j) - t[i] * t[j]) / len : 0;
-    }
-  }
-  return len;
+void tds_mk_length_hess(const double t[3], double len, double (*h)[9]) {
+  static const double s[2] = {-1, 1};
+  for (int c = 0; c < 2; c++)
+    for (int i = 0; i < 3; i++)
+      for (int e = 0; e < 2; e++)
+        for (int j = 0; j < 3; j++)
+          h[3 * c + i][3 * e + j] = len > 0 ? s[c] * s[e] * ((i == j) - t[i] * t[j]) / len : 0;
 }
 
 /* Hessian of Nz * P / den, P a polynomial in the corner heights with
@@ -164,7 +152,7 @@ void tds_mk_volume_sym_hess(const double *const *x, double (*h)[9]) {
 
 const tds_method tds_methods[TDS_M_NROWS] = {
     [TDS_M_FACET_AREA] = {"facet_area", TDS_EL_FACET, TDS_MF_USER, tds_mk_area},
-    [TDS_M_EDGE_LENGTH] = {"edge_length", TDS_EL_EDGE, TDS_MF_USER, k_length},
+    [TDS_M_EDGE_LENGTH] = {"edge_length", TDS_EL_EDGE, TDS_MF_USER, tds_mk_length},
     [TDS_M_FACET_VECTOR_INTEGRAL] = {"facet_vector_integral", TDS_EL_FACET,
                                      TDS_MF_USER | TDS_MF_VECTOR, tds_mk_facet_vint},
     [TDS_M_EDGE_VECTOR_INTEGRAL] = {"edge_vector_integral", TDS_EL_EDGE,

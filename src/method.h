@@ -132,7 +132,6 @@ double tds_mk_edge_vint(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_edge_sint(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_edge_gap(const tds_mlocal *L, double g[3][3], double h[9][9]);
 /* String-model rows (method_string.c). */
-double tds_mk_edge_area(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_string_gravity(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_vertex_head(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_vertex_tail(const tds_mlocal *L, double g[3][3], double h[9][9]);
@@ -174,6 +173,55 @@ tds_mk_volume(const tds_mlocal *L, double g[3][3], double h[9][9]) {
   double V = geom_volume_z(L->x[0], L->x[1], L->x[2], g);
   if (h) tds_mk_volume_hess(L->x, h);
   return V;
+}
+/* facet_volume of the facet translated by L->k along z (the torus's
+** lifted volumes, eval.c); no row of its own. */
+static inline __attribute__((always_inline)) double
+tds_mk_volume_zshift(const tds_mlocal *L, double g[3][3], double h[9][9]) {
+  double V = geom_volume_zshift(L->x[0], L->x[1], L->x[2], L->k, g);
+  if (h) {
+    double y[3][3];
+    const double *yp[3] = {y[0], y[1], y[2]};
+    for (int c = 0; c < 3; c++) {
+      y[c][0] = L->x[c][0];
+      y[c][1] = L->x[c][1];
+      y[c][2] = L->x[c][2] + L->k;
+    }
+    tds_mk_volume_hess(yp, h);
+  }
+  return V;
+}
+/* The kernels of edge_length and the string model's edge_area, inline
+** for the string model's fused edge pass (eval.c); their Hessians out of
+** line (t the unit tangent). */
+void tds_mk_length_hess(const double t[3], double len, double (*h)[9]);
+void tds_mk_edge_area_hess(double (*h)[9]);
+static inline __attribute__((always_inline)) double
+tds_mk_length(const tds_mlocal *L, double g[3][3], double h[9][9]) {
+  double d[3];
+  v3_sub(d, L->x[1], L->x[0]);
+  double len = v3_norm(d);
+  if (g) {
+    double t[3] = {0, 0, 0};
+    if (len > 0) t[0] = d[0] / len, t[1] = d[1] / len, t[2] = d[2] / len;
+    for (int i = 0; i < 3; i++) g[1][i] = t[i], g[0][i] = -t[i];
+    if (h) tds_mk_length_hess(t, len, h);
+  }
+  return len;
+}
+/* edge_area: -(y0 + y1)(x1 - x0)/2, the edge's part of its cells' areas */
+static inline __attribute__((always_inline)) double
+tds_mk_edge_area(const tds_mlocal *L, double g[3][3], double h[9][9]) {
+  const double *a = L->x[0], *b = L->x[1];
+  double sy = a[1] + b[1], dx = b[0] - a[0];
+  if (g) {
+    g[0][2] = g[1][2] = g[2][0] = g[2][1] = g[2][2] = 0;
+    g[0][0] = sy / 2;
+    g[1][0] = -sy / 2;
+    g[0][1] = g[1][1] = -dx / 2;
+  }
+  if (h) tds_mk_edge_area_hess(h);
+  return -sy * dx / 2;
 }
 static inline __attribute__((always_inline)) double
 tds_mk_volume_sym(const tds_mlocal *L, double g[3][3], double h[9][9]) {

@@ -25,22 +25,11 @@
 #include <math.h>
 #include <string.h>
 
-double tds_mk_edge_area(const tds_mlocal *L, double g[3][3], double h[9][9]) {
-  const double *a = L->x[0], *b = L->x[1];
-  double sy = a[1] + b[1], dx = b[0] - a[0];
-  if (g) {
-    memset(g, 0, sizeof(double[3][3]));
-    g[0][0] = sy / 2;
-    g[1][0] = -sy / 2;
-    g[0][1] = g[1][1] = -dx / 2;
-  }
-  if (h) {
-    memset(h, 0, sizeof(double[9][9]));
-    /* d2/dx0 dy0 = d2/dx0 dy1 = 1/2, d2/dx1 dy0 = d2/dx1 dy1 = -1/2 */
-    h[0][1] = h[1][0] = h[0][4] = h[4][0] = 0.5;
-    h[3][1] = h[1][3] = h[3][4] = h[4][3] = -0.5;
-  }
-  return -sy * dx / 2;
+void tds_mk_edge_area_hess(double (*h)[9]) {
+  memset(h, 0, sizeof(double[9][9]));
+  /* d2/dx0 dy0 = d2/dx0 dy1 = 1/2, d2/dx1 dy0 = d2/dx1 dy1 = -1/2 */
+  h[0][1] = h[1][0] = h[0][4] = h[4][0] = 0.5;
+  h[3][1] = h[1][3] = h[3][4] = h[4][3] = -0.5;
 }
 
 double tds_mk_string_gravity(const tds_mlocal *L, double g[3][3], double h[9][9]) {

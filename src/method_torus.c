@@ -24,10 +24,15 @@ double tds_mk_facet_flux(const tds_mlocal *L, double g[3][3], double h[9][9]) {
   int p = (d + 1) % 3, q = (d + 2) % 3;
   double v = 0.5 * (a[p] * b[q] - a[q] * b[p]);
   if (g) {
-    double u[3][3][3];
-    tds_mk_normal_derivs(x, u);
-    for (int c = 0; c < 3; c++)
-      for (int i = 0; i < 3; i++) g[c][i] = 0.5 * u[c][i][d];
+    /* dN_d/dx[c][i] = (E_i x e_c)_d with e_c = x[c+1] - x[c+2]: e_c[q]
+    ** for i = p, -e_c[p] for i = q, 0 for i = d (the values of
+    ** tds_mk_normal_derivs' crosses with the unit vectors, without them) */
+    for (int c = 0; c < 3; c++) {
+      const double *y = x[(c + 1) % 3], *z = x[(c + 2) % 3];
+      g[c][d] = 0;
+      g[c][p] = 0.5 * (y[q] - z[q]);
+      g[c][q] = -0.5 * (y[p] - z[p]);
+    }
   }
   if (h) {
     /* N = x0 x x1 + x1 x x2 + x2 x x0: bilinear, so the second derivative

@@ -44,4 +44,13 @@ static inline int tds_vertex_free(const tds_surf *s, tds_id v) {
   return !(s->m.vflags[v] & (TDS_FIXED | TDS_DEAD));
 }
 
+/* Nonzero if vertex v moves freely in space: not fixed or dead, on no
+** boundary and no constraint. Its motion space is all of R^3 (the
+** projection leaves w as it is) and tds_motion_apply puts it at x0 + d:
+** the hot loops of g do that inline. */
+static inline int tds_vertex_plain(const tds_surf *s, tds_id v) {
+  const tds_mesh *m = &s->m;
+  return !(m->vflags[v] & (TDS_FIXED | TDS_DEAD)) && m->vbdry[v] == TDS_NONE && !m->vcon[v];
+}
+
 #endif

@@ -144,10 +144,27 @@ double tds_spmat_get(const tds_spmat *a, int32_t i, int32_t j) {
 
 void tds_spmat_mulv(const tds_spmat *a, const double *x, double *y) {
   memset(y, 0, (size_t)a->nrow * sizeof *y);
-  for (int32_t j = 0; j < a->ncol; j++)
+  if (!a->upper) {
+    for (int32_t j = 0; j < a->ncol; j++)
+      for (int32_t k = a->colptr[j]; k < a->colptr[j + 1]; k++)
+        y[a->rowind[k]] += a->val[k] * x[j];
+    return;
+  }
+  /* Upper triangle: row j's terms of column j summed in a register (y[j]
+  ** is 0 until column j, whose rows are at most j: the same sums in the
+  ** same order as adding to y[j] in memory, without its latency) */
+  for (int32_t j = 0; j < a->ncol; j++) {
+    double xj = x[j], yj = 0;
     for (int32_t k = a->colptr[j]; k < a->colptr[j + 1]; k++) {
       int32_t i = a->rowind[k];
-      y[i] += a->val[k] * x[j];
-      if (a->upper && i != j) y[j] += a->val[k] * x[i];
+      double v = a->val[k];
+      if (i != j) {
+        y[i] += v * xj;
+        yj += v * x[i];
+      } else {
+        yj += v * xj;
+      }
     }
+    y[j] += yj;
+  }
 }

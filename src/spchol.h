@@ -42,13 +42,16 @@ int tds_spchol_solve(tds_ctx *ctx, tds_spchol *f, double *b);
 
 /* Solve A x = b in place by conjugate gradients preconditioned with f's
 ** factors, for a matrix A (any pattern) near the one factored: x starts
-** as the factors' solution, and the iteration stops when the residual's
-** norm is at most rtol |b| or, with rtol 0, 1e-14 (|b| + |A|_F |x|) (a
-** backward error like a direct solve's). work: 4 n doubles. *iters is the number of iterations
-** taken, or -1 when they did not get there within maxit (then b is
-** unchanged: factor A instead). TDS_OK; as tds_spchol_solve otherwise. */
+** at x0 (a guess, such as the solution of a system nearby) or, with x0
+** NULL, as the factors' solution, and the iteration stops when the
+** residual's norm is at most rtol |b| or, with rtol 0, 1e-14 (|b| +
+** |A|_F |x|) (a backward error like a direct solve's). work: 4 n doubles.
+** *iters is the number of iterations taken, or -1 when they did not get
+** there within maxit (then b is unchanged: factor A instead). TDS_OK; as
+** tds_spchol_solve otherwise. */
 int tds_spchol_solve_near(tds_ctx *ctx, tds_spchol *f, const tds_spmat *A, double *b,
-                          double rtol, double *work, int maxit, int *iters);
+                          const double *x0, double rtol, double *work, int maxit,
+                          int *iters);
 
 void tds_spchol_free(tds_spchol *f);
 

@@ -22,10 +22,12 @@ static void facet_shape(const tds_mesh *m, tds_id f, double *sine, double *area)
   v3_cross(n, e[0], e[1]);
   double twoA = sqrt(v3_dot(n, n));
   *area = 0.5 * twoA;
-  int s = 0; /* shortest side */
-  for (int k = 1; k < 3; k++)
-    if (l2[k] < l2[s]) s = k;
-  double p = sqrt(l2[(s + 1) % 3] * l2[(s + 2) % 3]);
+  /* the product of the two longer sides is the largest of the three
+  ** products of two (no branch on which side is shortest: it is
+  ** unpredictable, and this runs over every facet after each step) */
+  double p0 = l2[1] * l2[2], p1 = l2[2] * l2[0], p2 = l2[0] * l2[1];
+  double p01 = p0 > p1 ? p0 : p1;
+  double p = sqrt(p01 > p2 ? p01 : p2);
   double sn = p > 0 ? twoA / p : 0;
   if (!(sn < 1)) sn = sn >= 1 ? 1 : 0; /* NaN counts as degenerate */
   *sine = sn;

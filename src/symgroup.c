@@ -336,3 +336,10 @@ int tds_sym_from_code(int id, const double p[2], double code, int32_t *w) {
   default: return TDS_ERANGE;
   }
 }
+
+void tds_sym_apply(int id, const double p[2], const double (*period)[3], int32_t w,
+                   const double x[3], double out[3]) {
+  double R[3][3], d[3];
+  tds_sym_affine(id, p, period, w, R, d);
+  for (int i = 0; i < 3; i++) out[i] = R[i][0] * x[0] + R[i][1] * x[1] + R[i][2] * x[2] + d[i];
+}

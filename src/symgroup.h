@@ -78,6 +78,9 @@ int32_t tds_sym_inv(int id, const double p[2], int32_t a);
 ** (TORUS only). */
 void tds_sym_affine(int id, const double p[2], const double (*period)[3], int32_t w,
                     double R[3][3], double t[3]);
+/* out = R x + t for the isometry of code w (out may not be x). */
+void tds_sym_apply(int id, const double p[2], const double (*period)[3], int32_t w,
+                   const double x[3], double out[3]);
 
 /* Evolver's integer code of internal code w (datafile, dump, the wrap
 ** attribute), and back: TDS_OK, or TDS_ERANGE when code is no element of

@@ -114,7 +114,7 @@ static void spchol_refactor(void) {
 ** rtol 0 reaches a direct solve's backward error (1e-13 as above, with
 ** the stopping test's 1e-14 of ||b|| + ||A|| ||x||), rtol 1e-6 a
 ** residual of at most 1e-6 ||b||, and a limit of one iteration is
-** reported (-1) with b left as it was. */
+** reported (-1) with b left as it was; the same from a first guess. */
 static void spchol_near(void) {
   tds_ctx ctx;
   tds_ctx_init(&ctx);
@@ -132,23 +132,40 @@ static void spchol_near(void) {
   tds_spmat_mulv(&B, xs, b);
   int its = -2;
   memcpy(x, b, sizeof x);
-  CHECK(tds_spchol_solve_near(&ctx, f, &B, x, 0, work, 50, &its) == TDS_OK);
+  CHECK(tds_spchol_solve_near(&ctx, f, &B, x, NULL, 0, work, 50, &its) == TDS_OK);
   CHECK(its > 0 && its <= 50);
   CHECK(backward(&B, x, b) <= 1e-13);
   memcpy(x, b, sizeof x);
-  CHECK(tds_spchol_solve_near(&ctx, f, &B, x, 1e-6, work, 50, &its) == TDS_OK);
+  CHECK(tds_spchol_solve_near(&ctx, f, &B, x, NULL, 1e-6, work, 50, &its) == TDS_OK);
   CHECK(its >= 0);
   tds_spmat_mulv(&B, x, r);
   for (int i = 0; i < N; i++) r[i] -= b[i];
   CHECK(norm(N, r) <= 1e-6 * norm(N, b));
   memcpy(x, b, sizeof x);
-  CHECK(tds_spchol_solve_near(&ctx, f, &B, x, 0, work, 1, &its) == TDS_OK);
+  CHECK(tds_spchol_solve_near(&ctx, f, &B, x, NULL, 0, work, 1, &its) == TDS_OK);
   CHECK(its == -1);
   CHECK(memcmp(x, b, sizeof x) == 0);
+  /* from a first guess x0: the exact solution needs no iteration (its
+  ** residual is rounding, under the stopping test); one 1e-3 off reaches
+  ** the same backward error; x0 is only read */
+  static double x0[N];
+  tds_spmat_mulv(&B, xs, b);
+  memcpy(x0, xs, sizeof x0);
+  memcpy(x, b, sizeof x);
+  CHECK(tds_spchol_solve_near(&ctx, f, &B, x, x0, 0, work, 50, &its) == TDS_OK);
+  CHECK(its == 0);
+  CHECK(memcmp(x, xs, sizeof x) == 0);
+  for (int i = 0; i < N; i++) x0[i] = xs[i] + 1e-3 * (urand() - 0.5);
+  memcpy(r, x0, sizeof r);
+  memcpy(x, b, sizeof x);
+  CHECK(tds_spchol_solve_near(&ctx, f, &B, x, x0, 0, work, 50, &its) == TDS_OK);
+  CHECK(its > 0 && its <= 50);
+  CHECK(backward(&B, x, b) <= 1e-13);
+  CHECK(memcmp(r, x0, sizeof r) == 0);
   /* on the factored matrix itself: no iteration */
   tds_spmat_mulv(&A, xs, b);
   memcpy(x, b, sizeof x);
-  CHECK(tds_spchol_solve_near(&ctx, f, &A, x, 0, work, 50, &its) == TDS_OK);
+  CHECK(tds_spchol_solve_near(&ctx, f, &A, x, NULL, 0, work, 50, &its) == TDS_OK);
   CHECK(its == 0);
   tds_spchol_free(f);
   tds_spmat_free(&A);
