@@ -6,7 +6,8 @@
 # every body holding its volume, refined once (r). Both programs load the
 # same datafile, refine, take 20 `g` steps and report process CPU seconds
 # per step; the ratio is Evolver / tds. Also prints both energies after
-# the steps (the faster program must not be worse).
+# the steps (the faster program must not be worse). tds takes its own
+# line search (exact projection), as in the cube bench (bench/string.sh).
 # Usage: bench/foam3.sh [TDS_BINARY]
 TDS=${1:-./tds}
 case $TDS in /*) ;; */*) TDS=$(pwd)/$TDS ;; esac # the generator runs in bench/
@@ -23,6 +24,7 @@ q
 EOC
 ev=$(cd "$dir" && evolver-nox-d -f cmds foam.fe < /dev/null 2>&1 | grep '^EVOLVER ')
 td=$("$TDS" -q "$dir/foam.fe" -e "
+tds.setting('evolver_line_search', false) -- tds's own search, as the cube bench
 r()
 local t0 = os.clock()
 g($STEPS)

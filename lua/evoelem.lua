@@ -83,9 +83,12 @@ local function adjacency()
   for _, e in ipairs(E.all("edge")) do
     push(a.vedges, e.tail.id, { e, false })
     push(a.vedges, e.head.id, { e, true })
+    -- the facets around the edge in Evolver's order (src/ring.h)
+    for _, fid in ipairs(tds.edge_ring(e.id) or {}) do
+      push(a.efacets, e.id, { tds.get(tds.facet, math.abs(fid)), fid < 0 and -e.id or e.id })
+    end
   end
   for _, f in ipairs(E.all("facet")) do
-    for _, id in ipairs(f.edges) do push(a.efacets, math.abs(id), { f, id }) end
     for _, v in ipairs(f.vertices) do push(a.vfacets, v.id, f) end
     local fb, bb = f.frontbody, f.backbody
     if fb then push(a.bfacets, fb.id, f) end

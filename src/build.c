@@ -99,6 +99,9 @@ int tds_build_face(tds_ctx *ctx, tds_surf *s, tds_id f, int n,
       tds_mesh_set_facet(m, f, t);
     }
   }
+  /* Evolver's facet-edge loop on the first spoke starts at the face's own
+  ** facet (the ring order ee.facet reports, mesh.h) */
+  m->eside[spoke0] = 3 * f + 2;
   if (m->vcon[cv]) tds_motion_enforce(s, cv);
   m->coord_gen++;
   return TDS_OK;
@@ -122,6 +125,13 @@ int tds_decl_vertex(tds_ctx *ctx, tds_surf *s, tds_id v, const double x[3],
     m->vp[v][1] = p[1];
   }
   m->coord_gen++;
+  /* formulas reading vertex attributes wait for them (tds_decl_vertex_done) */
+  if (s->nxa_kind[TDS_VERTEX] && m->vcon[v]) return TDS_OK;
+  return tds_decl_vertex_done(ctx, s, v);
+}
+
+int tds_decl_vertex_done(tds_ctx *ctx, tds_surf *s, tds_id v) {
+  tds_mesh *m = &s->m;
   if (tds_motion_enforce(s, v) != TDS_OK)
     tds_warnf(ctx, "vertex %d: projection onto its constraints did not "
               "converge\n", v + 1);

@@ -6,6 +6,7 @@
 ** datafiles. The pieces are listed in datafile_int.h.
 */
 #include "datafile_int.h"
+#include "ring.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -169,6 +170,7 @@ static int finish(df *d) {
                   d->name, v + 1);
     }
   /* gravity_on: set by the body density setter (attr_rows.c) */
+  if (!s->str) tds_ring_sort_angular(m, d->ne0); /* Evolver's facet order (ring.h) */
   if (s->str) {
     int rc = df_string_finish(d);
     if (rc) return rc;
@@ -257,7 +259,9 @@ int tds_datafile_load_buffer(tds_ctx *ctx, tds_surf *s, const char *name,
     return tds_seterr(ctx, TDS_ERANGE,
                       "%s: a surface is already loaded; datafiles load into an "
                       "empty surface", name);
-  return read_text(ctx, s, name, text, len, 0);
+  int rc = read_text(ctx, s, name, text, len, 0);
+  if (rc == TDS_OK) s->evolver_ls = 1; /* a datafile's surface takes Evolver's steps */
+  return rc;
 }
 
 int tds_datafile_addload_buffer(tds_ctx *ctx, tds_surf *s, const char *name,

@@ -52,7 +52,9 @@
 ** (cannot read), TDS_ESYNTAX (malformed or unsupported input), TDS_ERANGE /
 ** TDS_ETOPO (references that do not exist or do not fit) or TDS_ENOMEM,
 ** with "path:line: message" in ctx->errmsg, and s is emptied again
-** (tds_surf_free), so a failed load leaves nothing behind. */
+** (tds_surf_free), so a failed load leaves nothing behind. The loaded
+** surface takes Evolver's line search (s->evolver_ls = 1), so a ported
+** script's `g` takes Evolver's steps; the caller may switch it off. */
 int tds_datafile_load(tds_ctx *ctx, tds_surf *s, const char *path);
 
 /* The same from text[0..len) (need not be NUL-terminated; may contain any

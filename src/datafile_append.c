@@ -101,6 +101,7 @@ int df_app_begin(df *d) {
   /* new elements after every existing slot (Evolver renumbers them) */
   d->nread[TDS_VERTEX] = s->m.nv;
   d->nread[TDS_EDGE] = s->m.ne;
+  d->ne0 = s->m.ne;
   d->nread[TDS_FACET] = s->m.nf;
   d->nread[TDS_BODY] = s->m.nb;
   d->maxface = s->m.nf;

@@ -385,7 +385,11 @@ static int vertex_line(df *d) {
   rc = tds_decl_vertex(d->ctx, d->s, id, x, bd, p, flags, con);
   if (rc) return df_core(d, line, rc, NULL);
   d->s->m.vfile[id] = line_file_id(d);
-  return apply_attrs(d, TDS_VERTEX, id, pv0, d->npv, line);
+  rc = apply_attrs(d, TDS_VERTEX, id, pv0, d->npv, line);
+  if (rc == TDS_OK && d->s->nxa_kind[TDS_VERTEX] && d->s->m.vcon[id] &&
+      (rc = tds_decl_vertex_done(d->ctx, d->s, id)))
+    return df_core(d, line, rc, NULL);
+  return rc;
 }
 
 static int edge_line(df *d) {

@@ -219,8 +219,8 @@ static int h_constraint(df *d, const hdr_kw *k) {
   tds_expr *f = NULL, *en[3] = {0}, *ct[3] = {0};
   char w2[80];
   snprintf(w2, sizeof w2, "%s FORMULA", what);
-  if ((rc = df_header_expr(d, TDS_EXPR_FORMULA, &f, w2)) ||
-      (rc = integrals(d, en, ct, 0, what))) {
+  if ((rc = df_header_expr(d, TDS_EXPR_FORMULA | TDS_MODEL_ON_VERTEX, &f, w2)) ||
+      (rc = integrals(d, en, ct, TDS_MODEL_ON_EDGE, what))) {
     tds_expr_free(f);
     df_free3(en);
     df_free3(ct);
@@ -253,10 +253,10 @@ static int h_boundary(df *d, const hdr_kw *k) {
   if ((rc = df_more(d, &have))) return rc;
   if (have && df_accept(d, "convex")) flags |= TDS_CON_CONVEX;
   tds_expr *x[3] = {0}, *en[3] = {0}, *ct[3] = {0};
-  rc = df_components(d, 'x', TDS_EXPR_PARAMS, x, what);
+  rc = df_components(d, 'x', TDS_EXPR_PARAMS | TDS_MODEL_ON_VERTEX, x, what);
   if (!rc && (!x[0] || !x[1] || !x[2]))
     rc = df_err(d, d->p, TDS_ESYNTAX, "%s: needs X1, X2 and X3", what);
-  if (!rc) rc = integrals(d, en, ct, 0, what);
+  if (!rc) rc = integrals(d, en, ct, TDS_MODEL_ON_EDGE, what);
   if (rc) {
     df_free3(x);
     df_free3(en);
@@ -396,10 +396,13 @@ static int h_quantity(df *d, const hdr_kw *k) {
         goto fail;
       }
       m->scalar = w[0] == 's';
+      int on = tds_methods[m->method].kind == TDS_EL_FACET  ? TDS_MODEL_ON_FACET
+               : tds_methods[m->method].kind == TDS_EL_EDGE ? TDS_MODEL_ON_EDGE
+                                                             : 0;
       if (w[0] == 's')
-        rc = df_header_expr(d, 0, &m->in[0], what);
+        rc = df_header_expr(d, on, &m->in[0], what);
       else
-        rc = df_components(d, 'q', 0, m->in, what);
+        rc = df_components(d, 'q', on, m->in, what);
     } else if (df_unsupported(w)) {
       rc = df_not_supported(d, at, w);
     } else {

@@ -140,6 +140,8 @@ typedef struct df {
   int64_t fid;         /* the current element line's id in the file */
   int64_t orig;        /* its ORIGINAL value, or -1 */
   struct df_app *app;  /* append mode (addload): what to put back on failure */
+  int32_t ne0;         /* edges before this file (addload): rings of the
+                          file's edges are ordered at the end (ring.h) */
 } df;
 
 /* ---- append mode (datafile_append.c) ----

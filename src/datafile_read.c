@@ -241,10 +241,9 @@ static int parse_expr(df *d, int flags, tds_expr **out, const char *what) {
   if (*a == '{' || *a == '}' || *a == '"' || *a == '=')
     return df_err(d, a, TDS_ESYNTAX, "%s: expected a value, found %s", what,
                   df_describe(a, b, sizeof b));
-  tds_expr_env env;
-  tds_model_env(d->s, flags | (d->split ? TDS_EXPR_DATAFILE : 0), &env);
   size_t used = 0;
-  int rc = tds_expr_parse(d->ctx, a, &used, &env, out);
+  int rc = tds_model_parse(d->ctx, d->s, a, &used, flags | (d->split ? TDS_EXPR_DATAFILE : 0),
+                           out);
   if (rc != TDS_OK) return df_core(d, df_line_of(d, a), rc, what);
   d->p = a + used;
   return TDS_OK;

@@ -89,6 +89,10 @@ int df_string_model(df *d) {
       return df_err(d, NULL, TDS_ESYNTAX,
                     "constraint %d: CONVEX in the string model is not supported yet",
                     k->number);
+    if (k->content[0] && tds_expr_uses_attrs(k->content[0]))
+      return df_err(d, NULL, TDS_ESYNTAX,
+                    "constraint %d: element attributes in the string model's CONTENT are "
+                    "not supported yet", k->number);
   }
   for (int b = 0; b < s->nbdry; b++)
     if (has3(s->bdry[b].energy) || has3(s->bdry[b].content))

@@ -32,6 +32,7 @@
 #include "symmetry.h"
 #include "torus.h"
 #include "vec3.h"
+#include "xattr.h"
 
 /* Where a weighted value goes: body b (its volume and, if constrained,
 ** its fixq gradient), or with b == TDS_NONE the term's own total. */
@@ -57,6 +58,8 @@ struct term {
                      q >= 0 fixq quantity q, -2 none */
   double total;   /* out: sum of w * value to the own total */
   double sum;     /* out: sum of the unweighted values (total area) */
+  int xkind;      /* element kind whose attributes the integrands read
+                     (xattr.h), filled per element; -1 none */
 };
 
 /* Add w * h (the element Hessian) to the upper half of the global one
@@ -149,6 +152,7 @@ assemble_k(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int kind, term *t0,
       tds_gather_facet(m, el, &C);
     else
       tds_gather_edge(m, TDS_OREF(el, 0), &C);
+    if (t0->xkind >= 0) tds_xattr_fill(s, t0->xkind, el);
     L.x[0] = C.x[0]; /* not a loop: gcc makes it a memcpy call per element */
     L.x[1] = C.x[1];
     if (kind == TDS_EL_FACET) L.x[2] = C.x[2];
@@ -310,8 +314,19 @@ static int s_quantity_density(const tds_surf *s, const term *t, tds_id f, sink *
 
 /* ---- the terms of a surface ---- */
 
+/* The element kind whose attributes integrands ig of row read, or -1. */
+static int ig_xkind(const tds_method *row, tds_expr *const *ig) {
+  int n = !ig ? 0 : (row->flags & TDS_MF_VECTOR) ? 3 : (row->flags & TDS_MF_METRIC) ? 9
+          : (row->flags & (TDS_MF_SCALAR | TDS_MF_FORMULA)) ? 1 : 0;
+  for (int i = 0; i < n; i++)
+    if (ig[i] && tds_expr_uses_attrs(ig[i]))
+      return row->kind == TDS_EL_FACET ? TDS_FACET : TDS_EDGE;
+  return -1;
+}
+
 static term make(const tds_surf *s, int row, sink_fn fn, tds_expr *const *ig, int npts) {
   term t = {.row = &tds_methods[row], .sinks = fn, .gq = -1, .w = 1};
+  t.xkind = ig_xkind(t.row, ig);
   t.L.ig = ig;
   t.L.npts = npts;
   t.L.param = s->parval;

@@ -44,7 +44,16 @@ typedef struct tds_expr_env {
      parameters. name is NOT NUL-terminated: use len. */
   int (*lookup)(void *ud, const char *name, size_t len);
   void *ud;
+  /* Optional: why the last lookup that returned -1 failed ("a facet
+     attribute, ..."), appended to the unknown-name error, or NULL. */
+  const char *(*why)(void *ud);
 } tds_expr_env;
+
+/* A lookup may also return TDS_EXPR_ATTR(j) (j >= 0): the name is an
+   element attribute in slot j (xattr.h), compiled as a read of
+   params[-1-j]. The caller then passes a params pointer with the slots in
+   front of it, filled for the element being evaluated. */
+#define TDS_EXPR_ATTR(j) (-2 - (j))
 
 enum {
   TDS_EXPR_FORMULA  = 1,  /* '=' is a low-precedence minus (level-set formulas): "x^2+y^2 = R^2" */
@@ -86,13 +95,15 @@ int tds_expr_parse(tds_ctx *ctx, const char *text, size_t *consumed,
 void tds_expr_free(tds_expr *e);
 /* The source text it was compiled from (trimmed); owned by e. */
 const char *tds_expr_text(const tds_expr *e);
-/* 1 if e uses no variable (x y z p1 p2 G) and no parameter: it then folded to
+/* 1 if e uses no variable (x y z p1 p2 G), no parameter and no attribute: it then folded to
    a single constant and may be evaluated with params = vars = NULL. */
 int tds_expr_is_const(const tds_expr *e);
 /* 1 if variable var (TDS_X..TDS_G) occurs (after constant folding). */
 int tds_expr_uses_var(const tds_expr *e, int var);
 /* 1 if any parameter occurs. */
 int tds_expr_uses_params(const tds_expr *e);
+/* 1 if any element attribute (TDS_EXPR_ATTR) occurs. */
+int tds_expr_uses_attrs(const tds_expr *e);
 /* Highest parameter slot used, or -1: params must hold that many + 1. */
 int tds_expr_max_param(const tds_expr *e);
 /* Number of instructions of the compiled program (1 for a folded
@@ -158,6 +169,7 @@ struct tds_expr {
   int maxstack;           /* slots the evaluator needs */
   int varmask;            /* bit v: variable v occurs */
   int maxparam;           /* -1 if none */
+  int minparam;           /* lowest slot read; < 0: element attributes */
   int nact;               /* differentiable variables that occur ... */
   int act[TDS_NDIFF];     /* ... local derivative index -> variable */
   int loc[TDS_NDIFF];     /* variable -> local index, -1 if absent */

@@ -515,10 +515,10 @@ static int parse_name(parser *p, opnd *o) {
     return emit(p, TDS_OP_PUSHV, 0, b->code);
   }
   int slot = p->env && p->env->lookup ? p->env->lookup(p->env->ud, nm, len) : -1;
-  if (slot >= 0) {
+  if (slot >= 0 || slot <= TDS_EXPR_ATTR(0)) {
     advance(p);
     o->deps = PARAMBIT;
-    return emit(p, TDS_OP_PUSHP, 0, slot);
+    return emit(p, TDS_OP_PUSHP, 0, slot >= 0 ? slot : slot + 1);
   }
   if (b)
     return fail(p, pos, "%.*s is only allowed in boundary parametrisations",
@@ -526,6 +526,8 @@ static int parse_name(parser *p, opnd *o) {
   if (name_is(nm, len, "max") || name_is(nm, len, "min"))
     return fail(p, pos, "unknown name '%.*s' (use %.*simum(a,b))", (int)len, nm,
                 (int)len, nm);
+  const char *why = p->env && p->env->why ? p->env->why(p->env->ud) : NULL;
+  if (why) return fail(p, pos, "%s", why);
   return fail(p, pos, "unknown name '%.*s'", len > 40 ? 40 : (int)len, nm);
 }
 
@@ -747,7 +749,7 @@ static size_t align_up(size_t n) {
 
 /* Build the final tds_expr (one allocation) from the parser's code. */
 static int finish(parser *p, size_t a, size_t b, tds_expr **out) {
-  int depth = 0, maxd = 0, nk = 0, varmask = 0, maxparam = -1;
+  int depth = 0, maxd = 0, nk = 0, varmask = 0, maxparam = -1, minparam = 0;
   for (int i = 0; i < p->ncode; i++) {
     int op = p->code[i].op;
     if (op <= TDS_OP_PUSHP) depth++;
@@ -756,6 +758,7 @@ static int finish(parser *p, size_t a, size_t b, tds_expr **out) {
     if (op == TDS_OP_PUSHK) nk++;
     if (op == TDS_OP_PUSHV) varmask |= 1 << p->code[i].arg;
     if (op == TDS_OP_PUSHP && p->code[i].arg > maxparam) maxparam = p->code[i].arg;
+    if (op == TDS_OP_PUSHP && p->code[i].arg < minparam) minparam = p->code[i].arg;
   }
   if (maxd > TDS_EXPR_MAXSTACK)
     return fail(p, a, "expression too complex (needs %d evaluation stack "
@@ -788,6 +791,7 @@ static int finish(parser *p, size_t a, size_t b, tds_expr **out) {
   e->maxstack = maxd;
   e->varmask = varmask;
   e->maxparam = maxparam;
+  e->minparam = minparam;
   if (p->al) e->alloc = *p->al;
   for (int v = 0; v < TDS_NDIFF; v++) {
     e->loc[v] = -1;
@@ -840,7 +844,7 @@ const char *tds_expr_text(const tds_expr *e) { return e->text; }
 
 /* 1 if no variable and no parameter occurs. */
 int tds_expr_is_const(const tds_expr *e) {
-  return e->varmask == 0 && e->maxparam < 0;
+  return e->varmask == 0 && e->maxparam < 0 && e->minparam == 0;
 }
 
 /* 1 if variable var (TDS_X..TDS_G) occurs. */
@@ -850,6 +854,9 @@ int tds_expr_uses_var(const tds_expr *e, int var) {
 
 /* 1 if any parameter occurs. */
 int tds_expr_uses_params(const tds_expr *e) { return e->maxparam >= 0; }
+
+/* 1 if an element attribute occurs. */
+int tds_expr_uses_attrs(const tds_expr *e) { return e->minparam < 0; }
 
 /* Highest parameter slot used, or -1. */
 int tds_expr_max_param(const tds_expr *e) { return e->maxparam; }

@@ -9,6 +9,7 @@
 #include "hess.h"
 #include "motion.h"
 #include "vec3.h"
+#include "xattr.h"
 
 void tds_hess_red_free(tds_hess_red *r) {
   tds_alloc a = r->alloc;
@@ -39,7 +40,9 @@ int tds_hess_vertex_space(const tds_surf *s, tds_id v, const double f[3], double
     }
     return np;
   }
-  /* equality level sets: normals n, Hessians of their formulas */
+  /* equality level sets: normals n, Hessians of their formulas (which may
+  ** read the vertex's attributes, xattr.h) */
+  tds_xattr_fill(s, TDS_VERTEX, v);
   double n[3][3], hs[3][3][3];
   int k = 0;
   for (int c = 0; c < TDS_MAX_CON && k < 3; c++) {

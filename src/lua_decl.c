@@ -208,6 +208,9 @@ static int l_decl_vertex(lua_State *L) {
   int rc = tds_decl_vertex(&st->ctx, &st->s, id - 1, x, bd, p, flags, con);
   if (rc != TDS_OK) return fail(L, "%s", st->ctx.errmsg);
   if (!apply_keys(L, st, 2, TDS_VERTEX, "vertex", id, id - 1)) return 2;
+  if (st->s.nxa_kind[TDS_VERTEX] && st->s.m.vcon[id - 1] &&
+      tds_decl_vertex_done(&st->ctx, &st->s, id - 1) != TDS_OK)
+    return fail(L, "%s", st->ctx.errmsg);
   tds_push_elem(L, TDS_VERTEX, id - 1);
   return 1;
 }

@@ -298,6 +298,26 @@ static int l_count(lua_State *L) {
   return 1;
 }
 
+/* tds.edge_ring(id): the facets on live edge id as signed ids (negative
+** for a facet that runs along the edge backwards) in the order of the
+** edge's ring of facets, from its first side (mesh.h); nil for no edge. */
+static int l_edge_ring(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  lua_Integer id = luaL_checkinteger(L, 1);
+  const tds_mesh *m = &st->s.m;
+  if (id < 1 || id > m->ne || !alive(&st->s, TDS_EDGE, (tds_id)id - 1)) return 0;
+  lua_newtable(L);
+  int32_t h = m->eside[id - 1], sd = h, n = 0;
+  if (h == TDS_NONE) return 1;
+  do {
+    tds_id f = sd / 3;
+    lua_pushinteger(L, TDS_OREV(m->fe[f][sd % 3]) ? -(lua_Integer)(f + 1) : f + 1);
+    lua_rawseti(L, -2, ++n);
+    sd = m->side_next[sd];
+  } while (sd != h);
+  return 1;
+}
+
 uint8_t *tds_lua_selection(lua_State *L, tds_state *st, int arg, int kind) {
   if (lua_isnoneornil(L, arg)) return NULL;
   int32_t n = nslots(&st->s, kind);
@@ -371,7 +391,8 @@ void tds_open_elem(lua_State *L, tds_state *st) {
   lua_setfield(L, -3, "props");
   lua_setfield(L, -2, "methods");
   static const luaL_Reg fns[] = {{"next", l_next}, {"get", l_get},
-                                 {"count", l_count}, {NULL, NULL}};
+                                 {"count", l_count}, {"edge_ring", l_edge_ring},
+                                 {NULL, NULL}};
   tds_lua_register(L, st, fns);
   for (int k = 0; k < TDS_NKINDS; k++) {
     lua_pushinteger(L, k);

@@ -41,7 +41,7 @@ static void free3(tds_expr *e[3]) {
 }
 
 /* A 3-vector of integrands from field `key` ({"e1", "e2", "e3"}). */
-static int vector_field(lua_State *L, tds_state *st, int t, const char *key,
+static int vector_field(lua_State *L, tds_state *st, int t, const char *key, int flags,
                         tds_expr *out[3], const char *what) {
   out[0] = out[1] = out[2] = NULL;
   lua_getfield(L, t, key);
@@ -58,7 +58,7 @@ static int vector_field(lua_State *L, tds_state *st, int t, const char *key,
   int v = lua_gettop(L);
   for (int i = 0; i < 3; i++) {
     lua_rawgeti(L, v, i + 1);
-    if (!compile_top(L, st, 0, &out[i], what, key)) {
+    if (!compile_top(L, st, flags, &out[i], what, key)) {
       free3(out);
       lua_remove(L, v);
       return 0;
@@ -72,8 +72,8 @@ static int vector_field(lua_State *L, tds_state *st, int t, const char *key,
 ** index 2; on error both are freed and nil, msg pushed. */
 static int integrands(lua_State *L, tds_state *st, tds_expr *energy[3],
                       tds_expr *content[3], const char *what) {
-  if (!vector_field(L, st, 2, "energy", energy, what)) return 0;
-  if (vector_field(L, st, 2, "content", content, what)) return 1;
+  if (!vector_field(L, st, 2, "energy", TDS_MODEL_ON_EDGE, energy, what)) return 0;
+  if (vector_field(L, st, 2, "content", TDS_MODEL_ON_EDGE, content, what)) return 1;
   free3(energy);
   return 0;
 }
@@ -96,7 +96,8 @@ static int l_constraint(lua_State *L) {
   char what[48];
   snprintf(what, sizeof what, "constraint %d", (int)n);
   tds_expr *formula, *energy[3], *content[3];
-  if (!compile_field(L, st, 2, "formula", TDS_EXPR_FORMULA, &formula, what)) return 2;
+  if (!compile_field(L, st, 2, "formula", TDS_EXPR_FORMULA | TDS_MODEL_ON_VERTEX, &formula,
+                     what)) return 2;
   if (!integrands(L, st, energy, content, what)) {
     tds_expr_free(formula);
     return 2;
@@ -126,7 +127,7 @@ static int l_boundary(lua_State *L) {
   tds_expr *x[3] = {NULL, NULL, NULL}, *energy[3], *content[3];
   static const char *const xs[3] = {"x", "y", "z"};
   for (int i = 0; i < 3; i++)
-    if (!compile_field(L, st, 2, xs[i], TDS_EXPR_PARAMS, &x[i], what)) {
+    if (!compile_field(L, st, 2, xs[i], TDS_EXPR_PARAMS | TDS_MODEL_ON_VERTEX, &x[i], what)) {
       free3(x);
       return 2;
     }
@@ -164,9 +165,12 @@ static int add_method(lua_State *L, tds_state *st, int t, int qi,
     lua_pop(L, 1);
   }
   tds_expr *ig[3];
-  if (!vector_field(L, st, t, "vector_integrand", ig, what)) return 0;
+  int on = tds_methods[method].kind == TDS_EL_FACET  ? TDS_MODEL_ON_FACET
+           : tds_methods[method].kind == TDS_EL_EDGE ? TDS_MODEL_ON_EDGE
+                                                     : 0;
+  if (!vector_field(L, st, t, "vector_integrand", on, ig, what)) return 0;
   if (!ig[0] && !ig[1] && !ig[2]) {
-    if (!compile_field(L, st, t, "scalar_integrand", 0, &ig[0], what)) return 0;
+    if (!compile_field(L, st, t, "scalar_integrand", on, &ig[0], what)) return 0;
     if (ig[0] && (method == TDS_M_FACET_VECTOR_INTEGRAL ||
                   method == TDS_M_EDGE_VECTOR_INTEGRAL)) {
       tds_expr_free(ig[0]);

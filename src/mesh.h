@@ -8,8 +8,9 @@
 ** Facet f has vertices fv[f][0..2] and oriented edges fe[f][0..2]; side
 ** s = 3f+k runs from fv[f][k] to fv[f][(k+1)%3] along edge fe[f][k].
 ** The sides on one edge form a circular ring through side_next[], entered
-** at eside[e]; any number of facets may share an edge. The ring is kept in
-** no particular angular order.
+** at eside[e]; any number of facets may share an edge. The ring's order is
+** Evolver's facet-edge loop order after loading and refining (ring.h),
+** otherwise whatever the last change left.
 **
 ** The primary arrays (x, ev, fv, fe, fb, side_next/eside) are the truth.
 ** Vertex stars are derived (mesh_adj.c), rebuilt when topo_gen moves.

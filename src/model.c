@@ -5,21 +5,52 @@
 #include <string.h>
 #include <strings.h>
 
+#include "xattr.h"
+
+/* Parameters first, then the attributes of the scope's element kind
+** (xattr.h). */
 static int lookup(void *ud, const char *name, size_t len) {
-  return tds_surf_param_find(ud, name, len);
+  tds_model_scope *sc = ud;
+  sc->why[0] = 0;
+  int slot = tds_surf_param_find(sc->s, name, len);
+  if (slot >= 0) return slot;
+  int j = tds_xattr_slot(sc->s, sc->kind, name, len, sc->why, sizeof sc->why);
+  if (j == -3) sc->nomem = 1;
+  return j >= 0 ? TDS_EXPR_ATTR(j) : -1;
 }
 
-void tds_model_env(tds_surf *s, int flags, tds_expr_env *env) {
-  env->flags = flags;
+static const char *why(void *ud) {
+  tds_model_scope *sc = ud;
+  return sc->why[0] ? sc->why : NULL;
+}
+
+void tds_model_env(tds_model_scope *sc, tds_surf *s, int flags, tds_expr_env *env) {
+  int on = flags & TDS_MODEL_ON_MASK;
+  sc->s = s;
+  sc->kind = on == TDS_MODEL_ON_VERTEX ? TDS_VERTEX
+             : on == TDS_MODEL_ON_EDGE ? TDS_EDGE
+             : on == TDS_MODEL_ON_FACET ? TDS_FACET : -1;
+  sc->why[0] = 0;
+  sc->nomem = 0;
+  env->flags = flags & ~TDS_MODEL_ON_MASK;
   env->lookup = lookup;
-  env->ud = s;
+  env->ud = sc;
+  env->why = why;
+}
+
+int tds_model_parse(tds_ctx *ctx, tds_surf *s, const char *text, size_t *consumed,
+                    int flags, tds_expr **out) {
+  tds_model_scope sc;
+  tds_expr_env env;
+  tds_model_env(&sc, s, flags, &env);
+  int rc = tds_expr_parse(ctx, text, consumed, &env, out);
+  if (rc != TDS_OK && sc.nomem) rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+  return rc;
 }
 
 int tds_model_compile(tds_ctx *ctx, tds_surf *s, const char *text, int flags,
                       tds_expr **out) {
-  tds_expr_env env;
-  tds_model_env(s, flags, &env);
-  return tds_expr_parse(ctx, text, NULL, &env, out);
+  return tds_model_parse(ctx, s, text, NULL, flags, out);
 }
 
 static void free3(tds_expr *e[3]) {
@@ -98,6 +129,22 @@ int tds_model_constraint(tds_ctx *ctx, tds_surf *s, int number, int flags,
                                  : "constraint %d: at most 64 constraints are supported",
                       number);
   }
+  if (s->str && content && content[0] && tds_expr_uses_attrs(content[0])) {
+    tds_expr_free(formula);
+    free3(energy);
+    free3(content);
+    return tds_seterr(ctx, TDS_ESYNTAX,
+                      "constraint %d: element attributes in the string model's content are "
+                      "not supported yet", number);
+  }
+  if ((flags & TDS_CON_CONVEX) && tds_expr_uses_attrs(formula)) {
+    tds_expr_free(formula);
+    free3(energy);
+    free3(content);
+    return tds_seterr(ctx, TDS_ESYNTAX,
+                      "constraint %d: CONVEX with vertex attributes in the formula is not "
+                      "supported yet", number);
+  }
   tds_constraint *c = &s->con[slot];
   tds_expr_free(c->formula);
   c->number = number;
@@ -116,8 +163,17 @@ int tds_model_boundary_slot(const tds_surf *s, int number) {
 int tds_model_boundary(tds_ctx *ctx, tds_surf *s, int number, int nparams,
                        int flags, tds_expr *x[3], tds_expr *energy[3],
                        tds_expr *content[3]) {
-  int bad = number < 1 || nparams < 1 || nparams > 2;
+  int bad = number < 1 || nparams < 1 || nparams > 2, attrs = 0;
   for (int i = 0; i < 3; i++) bad |= !x[i];
+  for (int i = 0; i < 3 && !bad; i++) attrs |= tds_expr_uses_attrs(x[i]);
+  if (attrs) {
+    free3(x);
+    free3(energy);
+    free3(content);
+    return tds_seterr(ctx, TDS_ESYNTAX,
+                      "boundary %d: vertex attributes in the parametrisation are not "
+                      "supported yet", number);
+  }
   int slot = tds_model_boundary_slot(s, number);
   tds_boundary *nb = NULL;
   if (!bad && slot < 0) nb = tds_realloc(&s->m.alloc, s->bdry, (size_t)(s->nbdry + 1) * sizeof *nb);

@@ -13,15 +13,39 @@
 #include "expr.h"
 #include "surf.h"
 
-/* Compile text as an expression reading the surface's parameters.
+/* The element an expression is evaluated on, or'ed into the flags below:
+** its names may then be that kind's attributes (xattr.h). Level-set
+** formulas are evaluated on vertices, constraint and boundary integrands
+** and edge quantities on edges, facet quantities on facets. Without one,
+** attributes are errors ("angle is an edge attribute, not usable here"). */
+enum {
+  TDS_MODEL_ON_VERTEX = 1 << 8,
+  TDS_MODEL_ON_EDGE = 2 << 8,
+  TDS_MODEL_ON_FACET = 3 << 8,
+  TDS_MODEL_ON_MASK = 3 << 8
+};
+
+/* Compile text as an expression reading the surface's parameters (and,
+** with a TDS_MODEL_ON_*, the element's attributes).
 ** flags: TDS_EXPR_* (FORMULA for level sets, PARAMS for boundaries,
-** NOCOORD for constants). Errors carry the expression and column. */
+** NOCOORD for constants) | TDS_MODEL_ON_*. Errors carry the expression and
+** column. */
 int tds_model_compile(tds_ctx *ctx, tds_surf *s, const char *text, int flags,
                       tds_expr **out);
+/* The same, parsing the longest expression at text (tds_expr_parse's
+** consumed). */
+int tds_model_parse(tds_ctx *ctx, tds_surf *s, const char *text, size_t *consumed,
+                    int flags, tds_expr **out);
 
-/* The lookup environment for the surface's parameters (for callers that
-** parse expressions themselves, e.g. inside a datafile stream). */
-void tds_model_env(tds_surf *s, int flags, tds_expr_env *env);
+/* The lookup environment of tds_model_compile (for callers that parse
+** expressions themselves); sc is its state and must outlive the parse. */
+typedef struct tds_model_scope {
+  tds_surf *s;
+  int kind;               /* TDS_VERTEX, TDS_EDGE, TDS_FACET or -1 */
+  int nomem;              /* an attribute slot could not be allocated */
+  char why[160];          /* why the last name was refused, or "" */
+} tds_model_scope;
+void tds_model_env(tds_model_scope *sc, tds_surf *s, int flags, tds_expr_env *env);
 
 /* Declare constraint `number` (>= 1): level set formula = 0 (required),
 ** flags TDS_CON_*, optional energy and content integrands (arrays of 3,

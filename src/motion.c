@@ -7,6 +7,7 @@
 #include "expr.h"
 #include "fixq.h"
 #include "vec3.h"
+#include "xattr.h"
 
 #define MAX_ACTIVE 3        /* independent level sets a vertex can be on */
 #define MAX_NEWTON 25
@@ -30,6 +31,7 @@ static int active_sets(const tds_surf *s, tds_id v, const double x[3],
   int k = 0;
   double vars[TDS_NVARS], g[TDS_NDIFF];
   tds_motion_vars(s, x, NULL, vars);
+  tds_xattr_fill(s, TDS_VERTEX, v); /* the formulas' vertex attributes */
   for (int c = 0; mask && c < TDS_MAX_CON; c++) {
     if (!(mask & ((tds_cmask)1 << c))) continue;
     mask &= ~((tds_cmask)1 << c);

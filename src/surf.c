@@ -9,6 +9,7 @@
 
 #include "expr.h"
 #include "string_model.h"
+#include "xattr.h"
 
 void tds_surf_init(tds_surf *s) {
   memset(s, 0, sizeof *s);
@@ -30,7 +31,8 @@ void tds_surf_free(tds_surf *s) {
   tds_mesh_free(&s->m);
   for (int i = 0; i < s->npar; i++) tds_free(&a, s->parname[i]);
   tds_free(&a, s->parname);
-  tds_free(&a, s->parval);
+  tds_free(&a, s->parval ? s->parval - s->xcap : NULL);
+  tds_xattr_free(s);
   for (int i = 0; i < TDS_MAX_CON; i++) {
     tds_constraint *c = &s->con[i];
     tds_expr_free(c->formula);
@@ -108,6 +110,21 @@ int tds_surf_param_find(const tds_surf *s, const char *name, size_t len) {
   return -1;
 }
 
+int tds_surf_param_room(tds_surf *s, int xcap, int cap) {
+  if (xcap <= s->xcap && cap <= s->cappar) return TDS_OK;
+  if (xcap < s->xcap) xcap = s->xcap;
+  if (cap < s->cappar) cap = s->cappar;
+  double *old = s->parval ? s->parval - s->xcap : NULL;
+  double *b = tds_calloc(&s->m.alloc, (size_t)xcap + (size_t)cap + 1, sizeof *b);
+  if (!b) return TDS_ENOMEM;
+  if (old) memcpy(b + xcap - s->xcap, old, sizeof *b * ((size_t)s->xcap + (size_t)s->npar));
+  tds_free(&s->m.alloc, old);
+  s->parval = b + xcap;
+  s->xcap = xcap;
+  s->cappar = cap;
+  return TDS_OK;
+}
+
 int tds_surf_param_set(tds_surf *s, const char *name, double value) {
   int i = tds_surf_param_find(s, name, strlen(name));
   if (i >= 0) {
@@ -120,10 +137,7 @@ int tds_surf_param_set(tds_surf *s, const char *name, double value) {
     char **n = tds_reallocarray(&s->m.alloc, s->parname, (size_t)cap, sizeof *n);
     if (!n) return -1;
     s->parname = n;
-    double *v = tds_reallocarray(&s->m.alloc, s->parval, (size_t)cap, sizeof *v);
-    if (!v) return -1;
-    s->parval = v;
-    s->cappar = cap;
+    if (tds_surf_param_room(s, s->xcap, cap) != TDS_OK) return -1;
   }
   char *copy = tds_strdup(&s->m.alloc, name);
   if (!copy) return -1;

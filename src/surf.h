@@ -69,7 +69,13 @@ typedef struct tds_surf {
   /* parameters: live values read by compiled expressions through slots */
   int npar, cappar;
   char **parname;         /* lower-case names */
-  double *parval;
+  double *parval;         /* npar values; the xcap doubles before parval[0]
+                             (parval[-1-j]) are the element attribute slots
+                             of xattr.h, one block with them */
+  int xcap;               /* attribute slots room in front of parval */
+  int nxa;                /* attribute slots in use (xa[0..nxa)) */
+  struct tds_xattr *xa;   /* what each slot reads (xattr.h) */
+  int nxa_kind[4];        /* slots per element kind (TDS_VERTEX..TDS_BODY) */
   uint64_t param_gen;     /* counts parameter assignments */
   uint64_t placed_gen;    /* param_gen at the last recalc (recalc.h) */
 
@@ -167,6 +173,9 @@ int tds_surf_update(tds_ctx *ctx, tds_surf *s);
 ** recalc (recalc.h). */
 int tds_surf_param_find(const tds_surf *s, const char *name, size_t len);
 int tds_surf_param_set(tds_surf *s, const char *name, double value);
+/* Make room for xcap attribute slots (xattr.h) and cap parameters, moving
+** the values: TDS_OK or TDS_ENOMEM (nothing changed). */
+int tds_surf_param_room(tds_surf *s, int xcap, int cap);
 
 /* Constraint slot for a user number, or -1 if not declared. */
 int tds_surf_con_slot(const tds_surf *s, int number);

@@ -117,10 +117,14 @@ int tds_build_face(tds_ctx *ctx, tds_surf *s, tds_id f, int n,
 ** naming the element (1-based ids) and TDS_ERANGE/TDS_ETOPO/TDS_ENOMEM. */
 
 /* Vertex `v` at x, or on boundary slot bdry (>= 0) at parameters p (x is
-** then computed). Projected onto its constraints. */
+** then computed). Projected onto its constraints, except when constraint
+** formulas may read vertex attributes (xattr.h): then the caller sets the
+** vertex's attributes and calls tds_decl_vertex_done, which projects
+** (calling it in any case is harmless). */
 int tds_decl_vertex(tds_ctx *ctx, tds_surf *s, tds_id v, const double x[3],
                     int32_t bdry, const double p[2], uint32_t flags,
                     tds_cmask con);
+int tds_decl_vertex_done(tds_ctx *ctx, tds_surf *s, tds_id v);
 
 /* Edge `e` from vertex t to h. */
 int tds_decl_edge(tds_ctx *ctx, tds_surf *s, tds_id e, tds_id t, tds_id h,

@@ -74,9 +74,16 @@ static int same_edges(const tds_mesh *m, tds_id f, tds_id g) {
   return 1;
 }
 
-int tds_collapse_edge(tds_surf *s, tds_id e) { return tds_collapse_edge_at(s, e, -1); }
+static int collapse(tds_surf *s, tds_id e, int end, int autopop);
 
-int tds_collapse_edge_at(tds_surf *s, tds_id e, int end) {
+int tds_collapse_edge(tds_surf *s, tds_id e) { return collapse(s, e, -1, 0); }
+
+int tds_collapse_edge_at(tds_surf *s, tds_id e, int end) { return collapse(s, e, end, 1); }
+
+/* autopop: in the string model, of two edges that merge the one from the
+** removed end survives (Evolver's autopop, measured on 100grain.fe), not
+** the higher id (its t). */
+static int collapse(tds_surf *s, tds_id e, int end, int autopop) {
   tds_mesh *m = &s->m;
   if (e < 0 || e >= m->ne || !tds_alive(m->eflags, e)) return 0;
   if (m->eflags[e] & TDS_FIXED) return 0;
@@ -172,7 +179,7 @@ int tds_collapse_edge_at(tds_surf *s, tds_id e, int end) {
       }
       int rd = rank(m, d), rq = rank(m, q);
       tds_id win = rd != rq ? (rd > rq ? d : q) : ((info[j] & 1) && !(info[i] & 1) ? q : d);
-      if (s->str && rd == rq) win = d > q ? d : q; /* strings: the higher id (Evolver) */
+      if (s->str && rd == rq && !autopop) win = d > q ? d : q; /* strings: the higher id (Evolver's t) */
       tds_id lose = win == d ? q : d;
       if (s->str) tds_strings_rename_edge(s->str, lose, win, m->ev[lose][0] != m->ev[win][0]);
       move_sides(m, lose, win);

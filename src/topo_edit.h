@@ -30,8 +30,10 @@
 ** facets or edges by that are removed. Returns 1 when the edge collapsed.
 ** Not a command by itself: no snapshot, no energy update. */
 int tds_collapse_edge(tds_surf *s, tds_id e);
-/* The same, but end 0 (tail) or 1 (head) stays where it is (unless an
-** end is pinned); end -1: as tds_collapse_edge. */
+/* autopop's collapse: the same, but end 0 (tail) or 1 (head) stays where
+** it is (unless an end is pinned; end -1: the midpoint), and in the string
+** model, of two edges that merge the one from the removed end survives
+** (Evolver's autopop; its t keeps the higher id). */
 int tds_collapse_edge_at(tds_surf *s, tds_id e, int end);
 
 /* delete edge (sel over edges): collapse each selected live edge. */

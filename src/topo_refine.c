@@ -7,6 +7,7 @@
 #include "gather.h"
 #include "motion.h"
 #include "recalc.h"
+#include "ring.h"
 #include "snap.h"
 #include "torus.h"
 #include "vec3.h"
@@ -172,6 +173,63 @@ static tds_id split_edge(tds_surf *s, tds_id e, int32_t *e2) {
   return v;
 }
 
+/* The rings of the edges of the facets being split, before: pstart[e] ..
+** pstart[e + 1] index the facets of edge e's ring in plist, in order
+** (edges of facets not split have none). */
+static void save_rings(const tds_mesh *m, int32_t ne, int32_t nf, const tds_id *midv,
+                       int32_t *pstart, int32_t *plist) {
+  uint8_t *touched = (uint8_t *)(pstart + ne + 1); /* scratch after pstart: see caller */
+  for (tds_id e = 0; e < ne; e++) touched[e] = 0;
+  for (tds_id f = 0; f < nf; f++) {
+    if (!tds_alive(m->fflags, f)) continue;
+    int split = 0;
+    for (int k = 0; k < 3; k++) split |= midv[TDS_OID(m->fe[f][k])] != TDS_NONE;
+    for (int k = 0; split && k < 3; k++) touched[TDS_OID(m->fe[f][k])] = 1;
+  }
+  int32_t n = 0;
+  for (tds_id e = 0; e < ne; e++) {
+    int t = touched[e];
+    pstart[e] = n;
+    int32_t h = m->eside[e], sd = h;
+    if (t && h != TDS_NONE) do {
+      plist[n++] = sd / 3;
+      sd = m->side_next[sd];
+    } while (sd != h);
+  }
+  pstart[ne] = n;
+}
+
+/* Put the rings of edge e's halves (or of e itself, not split) back in the
+** order of its parent ring plist[a..b) (ring.h): the facet of each half
+** descended from parent p is found through par (a facet's parent). */
+static void restore_ring(tds_mesh *m, tds_id e, int second, const int32_t *plist, int32_t a,
+                         int32_t b, int32_t nf, const tds_id *par) {
+  int n = b - a;
+  if (n < 1 || n > TDS_RING_MAX || tds_edge_valence(m, e) != n) return;
+  int32_t have[TDS_RING_MAX], out[TDS_RING_MAX];
+  int32_t h = m->eside[e], sd = h;
+  int k = 0;
+  do {
+    have[k++] = sd;
+    sd = m->side_next[sd];
+  } while (sd != h);
+  for (int i = 0; i < n; i++) {
+    tds_id p = plist[a + (second ? (i + n - 1) % n : i)];
+    int found = -1;
+    for (int j = 0; j < n; j++) {
+      tds_id g = have[j] / 3;
+      if (have[j] >= 0 && (g < nf ? g : par[g - nf]) == p) {
+        found = j;
+        break;
+      }
+    }
+    if (found < 0) return; /* a facet twice on the edge: leave it */
+    out[i] = have[found];
+    have[found] = -1;
+  }
+  tds_ring_set(m, e, out, n);
+}
+
 static int refine(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nsplit) {
   tds_mesh *m = &s->m;
   int32_t ne = m->ne, nf = m->nf, nv0 = m->nv;
@@ -199,12 +257,19 @@ static int refine(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nsplit
     nnewf += k; /* 3 split: +3 facets, 2: +2, 1: +1 */
     nnewe += k; /* and as many inner edges */
   }
-  /* Reserve exactly, so nothing below can fail. */
-  if (tds_mesh_reserve(m, TDS_VERTEX, nv0 + nsp) ||
+  /* Reserve exactly, so nothing below can fail. pstart has ne + 1 entries
+  ** and room for ne flags after them (save_rings' scratch). */
+  int32_t *pstart = tds_malloc(&s->m.alloc, (size_t)(ne + 1) * sizeof *pstart + (size_t)ne + 1);
+  int32_t *plist = tds_malloc(&s->m.alloc, (size_t)(3 * nf + 1) * sizeof *plist);
+  tds_id *par = tds_malloc(&s->m.alloc, (size_t)(nnewf + 1) * sizeof *par);
+  if (!pstart || !plist || !par || tds_mesh_reserve(m, TDS_VERTEX, nv0 + nsp) ||
       tds_mesh_reserve(m, TDS_EDGE, ne + nsp + nnewe) ||
       tds_mesh_reserve(m, TDS_FACET, nf + nnewf)) {
     tds_free(&s->m.alloc, midv);
     tds_free(&s->m.alloc, e2);
+    tds_free(&s->m.alloc, pstart);
+    tds_free(&s->m.alloc, plist);
+    tds_free(&s->m.alloc, par);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory while refining");
   }
   for (tds_id e = 0; e < ne; e++)
@@ -214,12 +279,30 @@ static int refine(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nsplit
   if (s->str && tds_strings_split(s->str, e2, ne) != TDS_OK) {
     tds_free(&s->m.alloc, midv);
     tds_free(&s->m.alloc, e2);
+    tds_free(&s->m.alloc, pstart);
+    tds_free(&s->m.alloc, plist);
+    tds_free(&s->m.alloc, par);
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory while refining");
   }
+  /* Evolver's facet order around the edges (ring.h): the rings before,
+  ** each new facet's parent, the rings put back in order after */
+  save_rings(m, ne, nf, midv, pstart, plist);
   for (tds_id f = 0; f < nf; f++)
-    if (tds_alive(m->fflags, f)) split_facet(m, f, midv, e2);
+    if (tds_alive(m->fflags, f)) {
+      int32_t f0 = m->nf;
+      split_facet(m, f, midv, e2);
+      for (tds_id g = f0; g < m->nf; g++) par[g - nf] = f;
+    }
+  for (tds_id e = 0; e < ne; e++) {
+    if (pstart[e] == pstart[e + 1]) continue;
+    restore_ring(m, e, 0, plist, pstart[e], pstart[e + 1], nf, par);
+    if (e2[e] != TDS_NONE) restore_ring(m, e2[e], 1, plist, pstart[e], pstart[e + 1], nf, par);
+  }
   tds_free(&s->m.alloc, midv);
   tds_free(&s->m.alloc, e2);
+  tds_free(&s->m.alloc, pstart);
+  tds_free(&s->m.alloc, plist);
+  tds_free(&s->m.alloc, par);
   int bad = 0;
   for (tds_id v = nv0; v < m->nv; v++)
     if (tds_motion_enforce(s, v) != TDS_OK) bad++;

@@ -5,8 +5,8 @@
 # energies, volumes and coordinates to 1e-10 relative (printed with %.12g
 # and computed without iteration, so only the last digit may differ).
 # drops.fe's read section addloads itself three times (as Evolver's
-# addload_example.fe does, with the contact angle a parameter since tds has
-# no element attributes in constraint integrands) and moves each copy;
+# addload_example.fe does, with the contact angle a parameter; the example
+# itself, with an edge attribute, is in xattr.sh) and moves each copy;
 # cube.cmd addloads cube.fe into itself, replace_loads mound.fe and adds
 # cube.fe again.
 . "$(dirname "$0")/lib.sh"

@@ -13,6 +13,7 @@
 ** upper halves and the one from their lower halves agree to 1e-12
 ** relative (rounding of the same sums in another order).
 */
+#include "attr.h"
 #include "check.h"
 #include "datafile.h"
 #include "eval.h"
@@ -609,6 +610,78 @@ static void hess_knot_fd(void) {
   tds_surf_free(&s);
 }
 
+/* Element attributes in integrands and formulas (xattr.h): a drop on a
+** curved table whose curvature is a vertex attribute (the formula), with
+** a contact angle per edge (the constraint's energy integrand), a weight
+** per facet (an energy and a fixed quantity) and per edge (an edge
+** quantity), seeded random values. An attribute is a constant of its
+** element, so the checks are the usual ones: the Hessian against
+** differences of the gradient, and the reduced gradient and Hessian
+** against differences of the Lagrangian along real motions (the curved
+** formula's per-vertex Hessian enters through -mu Hess(phi)). */
+static void hess_attr(void) {
+  static const char text[] =
+      "define edge attribute ang real\n"
+      "define vertex attribute cv real\n"
+      "define facet attribute fw real\n"
+      "define edge attribute ew real\n"
+      "constraint 1 formula: x3 = cv*(x^2 + y^2)\n"
+      "energy: e1: cos(ang*pi/180)*y e2: 0 e3: 0\n"
+      "quantity fq energy method facet_scalar_integral global\n"
+      "scalar_integrand: fw*z^2\n"
+      "quantity eq energy method edge_vector_integral global\n"
+      "vector_integrand: q1: ew*y*z q2: 0 q3: ew*x\n"
+      "quantity vq fixed = 0 method facet_vector_integral global\n"
+      "vector_integrand: q1: 0 q2: 0 q3: (1 + fw)*z\n"
+      "vertices\n"
+      "1 0 0 0 constraint 1\n2 1 0 0 constraint 1\n3 1 1 0 constraint 1\n"
+      "4 0 1 0 constraint 1\n5 0 0 1\n6 1 0 1\n7 1 1 1\n8 0 1 1\n"
+      "edges\n1 1 2 constraint 1\n2 2 3 constraint 1\n3 3 4 constraint 1\n"
+      "4 4 1 constraint 1\n5 5 6\n6 6 7\n7 7 8\n8 8 5\n9 1 5\n10 2 6\n11 3 7\n12 4 8\n"
+      "faces\n1 1 10 -5 -9\n2 2 11 -6 -10\n3 3 12 -7 -11\n4 4 9 -8 -12\n5 5 6 7 8\n"
+      "bodies\n1 1 2 3 4 5 volume 1\n";
+  tds_ctx ctx;
+  tds_surf s;
+  h_setup(&ctx, &s);
+  REQUIRE_OK(&ctx, tds_datafile_load_buffer(&ctx, &s, "attr.fe", text, sizeof text - 1));
+  REQUIRE_OK(&ctx, tds_refine(&ctx, &s, NULL, NULL));
+  uint64_t st = 2024;
+  static const struct { int kind; const char *name; double lo, hi; } set[] = {
+      {TDS_EDGE, "ang", 60, 120}, {TDS_VERTEX, "cv", 0, 0.3},
+      {TDS_FACET, "fw", 0, 0.5}, {TDS_EDGE, "ew", 0, 0.2}};
+  for (int k = 0; k < 4; k++) {
+    tds_attr a;
+    if (!tds_attr_find(&s.m, set[k].kind, set[k].name, &a)) {
+      CHECK(0);
+      tds_surf_free(&s);
+      return;
+    }
+    int32_t n = set[k].kind == TDS_VERTEX ? s.m.nv : set[k].kind == TDS_EDGE ? s.m.ne : s.m.nf;
+    for (tds_id i = 0; i < n; i++) {
+      double v = h_uniform(&st, set[k].lo, set[k].hi);
+      CHECK_OK(&ctx, tds_attr_write(&ctx, &s, &a, i, &v, 1));
+    }
+  }
+  REQUIRE_OK(&ctx, tds_recalc(&ctx, &s)); /* onto the new curved tables */
+  REQUIRE_OK(&ctx, tds_surf_update(&ctx, &s));
+  s.quant[2].target = s.quant[2].value; /* vq held where it is */
+  REQUIRE_OK(&ctx, tds_iterate(&ctx, &s, 5));
+  REQUIRE_OK(&ctx, tds_pressures(&ctx, &s));
+  s.constraint_tol = 1e-14;
+  CHECK_FD(&ctx, &s, &ENERGY);
+  CHECK_FD(&ctx, &s, &LAGR);
+  CHECK_REDUCED(&ctx, &s);
+  /* the attributes are really read: other values, another energy */
+  double e0 = s.energy;
+  tds_attr a;
+  double v = 2;
+  CHECK(tds_attr_find(&s.m, TDS_FACET, "fw", &a));
+  CHECK_OK(&ctx, tds_attr_write(&ctx, &s, &a, 0, &v, 1));
+  REQUIRE_OK(&ctx, tds_surf_update(&ctx, &s));
+  CHECK(fabs(s.energy - e0) > 1e-6);
+  tds_surf_free(&s);
+}
+
 int main(void) {
   RUN(hess_flat_square);
   RUN(hess_tetra_fd);
@@ -628,6 +701,7 @@ int main(void) {
   RUN(hess_reduced_levelset);
   RUN(hess_reduced_catbody);
   RUN(hess_reduced_column);
+  RUN(hess_attr);
   RUN(hess_bad_input);
   return check_done();
 }

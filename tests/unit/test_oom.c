@@ -710,6 +710,16 @@ static void oom_pop_edges(void) {
   opcase c6 = {prism_path, 1, 0, 'F'};
   sweep(&c6);
 }
+/* Element attributes in formulas and integrands (xattr.h): their slots
+** are allocated as the expressions are compiled (load), and read by g
+** and refining. */
+static void oom_xattr(void) {
+  const char ops[] = {'L', 'g', 'r'};
+  for (size_t k = 0; k < 3 && !check_failed_; k++) {
+    opcase c = {"tests/datafile/good/xattr.fe", 0, 0, ops[k]};
+    sweep(&c);
+  }
+}
 static void oom_addload(void) {
   sweep_all('A', 1, 0);
   sweep_all('R', 0, 1);
@@ -777,6 +787,7 @@ int main(void) {
   RUN(oom_define);
   RUN(oom_pop_edges);
   RUN(oom_addload);
+  RUN(oom_xattr);
   RUN(oom_newton);
   RUN(oom_torus);
   RUN(oom_foam);
