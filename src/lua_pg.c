@@ -2,7 +2,7 @@
 **
 ** Raw primitives (lua/pg.lua gives them their user names):
 **   tds.pg{ iterations=, max=, nmax=, s=, plain=, depth=, flips=, every=,
-**           rtol=, threads=, newton=, probe= }                     -> result table
+**           rtol=, threads=, newton=, probe=, calm= }                     -> result table
 **   tds.quality()                          -> statistics table
 **   tds.curvature(mode [, value [, measure]]) -> statistics table with
 **                                             per-vertex values
@@ -72,6 +72,7 @@ static int l_pg(lua_State *L) {
     o.threads = (int)opt_int(L, 1, "threads", 1);
     o.newton = opt_bool(L, 1, "newton", 1);
     o.probe = opt_bool(L, 1, "probe", 1);
+    o.calm = opt_bool(L, 1, "calm", 1);
   }
   luaL_argcheck(L, o.threads >= 1 && o.threads <= 2, 1, "threads must be 1 or 2");
   luaL_argcheck(L, o.iterations >= 0, 1, "iterations must not be negative");
@@ -92,6 +93,8 @@ static int l_pg(lua_State *L) {
   setint(L, "clamps", r.clamps);
   setint(L, "restarts", r.restarts);
   setint(L, "newton_builds", r.newton_builds);
+  setint(L, "calms", r.calms);
+  setint(L, "cycles", r.cycles);
   setint(L, "probes", r.probes);
   setint(L, "saddles", r.saddles);
   setint(L, "reached", r.reached);

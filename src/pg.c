@@ -217,6 +217,7 @@ void tds_pg_defaults(tds_pg_opts *o) {
   o->flips = 1;
   o->newton = 1;
   o->probe = 1;
+  o->calm = 1;
 }
 
 static double mean_edge(const tds_mesh *m) {
@@ -326,6 +327,9 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   double rbest = INFINITY, ebest = 0, lbest = 0;
   int64_t best = 0, progress = 0, since_flip = 0;
   const int warm = 5; /* plain iterations after a flip before mixing */
+  const int64_t calm_len = 50; /* flip-free plain steps after a 2-cycle */
+  const int64_t calm_max = o->nmax; /* at most this long at a time */
+  int64_t calm_until = 0, calm_end = 0, cycles_seen = 0;
   pg_stepinfo si = {0};
   int64_t k;
   /* Non-convergence watch (TDS_PG_CYCLING): windows of 5 N_max
@@ -399,6 +403,25 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
     int32_t nf;
     rc = evaluate(ctx, s, &w, o->flips, sfac, &si, &nf);
     if (rc != TDS_OK) break;
+    /* Flip 2-cycles (doc/method.md, Termination): a quadrilateral flipped
+    ** back and forth twice. The mixing (and Newton's steps) carry its
+    ** corners across the Delaunay condition each way; plain steps until
+    ** no edge has flipped for calm_len iterations, then a fresh history. */
+    if (accel && o->calm && w.cycles > cycles_seen) {
+      if (!calm_until) {
+        res->calms++;
+        calm_end = k + calm_max;
+      }
+      calm_until = k + calm_len;
+    } else if (calm_until && nf) {
+      calm_until = k + calm_len;
+    }
+    if (calm_until > calm_end) calm_until = calm_end;
+    cycles_seen = w.cycles;
+    if (calm_until && k >= calm_until) {
+      calm_until = 0;
+      pg_accel_reset(&w.aa);
+    }
     if (nf) {
       res->flips += nf;
       since_flip = 0;
@@ -577,7 +600,7 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
         nt_next = k + 5 * nt_wait;
       }
     }
-    if (accel && since_flip >= warm && use_nt && !nt.lu && since_flip >= nt_wait &&
+    if (accel && !calm_until && since_flip >= warm && use_nt && !nt.lu && since_flip >= nt_wait &&
         k >= nt_next && nt.builds < nt_maxb && si.r > noise && si.r < nt_start) {
       pg_get_state(s, &w, w.aa.G);
       rc = pg_newton_build(ctx, s, &w, &nt, w.aa.X, sfac, 1e-7 * hbar);
@@ -590,7 +613,7 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
         nt_since = k;
       }
     }
-    if (accel && since_flip >= warm) {
+    if (accel && !calm_until && since_flip >= warm) {
       pg_get_state(s, &w, w.aa.G);
       int pre = 0; /* G holds the preconditioned image: set it */
       if (nt.lu) {
@@ -641,6 +664,7 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   res->threaded = w.threaded;
   res->cpu_seconds = cpu_now() - c0;
   res->newton_builds = nt.builds;
+  res->cycles = w.cycles;
   tds_free(&w.al, probe_x);
   pg_newton_free(&nt);
   pg_work_free(&w);

@@ -41,6 +41,10 @@ typedef struct tds_pg_opts {
   int probe;              /* 1: an accelerated run until converged checks
                              that its fixed point is stable under the plain
                              iteration before it stops (default); 0: no */
+  int calm;               /* 1: an accelerated run meeting a flip 2-cycle
+                             (a quadrilateral flipped back and forth
+                             twice) takes plain steps until the flips
+                             stop (default); 0: no */
 } tds_pg_opts;
 
 typedef struct tds_pg_result {
@@ -64,6 +68,8 @@ typedef struct tds_pg_result {
   int status;             /* how the run ended: TDS_PG_* below */
   int64_t window_flips;   /* TDS_PG_CYCLING: flips in the last windows */
   int64_t newton_builds;  /* Jacobians measured (Newton preconditioning) */
+  int64_t calms;          /* flip 2-cycles met with plain steps */
+  int64_t cycles;         /* flips that undid a flip back (2-cycles) */
   int64_t probes;         /* stability probes of a converged mesh */
   int64_t saddles;        /* probes that found it unstable (run went on) */
   double hysteresis;      /* flip hysteresis at the end: 1e-3, widened
@@ -85,7 +91,8 @@ enum { TDS_PG_COUNT = 0, TDS_PG_CONVERGED, TDS_PG_STALLED, TDS_PG_CYCLING,
        TDS_PG_MAX };
 
 /* Defaults: until converged, N_max 200, s = 2, accelerated (depth 20),
-** flips on, Newton preconditioning and the stability probe on. */
+** flips on, Newton preconditioning, the stability probe and the calm
+** after flip 2-cycles on. */
 void tds_pg_defaults(tds_pg_opts *o);
 
 /* Run the method. Allocates its work arrays once; the loop allocates

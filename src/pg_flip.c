@@ -42,6 +42,32 @@ void pg_flip_free(pgw *w) {
   w->queued = NULL;
 }
 
+static int same_pair(int32_t a, int32_t b, int32_t c, int32_t d) {
+  return (a == c && b == d) || (a == d && b == c);
+}
+
+/* Record the flip a-b -> c-d among the last 16; count it in w->cycles
+** when it undoes a flip that itself undid one (the quadrilateral went
+** a-b, c-d, a-b, c-d: a 2-cycle). */
+static void remember(pgw *w, int32_t a, int32_t b, int32_t c, int32_t d) {
+  int32_t back = 0;
+  for (int i = 0; i < 16; i++) {
+    const int32_t *r = w->recent[i];
+    if (r[0] != r[1] && same_pair(r[0], r[1], c, d) && same_pair(r[2], r[3], a, b)) {
+      back = r[4] + 1;
+      break;
+    }
+  }
+  if (back >= 2) w->cycles++;
+  int32_t *r = w->recent[w->recent_head];
+  r[0] = a;
+  r[1] = b;
+  r[2] = c;
+  r[3] = d;
+  r[4] = back;
+  w->recent_head = (w->recent_head + 1) % 16;
+}
+
 static int side_of(const tds_mesh *m, tds_id f, tds_id e) {
   for (int k = 0; k < 3; k++)
     if (TDS_OID(m->fe[f][k]) == e) return k;
@@ -119,6 +145,7 @@ int32_t pg_flip_pass(tds_surf *s, pgw *w) {
     tds_pairset_remove(&w->ps, a, b);
     tds_flip(s, e, f1, f2);
     tds_pairset_add(&w->ps, c, d);
+    remember(w, a, b, c, d);
     flips++;
     for (int k = 0; k < 3; k++) {
       tds_id q1 = TDS_OID(m->fe[f1][k]), q2 = TDS_OID(m->fe[f2][k]);

@@ -137,6 +137,11 @@ typedef struct pgw {
   tds_pairset ps;         /* the mesh's edges as vertex pairs */
   double flip_tol;        /* flip when sin(a + b) < -flip_tol */
   int32_t *stack, *cand, ncand;
+  int32_t recent[16][5];  /* the last flips: a, b (removed), c, d
+                             (created), and how many flips of that
+                             quadrilateral back and forth led to it */
+  int recent_head;
+  int64_t cycles;         /* flips that undid a flip back (2-cycles) */
   int32_t (*copp)[2];     /* per candidate: the two opposite facet sides */
   uint8_t *queued;
   uint64_t cand_gen;
