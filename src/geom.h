@@ -38,13 +38,14 @@ geom_area(const double a[3], const double b[3],
   return 0.5 * len;
 }
 
-/* Signed volume under the facet, Evolver's default content z k . dS:
-** V = (za + zb + zc)/3 * Nz/2. */
+/* Signed volume under the facet translated by tz along z (tz = 0: the
+** facet itself; the torus's lifted facets otherwise), Evolver's default
+** content z k . dS: V = (za + zb + zc + 3 tz)/3 * Nz/2. */
 static inline __attribute__((always_inline)) double
-geom_volume_z(const double a[3], const double b[3],
-              const double c[3], double g[3][3]) {
+geom_volume_zshift(const double a[3], const double b[3], const double c[3], double tz,
+                   double g[3][3]) {
   double Nz = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-  double zs = a[2] + b[2] + c[2];
+  double zs = a[2] + b[2] + c[2] + 3 * tz;
   if (g) {
     /* dNz/da = (b_y - c_y, c_x - b_x), cyclic. */
     const double *p[3] = {a, b, c};
@@ -58,23 +59,10 @@ geom_volume_z(const double a[3], const double b[3],
   return zs * Nz / 6;
 }
 
-/* geom_volume_z of the facet translated by tz along z (the torus's lifted
-** facets): only the sum of the z's changes, by 3 tz. */
 static inline __attribute__((always_inline)) double
-geom_volume_zshift(const double a[3], const double b[3], const double c[3], double tz,
-                   double g[3][3]) {
-  double Nz = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-  double zs = a[2] + b[2] + c[2] + 3 * tz;
-  if (g) {
-    const double *p[3] = {a, b, c};
-    for (int k = 0; k < 3; k++) {
-      const double *q = p[(k + 1) % 3], *r = p[(k + 2) % 3];
-      g[k][0] = zs / 6 * (q[1] - r[1]);
-      g[k][1] = zs / 6 * (r[0] - q[0]);
-      g[k][2] = Nz / 6;
-    }
-  }
-  return zs * Nz / 6;
+geom_volume_z(const double a[3], const double b[3],
+              const double c[3], double g[3][3]) {
+  return geom_volume_zshift(a, b, c, 0, g);
 }
 
 /* Signed volume of the cone from the origin, symmetric content
