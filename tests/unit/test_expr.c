@@ -11,7 +11,7 @@ static const double NOVARS[TDS_NVARS] = {0, 0, 0, 0, 0, 0};
 /* Compile s with flags (no parameters); NULL (and a failed check) on error. */
 static tds_expr *comp(const char *s, int flags) {
   tds_ctx ctx;
-  tds_expr_env env = {flags, NULL, NULL};
+  tds_expr_env env = {.flags = flags, NULL, NULL};
   tds_expr *e = NULL;
   tds_ctx_init(&ctx);
   int rc = tds_expr_parse(&ctx, s, NULL, &env, &e);
@@ -32,7 +32,7 @@ static double val(const char *s) {
 /* Parse expecting failure; returns the message in buf. */
 static int perr(const char *s, int flags, char *buf, size_t cap) {
   tds_ctx ctx;
-  tds_expr_env env = {flags, NULL, NULL};
+  tds_expr_env env = {.flags = flags, NULL, NULL};
   tds_expr *e = (tds_expr *)&ctx;   /* must be reset to NULL */
   tds_ctx_init(&ctx);
   int rc = tds_expr_parse(&ctx, s, NULL, &env, &e);
@@ -66,7 +66,7 @@ static int lookup2(void *ud, const char *name, size_t len) {
 static void fd_check(const char *s, int flags, const double *params,
                      const double x0[TDS_NVARS]) {
   tds_ctx ctx;
-  tds_expr_env env = {flags, lookup2, NULL};
+  tds_expr_env env = {.flags = flags, lookup2, NULL};
   tds_expr *e = NULL;
   tds_ctx_init(&ctx);
   if (tds_expr_parse(&ctx, s, NULL, &env, &e) != TDS_OK) {
@@ -301,7 +301,7 @@ static void test_derivatives(void) {
 
 static void test_params(void) {
   tds_ctx ctx;
-  tds_expr_env env = {0, lookup2, NULL};
+  tds_expr_env env = {.flags = 0, lookup2, NULL};
   tds_expr *e = NULL;
   tds_ctx_init(&ctx);
   CHECK(tds_expr_parse(&ctx, "ALPHA*x + wallt^2", NULL, &env, &e) == TDS_OK);
@@ -347,7 +347,7 @@ static void test_params(void) {
 /* Parse consecutive expressions from s in datafile mode; values into v. */
 static int parse_seq(const char *s, int flags, double *v, int max, size_t *rest) {
   tds_ctx ctx;
-  tds_expr_env env = {flags, lookup2, NULL};
+  tds_expr_env env = {.flags = flags, lookup2, NULL};
   double par[4] = {0, 0, 0, 2};
   double xv[TDS_NVARS] = {0, 3, 0, 0, 0, 0};
   size_t off = 0;
@@ -408,7 +408,7 @@ static void test_datafile(void) {
 
   /* consumed points at the first unused token; the text is trimmed */
   tds_ctx ctx;
-  tds_expr_env env = {D, NULL, NULL};
+  tds_expr_env env = {.flags = D, NULL, NULL};
   tds_expr *e = NULL;
   size_t used = 0;
   tds_ctx_init(&ctx);
@@ -533,7 +533,7 @@ static void test_robustness(void) {
     s[len] = 0;
     seed = seed * 1103515245u + 12345u;
     tds_ctx ctx;
-    tds_expr_env env = {(int)(seed >> 16) & 15, lookup2, NULL};
+    tds_expr_env env = {.flags = (int)(seed >> 16) & 15, lookup2, NULL};
     size_t used = 0;
     tds_ctx_init(&ctx);
     e = NULL;

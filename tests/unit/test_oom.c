@@ -381,8 +381,8 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
     tds_newton_opts no = {.normal = 1, .normal_one = 1};
     for (tds_id v = 0; v < s->m.nv; v++) {
       if (s->m.vflags[v] & TDS_DEAD) continue;
-      double n[3];
-      int rc = tds_vertex_normal_at(ctx, s, &no, v, n);
+      double nv3[3];
+      int rc = tds_vertex_normal_at(ctx, s, &no, v, nv3);
       if (rc != TDS_OK) return rc;
     }
     return TDS_OK;
