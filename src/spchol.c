@@ -183,9 +183,14 @@ int tds_spchol_solve_near(tds_ctx *ctx, tds_spchol *f, const tds_spmat *A, doubl
     memcpy(z, r, (size_t)n * sizeof *z);
     if ((rc = tds_spchol_solve(ctx, f, z)) != TDS_OK) return rc;
     double rz1 = dot(n, r, z);
-    double beta = it ? rz1 / rz : 0;
+    /* the first direction is z itself (p is not yet set) */
+    if (it) {
+      double beta = rz1 / rz;
+      for (int32_t i = 0; i < n; i++) p[i] = z[i] + beta * p[i];
+    } else {
+      memcpy(p, z, (size_t)n * sizeof *p);
+    }
     rz = rz1;
-    for (int32_t i = 0; i < n; i++) p[i] = z[i] + beta * p[i];
     double *Ap = z; /* z is free until the next iteration */
     tds_spmat_mulv(A, p, Ap);
     double pAp = dot(n, p, Ap);
