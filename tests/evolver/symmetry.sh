@@ -211,6 +211,20 @@ done
 # steps settle) and xyz (a band round z glued by a rotation about
 # (1,1,1): tds's hessian finds the volume gradient degenerate), whose
 # volumes are compared at load and after r only.
+# converged_body FE NAME: g 2000; hessian; hessian on FE in both programs;
+# NAME/converged-energy (1e-9), -volume (1e-10), -pressure (1e-6: Evolver's
+# pressure is its last step's multiplier).
+converged_body() {
+  ev=$(evolver_run "$1" 'g 2000; hessian; hessian; printf "E1 %.17g %.17g %.17g\n", total_energy, body[1].volume, body[1].pressure;')
+  set -- "$1" "$2" $(echo "$ev" | grab E1)
+  "$TDS" -q "$1" -e "
+dofile('$ROOT/tests/evolver/compare.lua')
+g(2000) hessian() hessian()
+same('$2/converged-energy', total_energy, $3, 1e-9)
+same('$2/converged-volume', body[1].volume, $4, 1e-10)
+report('$2/converged-pressure', math.abs(body[1].pressure - ($5)) <= 1e-6, body[1].pressure, $5)
+" 2>&1 || echo "FAIL $2: tds exited with an error"
+}
 for f in rotbody flipbody cubbody centralbody screwbody cubelatbody xyzbody; do
   sc "$tmp/$f.fe" "$tmp/${f}_sc0.fe"
   kcompare "symmetry/symmetric-content/$f/load" "$tmp/${f}_sc0.fe" 1e-12 "$SPRINT r; $SPRINT r; $SPRINT"
@@ -219,28 +233,12 @@ for f in rotbody flipbody cubbody centralbody screwbody cubelatbody xyzbody; do
   # the flip turns them over across the seam)
   v=$("$TDS" -q "$tmp/${f}_sc0.fe" -e "print(('%.17g'):format(1.05 * body[1].volume))" 2>/dev/null)
   sed "s/ volume [-0-9.e]*\$/ volume $v/" "$tmp/${f}_sc0.fe" > "$tmp/${f}_sc.fe"
-  ev=$(evolver_run "$tmp/${f}_sc.fe" 'g 2000; hessian; hessian; printf "E1 %.17g %.17g %.17g\n", total_energy, body[1].volume, body[1].pressure;')
-  set -- $(echo "$ev" | grab E1)
-  "$TDS" -q "$tmp/${f}_sc.fe" -e "
-dofile('$ROOT/tests/evolver/compare.lua')
-g(2000) hessian() hessian()
-same('symmetry/symmetric-content/$f/converged-energy', total_energy, $1, 1e-9)
-same('symmetry/symmetric-content/$f/converged-volume', body[1].volume, $2, 1e-10)
-report('symmetry/symmetric-content/$f/converged-pressure', math.abs(body[1].pressure - ($3)) <= 1e-6, body[1].pressure, $3)
-" 2>&1 | grep -v 'warning: inconsistent bodies'
+  converged_body "$tmp/${f}_sc.fe" "symmetry/symmetric-content/$f" | grep -v 'warning: inconsistent bodies'
 done
 for f in rotate flip_rotate central screw cubocta cubelat; do
   kcompare "symmetry/sector/$f/converged" "$tmp/$f.fe" 1e-10 'g 2000; hessian; hessian; printf "K3 %.15g\n", total_energy;'
 done
-ev=$(evolver_run "$tmp/rotbody.fe" 'g 2000; hessian; hessian; printf "E1 %.17g %.17g %.17g\n", total_energy, body[1].volume, body[1].pressure;')
-set -- $(echo "$ev" | grab E1)
-"$TDS" -q "$tmp/rotbody.fe" -e "
-dofile('$ROOT/tests/evolver/compare.lua')
-g(2000) hessian() hessian()
-same('symmetry/sector/rotbody/converged-energy', total_energy, $1, 1e-9)
-same('symmetry/sector/rotbody/converged-volume', body[1].volume, $2, 1e-10)
-report('symmetry/sector/rotbody/converged-pressure', math.abs(body[1].pressure - ($3)) <= 1e-6, body[1].pressure, $3)
-" 2>&1 || echo "FAIL symmetry/sector/rotbody: tds exited with an error"
+converged_body "$tmp/rotbody.fe" symmetry/sector/rotbody
 
 # quarter_turn: a tube round the z axis whose top meets the bottom's
 # quarter-turned copy (symmetry/helix.lua). Load: counts, energy 1e-12
