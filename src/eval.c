@@ -449,6 +449,8 @@ static int facet_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
   } else if (sym) {
     rc = assemble_k(ctx, s, out, TDS_EL_FACET, &ten, tds_mk_area, s_tension, &vol,
                     tds_mk_volume_sym, s_volume, 0);
+  } else if (lifts && !out->hess && tds_eval_torus_facets(s, out)) {
+    rc = TDS_OK; /* the same, specialised (eval_torus.c); ten, vol stay 0 */
   } else if (lifts) { /* each body's volume of the facet lifted (torus.h) */
     vol.ksink = 1;
     rc = assemble_k(ctx, s, out, TDS_EL_FACET, &ten, tds_mk_area, s_tension, &vol,

@@ -63,6 +63,13 @@ int tds_eval(tds_ctx *ctx, tds_surf *s, tds_eval_out *out);
 ** TDS_OK, TDS_ENUM (energy not finite), TDS_ERANGE. */
 int tds_eval_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int facet_core);
 
+/* The torus model's facet tension and lifted body volumes, without
+** Hessians (eval_torus.c), added to out and m.bvol as the general
+** assembly (eval.c) adds them, bit for bit; s->tlift must be current.
+** 1, or 0 (nothing done: no plan could be made, see there) when the
+** general assembly must do it. */
+int tds_eval_torus_facets(tds_surf *s, tds_eval_out *out);
+
 /* Add w * h (a kind-corner element Hessian, kind <= 3) at vertices vs to
 ** the accumulator's triplets (its upper or lower half). */
 void tds_eval_scatter_hess(tds_hess_acc *ha, const tds_id *vs, int kind, double w,

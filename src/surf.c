@@ -56,6 +56,7 @@ void tds_surf_free(tds_surf *s) {
   free_exprs(s->metric, 9);
   for (int i = 0; i < 3; i++) free_exprs(s->period_expr[i], 3);
   tds_free(&a, s->tlift);
+  tds_free(&a, s->tplan);
   tds_free(&a, s->read_text);
   tds_free(&a, s->orig_start);
   tds_free(&a, s->orig_facets);

@@ -145,6 +145,7 @@ typedef struct tds_surf {
                              body's facets one closed surface */
   int32_t tlift_cap;
   uint64_t tlift_gen;     /* topo_gen tlift was built for (0: never) */
+  struct tds_tplan *tplan; /* the wraps of the facet pass (eval_torus.c) */
 
   /* derived: facets of each declared face (CSR by forig), for bodies */
   int32_t *orig_start, *orig_facets;

@@ -183,6 +183,7 @@ int tds_torus_view(tds_ctx *ctx, const tds_surf *s, tds_surf *view) {
   view->tlift = NULL;
   view->tlift_cap = 0;
   view->tlift_gen = 0;
+  view->tplan = NULL;
   view->orig_start = view->orig_facets = NULL;
   view->orig_gen = 0;
   view->cg_dir = view->cg_prev = NULL;
@@ -199,6 +200,7 @@ void tds_torus_view_free(tds_surf *view) {
   tds_alloc a = view->m.alloc;
   tds_mesh_free(&view->m);
   tds_free(&a, view->tlift);
+  tds_free(&a, view->tplan);
   tds_free(&a, view->orig_start);
   tds_free(&a, view->orig_facets);
   tds_free(&a, view->cg_dir);

@@ -246,6 +246,85 @@ static void vertex_average_copies(void) {
   for (tds_id b = 0; b < 8; b++) CHECK_NEAR(v[1][b], v[0][b], 1e-13);
 }
 
+/* A Hessian accumulator that takes nothing: with it tds_eval runs the
+** general assembly (eval.c) instead of eval_torus.c's facet pass. */
+static void hess_none(tds_hess_acc *ha, const tds_id *vs, int kind, double w, double (*h)[9]) {
+  (void)ha, (void)vs, (void)kind, (void)w, (void)h;
+}
+
+/* Energy, area, volumes, the energy's gradient and the quantities'
+** gradients of eval_torus.c's facet pass and of the general assembly;
+** 1 when they are the same bits. */
+static int same_as_general(tds_ctx *ctx, tds_surf *s, tds_fixq *fq) {
+  tds_mesh *m = &s->m;
+  size_t nv = (size_t)m->nv, nb = (size_t)m->nb, ne = (size_t)fq->nent;
+  double (*g[2])[3], *vol[2], (*qg[2])[3], e[2], a[2];
+  tds_hess_acc ha = {.ew = 1, .add = hess_none};
+  for (int k = 0; k < 2; k++) {
+    g[k] = calloc(nv, sizeof *g[k]);
+    tds_eval_out out = {.grad = g[k], .fq = fq, .hess = k ? &ha : NULL};
+    CHECK(tds_eval(ctx, s, &out) == TDS_OK);
+    e[k] = out.energy;
+    a[k] = out.area;
+    vol[k] = malloc(nb * sizeof *vol[k]);
+    memcpy(vol[k], m->bvol, nb * sizeof *vol[k]);
+    qg[k] = malloc(ne * sizeof *qg[k]);
+    memcpy(qg[k], fq->g, ne * sizeof *qg[k]);
+  }
+  int same = e[0] == e[1] && a[0] == a[1] && !memcmp(vol[0], vol[1], nb * sizeof *vol[0]) &&
+             !memcmp(g[0], g[1], nv * sizeof *g[0]) && !memcmp(qg[0], qg[1], ne * sizeof *qg[0]);
+  for (int k = 0; k < 2; k++) free(g[k]), free(vol[k]), free(qg[k]);
+  return same;
+}
+
+/* eval_torus.c's facet pass gives the general assembly's numbers bit for
+** bit (it computes the same expressions in the same order): on phelanc
+** refined and jittered (seeded), with bodies holding volumes and bodies
+** with prescribed pressures, a facet left out of the volumes, a facet
+** with one body, without the entry map (the entries searched), and
+** after the vertices were scattered over so many cells that the pass's
+** table of wraps (255) overflows and the general assembly takes over. */
+static void facet_pass_exact(void) {
+  tds_ctx ctx;
+  tds_surf s;
+  h_setup(&ctx, &s);
+  REQUIRE_OK(&ctx, tds_datafile_load(&ctx, &s, EX "phelanc.fe"));
+  REQUIRE_OK(&ctx, tds_refine(&ctx, &s, NULL, NULL));
+  tds_mesh *m = &s.m;
+  uint64_t st = 17;
+  for (tds_id v = 0; v < m->nv; v++)
+    for (int i = 0; i < 3; i++) m->x[v][i] += h_uniform(&st, -0.01, 0.01);
+  for (tds_id b = 0; b < m->nb; b += 2) {
+    m->bflags[b] = (m->bflags[b] & ~TDS_TARGET) | TDS_PRESSURE;
+    m->bpressure[b] = h_uniform(&st, -2, 2);
+  }
+  m->fflags[5] |= TDS_NONCONTENT;
+  m->fb[9][1] = TDS_NONE;
+  m->topo_gen++;
+  m->coord_gen++;
+  REQUIRE_OK(&ctx, tds_mesh_adjacency(m));
+  tds_fixq fq = {0};
+  REQUIRE_OK(&ctx, tds_fixq_build(&ctx, &s, &fq));
+  CHECK(fq.nq > 0 && fq.emap_kind == TDS_EL_FACET);
+  CHECK(same_as_general(&ctx, &s, &fq));
+  int kind = fq.emap_kind;
+  fq.emap_kind = 0;
+  CHECK(same_as_general(&ctx, &s, &fq));
+  fq.emap_kind = kind;
+  tds_fixq_free(&fq);
+  for (tds_id v = 0; v < m->nv; v++) {
+    int k[3];
+    for (int i = 0; i < 3; i++) k[i] = (int)floor(h_uniform(&st, -6, 7));
+    REQUIRE_OK(&ctx, tds_torus_wrap_vertex(&ctx, &s, v, tds_wrap_pack(k)));
+  }
+  REQUIRE_OK(&ctx, tds_mesh_adjacency(m));
+  fq = (tds_fixq){0};
+  REQUIRE_OK(&ctx, tds_fixq_build(&ctx, &s, &fq));
+  CHECK(same_as_general(&ctx, &s, &fq));
+  tds_fixq_free(&fq);
+  tds_surf_free(&s);
+}
+
 int main(void) {
   RUN(wrap_packing);
   RUN(wrap_codes);
@@ -255,5 +334,6 @@ int main(void) {
   RUN(detorus_keeps_area);
   RUN(rewrap_into_cell);
   RUN(vertex_average_copies);
+  RUN(facet_pass_exact);
   return check_done();
 }
