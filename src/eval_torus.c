@@ -79,31 +79,58 @@ static int make_plan(tds_surf *s) {
   return 1;
 }
 
-/* One side of facet f: body bd, sign +-1, lift tz along z; corners x. */
+/* One side of facet f: body bd, sign +-1, lift tz along z. geom.h's
+** geom_volume_zshift written out on the facet's shared parts (zsum =
+** a_z + b_z + c_z, Nz, and per corner k dy[k], dx[k], the differences of
+** the next two corners' y and x), so that its gradient stays in
+** registers: through an array the scatter's loads straddled the
+** kernel's stores, which costs a stall each (a quarter of the pass). */
 static inline __attribute__((always_inline)) void
 side(tds_surf *s, tds_eval_out *out, const int32_t *emap, tds_id f, int j, tds_id bd,
-     double sign, double tz, const double *const x[3], double *vtotal) {
+     double sign, double tz, double zsum, double Nz, const double dy[3], const double dx[3],
+     double *vtotal) {
   tds_mesh *m = &s->m;
   tds_fixq *fq = out->fq;
   int32_t q = fq ? fq->bq[bd] : -1;
   int press = (m->bflags[bd] & TDS_PRESSURE) != 0;
-  double gv[3][3];
-  double V = geom_volume_zshift(x[0], x[1], x[2], tz, q >= 0 || (press && out->grad) ? gv : NULL);
+  double zs = zsum + 3 * tz;
+  double V = zs * Nz / 6;
   m->bvol[bd] += sign * V;
+  double w = press ? -sign * m->bpressure[bd] : 0;
+  if (press) *vtotal += w * V; /* the general loop's pressure sink: the same value */
+  if (!(q >= 0 || (press && out->grad))) return;
+  double zs6 = zs / 6, nz6 = Nz / 6;
+  double gx[3] = {zs6 * dy[0], zs6 * dy[1], zs6 * dy[2]};
+  double gy[3] = {zs6 * dx[0], zs6 * dx[1], zs6 * dx[2]};
   const tds_id *vs = m->fv[f];
-  if (q >= 0) {
+  if (q >= 0 && emap) { /* unrolled, so that nothing goes through memory */
+    const int32_t *mp = emap + 6 * f + 3 * j;
+    double *e0 = fq->g[mp[0]], *e1 = fq->g[mp[1]], *e2 = fq->g[mp[2]];
+    e0[0] += sign * gx[0], e0[1] += sign * gy[0], e0[2] += sign * nz6;
+    e1[0] += sign * gx[1], e1[1] += sign * gy[1], e1[2] += sign * nz6;
+    e2[0] += sign * gx[2], e2[1] += sign * gy[2], e2[2] += sign * nz6;
+  } else if (q >= 0) {
     for (int k = 0; k < 3; k++) {
-      double gc[3] = {sign * gv[k][0], sign * gv[k][1], sign * gv[k][2]};
-      if (emap) tds_fixq_add_at(fq, emap[6 * f + 3 * j + k], q, gc);
-      else tds_fixq_add(fq, vs[k], q, gc);
+      double gc[3] = {sign * gx[k], sign * gy[k], sign * nz6};
+      tds_fixq_add(fq, vs[k], q, gc);
     }
   }
-  if (press) { /* the general loop's pressure sink: another call, the same value */
-    double w = -sign * m->bpressure[bd];
-    *vtotal += w * V;
-    if (out->grad)
-      for (int k = 0; k < 3; k++) v3_axpy(out->grad[vs[k]], w, gv[k]);
+  for (int k = 0; press && out->grad && k < 3; k++) {
+    double gc[3] = {gx[k], gy[k], nz6};
+    v3_axpy(out->grad[vs[k]], w, gc);
   }
+}
+
+/* r += ten (d x n) / 2: a corner's part of geom_area's gradient, times
+** the tension, as v3_cross, v3_scale and v3_axpy compute it. */
+static inline __attribute__((always_inline)) void
+add_area_grad(double *r, double ten, const double d[3], const double n[3]) {
+  double x = d[1] * n[2] - d[2] * n[1];
+  double y = d[2] * n[0] - d[0] * n[2];
+  double z = d[0] * n[1] - d[1] * n[0];
+  r[0] += ten * (x * 0.5);
+  r[1] += ten * (y * 0.5);
+  r[2] += ten * (z * 0.5);
 }
 
 int tds_eval_torus_facets(tds_surf *s, tds_eval_out *out) {
@@ -134,18 +161,36 @@ int tds_eval_torus_facets(tds_surf *s, tds_eval_out *out) {
       y[1][j] = x1[j] + t1[j];
       y[2][j] = x2[j] + t2[j];
     }
-    const double *x[3] = {y[0], y[1], y[2]};
-    double g[3][3];
-    double A = geom_area(y[0], y[1], y[2], grad ? g : NULL);
+    double A;
     double ten = m->ften[f];
+    if (grad) { /* geom_area with its gradient, written out (see side()) */
+      double ab[3], ac[3], N[3], n[3] = {0, 0, 0}, d[3];
+      v3_sub(ab, y[1], y[0]);
+      v3_sub(ac, y[2], y[0]);
+      v3_cross(N, ab, ac);
+      double len = v3_norm(N);
+      if (len > 0) n[0] = N[0] / len, n[1] = N[1] / len, n[2] = N[2] / len;
+      A = 0.5 * len;
+      v3_sub(d, y[1], y[2]);
+      add_area_grad(grad[vs[0]], ten, d, n);
+      v3_sub(d, y[2], y[0]);
+      add_area_grad(grad[vs[1]], ten, d, n);
+      v3_sub(d, y[0], y[1]);
+      add_area_grad(grad[vs[2]], ten, d, n);
+    } else {
+      A = geom_area(y[0], y[1], y[2], NULL);
+    }
     tsum += A;
     ttotal += ten * A;
-    if (grad)
-      for (int k = 0; k < 3; k++) v3_axpy(grad[vs[k]], ten, g[k]);
     if (fl & TDS_NONCONTENT) continue;
+    /* geom_volume_zshift's parts that both sides share */
+    double zsum = y[0][2] + y[1][2] + y[2][2];
+    double Nz = (y[1][0] - y[0][0]) * (y[2][1] - y[0][1]) - (y[1][1] - y[0][1]) * (y[2][0] - y[0][0]);
+    double dy[3] = {y[1][1] - y[2][1], y[2][1] - y[0][1], y[0][1] - y[1][1]};
+    double dx[3] = {y[2][0] - y[1][0], y[0][0] - y[2][0], y[1][0] - y[0][0]};
     tds_id b0 = m->fb[f][0], b1 = m->fb[f][1];
-    if (b0 != TDS_NONE) side(s, out, emap, f, 0, b0, 1.0, T[cd[2]][2], x, &vtotal);
-    if (b1 != TDS_NONE) side(s, out, emap, f, 1, b1, -1.0, T[cd[3]][2], x, &vtotal);
+    if (b0 != TDS_NONE) side(s, out, emap, f, 0, b0, 1.0, T[cd[2]][2], zsum, Nz, dy, dx, &vtotal);
+    if (b1 != TDS_NONE) side(s, out, emap, f, 1, b1, -1.0, T[cd[3]][2], zsum, Nz, dy, dx, &vtotal);
   }
   out->energy += ttotal + vtotal;
   out->area += tsum;
