@@ -611,7 +611,11 @@ static int string_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int tensio
 static int edge_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
   int rc = TDS_OK;
   int anyten = 0;
-  for (tds_id e = 0; e < s->m.ne && !anyten; e++) anyten = s->m.eten[e] != 0;
+  /* in blocks without a branch per edge (vectorised): foams have none */
+  for (tds_id e0 = 0; e0 < s->m.ne && !anyten; e0 += 256) {
+    tds_id e1 = s->m.ne - e0 > 256 ? e0 + 256 : s->m.ne;
+    for (tds_id e = e0; e < e1; e++) anyten |= s->m.eten[e] != 0;
+  }
   if (anyten && s->metric_on) /* METRIC: lengths in the metric */
     rc = energy_term(ctx, s, out, make(s, TDS_M_METRIC_LENGTH, s_edge_tension, s->metric, 0));
   else if (anyten && s->str) /* string_terms: fused with the cells' areas */

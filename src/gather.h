@@ -105,9 +105,10 @@ tds_torus_shift(const tds_mesh *m, const double *x, double sg, int32_t w, double
   if (!w) return x;
   int k[3];
   tds_wrap_unpack(w, k);
-  for (int j = 0; j < 3; j++)
-    out[j] = x[j] + sg * (k[0] * m->period[0][j] + k[1] * m->period[1][j] +
-                          k[2] * m->period[2][j]);
+  const double(*p)[3] = m->period; /* written out: see tds_wrap_vec */
+  out[0] = x[0] + sg * (k[0] * p[0][0] + k[1] * p[1][0] + k[2] * p[2][0]);
+  out[1] = x[1] + sg * (k[0] * p[0][1] + k[1] * p[1][1] + k[2] * p[2][1]);
+  out[2] = x[2] + sg * (k[0] * p[0][2] + k[1] * p[1][2] + k[2] * p[2][2]);
   return out;
 }
 

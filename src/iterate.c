@@ -745,10 +745,12 @@ int tds_iterate(tds_ctx *ctx, tds_surf *s, int n) {
                 "in 10 projections\n");
       w.unconverged = 0;
     }
-    if (!warned) { /* once per command, and not again for the same facet */
+    /* once per command, and not again for the same facet; the scan only
+    ** when the quick pass cannot rule a degenerate facet out */
+    int collapsed = tds_stall_collapsed(s, w.slope, s->energy);
+    if (!warned && (collapsed || !tds_stall_clear(s))) {
       tds_stall_out so;
       tds_stall_scan(s, &so);
-      int collapsed = tds_stall_collapsed(s, w.slope, s->energy);
       if (so.degenerate || collapsed) {
         warned = 1;
         if (s->stall_facet != tds_stall_facet(&so) + 1) {

@@ -21,10 +21,6 @@ double tds_facet_min_angle(const tds_mesh *m, tds_id f) {
   return mn * 180 / TDS_PI;
 }
 
-int tds_facet_measured(const tds_mesh *m, tds_id f) {
-  return !(m->fflags[f] & (TDS_DEAD | TDS_FIXED)) && m->ften[f] != 0;
-}
-
 void tds_quality(const tds_surf *s, tds_quality_out *q) {
   const tds_mesh *m = &s->m;
   double sum = 0, sum2 = 0, mn = INFINITY;

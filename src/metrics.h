@@ -31,8 +31,11 @@ typedef struct tds_quality_out {
 /* Smallest interior angle of facet f, in degrees (0 if degenerate). */
 double tds_facet_min_angle(const tds_mesh *m, tds_id f);
 
-/* Nonzero when facet f counts in the quality statistics. */
-int tds_facet_measured(const tds_mesh *m, tds_id f);
+/* Nonzero when facet f counts in the quality statistics (inline: the
+** stall scan asks for every facet after each step of g). */
+static inline int tds_facet_measured(const tds_mesh *m, tds_id f) {
+  return !(m->fflags[f] & (TDS_DEAD | TDS_FIXED)) && m->ften[f] != 0;
+}
 
 /* Quality statistics over the measured facets. */
 void tds_quality(const tds_surf *s, tds_quality_out *q);

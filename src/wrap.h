@@ -55,12 +55,16 @@ static inline int tds_wrap_overflows(int32_t a, int32_t b) {
   return 0;
 }
 
-/* d = the translation of wrap w: sum of k[i] period[i]. */
+/* d = the translation of wrap w: sum of k[i] period[i]. Written out, not
+** a loop: gcc -O2 keeps a loop of three, storing d one by one, and the
+** caller's vectorised code then loads d in pairs, each load straddling two
+** stores (a store-forwarding stall, some 15 cycles). */
 static inline void tds_wrap_vec(const double (*period)[3], int32_t w, double d[3]) {
   int k[3];
   tds_wrap_unpack(w, k);
-  for (int j = 0; j < 3; j++)
-    d[j] = k[0] * period[0][j] + k[1] * period[1][j] + k[2] * period[2][j];
+  d[0] = k[0] * period[0][0] + k[1] * period[1][0] + k[2] * period[2][0];
+  d[1] = k[0] * period[0][1] + k[1] * period[1][1] + k[2] * period[2][1];
+  d[2] = k[0] * period[0][2] + k[1] * period[1][2] + k[2] * period[2][2];
 }
 
 #endif

@@ -203,8 +203,42 @@ static void stall_scan(void) {
   tds_surf_free(&s);
 }
 
+/* tds_stall_clear, the quick pass before the scan, never clears a
+** surface the scan finds degenerate, and clears one whose smallest angle
+** and area are clear of the tolerances (by 1e-5 and a factor 2: its
+** margin is 1e-6, and its area test uses the mean of the squared areas):
+** the jittered grid, then 300 seeded placements of vertex (1,1) on the
+** line through (0.5, 0) at angles of 1e-4 to 1e-2 degrees from the x
+** axis, which gives facet 0 that smallest angle. */
+static void stall_clear(void) {
+  tds_ctx ctx;
+  tds_surf s;
+  h_setup(&ctx, &s);
+  REQUIRE_OK(&ctx, h_grid(&ctx, &s, 6, 0.3, 7));
+  tds_mesh *m = &s.m;
+  CHECK(tds_stall_clear(&s));
+  uint64_t st = 21;
+  int n[2] = {0, 0};
+  tds_id v = 1 + 7 * 1;
+  for (int t = 0; t < 300; t++) {
+    double deg = pow(10, h_uniform(&st, -4, -2)), r = h_uniform(&st, 0.1, 0.45);
+    m->x[v][0] = 0.5 + r * cos(deg * TDS_PI / 180);
+    m->x[v][1] = r * sin(deg * TDS_PI / 180);
+    m->coord_gen++;
+    tds_stall_out o;
+    tds_stall_scan(&s, &o);
+    int clear = tds_stall_clear(&s);
+    n[clear]++;
+    CHECK(!clear || !o.degenerate);
+    if (o.angle > 1e-3 * (1 + 1e-5) && o.tiny_area > 2e-9 * o.mean_area) CHECK(clear);
+  }
+  CHECK(n[0] > 50 && n[1] > 50);
+  tds_surf_free(&s);
+}
+
 int main(void) {
   RUN(stall_scan);
+  RUN(stall_clear);
   RUN(cube_g5);
   RUN(cube_interrupt);
   RUN(cube_fixed_scale);
