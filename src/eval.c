@@ -611,10 +611,18 @@ static int string_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int tensio
 static int edge_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
   int rc = TDS_OK;
   int anyten = 0;
-  /* in blocks without a branch per edge (vectorised): foams have none */
+  /* in blocks without a branch per edge, on the bits (so that it
+  ** vectorises): x != 0 exactly when x's bits other than the sign are not
+  ** all 0 (NaN included). Foams have no edge tension: every edge is read */
   for (tds_id e0 = 0; e0 < s->m.ne && !anyten; e0 += 256) {
     tds_id e1 = s->m.ne - e0 > 256 ? e0 + 256 : s->m.ne;
-    for (tds_id e = e0; e < e1; e++) anyten |= s->m.eten[e] != 0;
+    uint64_t any = 0;
+    for (tds_id e = e0; e < e1; e++) {
+      uint64_t u;
+      memcpy(&u, &s->m.eten[e], sizeof u);
+      any |= u << 1;
+    }
+    anyten = any != 0;
   }
   if (anyten && s->metric_on) /* METRIC: lengths in the metric */
     rc = energy_term(ctx, s, out, make(s, TDS_M_METRIC_LENGTH, s_edge_tension, s->metric, 0));

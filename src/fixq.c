@@ -25,6 +25,7 @@ void tds_fixq_free(tds_fixq *fq) {
   tds_free(&a, fq->target);
   tds_free(&a, fq->mult);
   tds_free(&a, fq->gram);
+  tds_free(&a, fq->gpair);
   tds_free(&a, fq->start);
   tds_free(&a, fq->eq);
   tds_free(&a, fq->g);
@@ -213,12 +214,41 @@ int tds_dense_solve(int n, double *A, double *b) {
   return 0;
 }
 
+/* fq->gpair; 0 without memory. */
+static int gram_pairs(tds_fixq *fq) {
+  int64_t n = 0;
+  for (int32_t v = 0; v < fq->nv; v++)
+    for (int32_t i = fq->start[v]; i < fq->start[v + 1]; i++)
+      for (int32_t j = fq->start[v]; j < fq->start[v + 1]; j++) n += fq->eq[i] >= fq->eq[j];
+  fq->gpair = tds_malloc(&fq->alloc, (size_t)(n > 0 ? n : 1) * sizeof *fq->gpair);
+  if (!fq->gpair) return 0;
+  fq->ngpair = n;
+  n = 0;
+  for (int32_t v = 0; v < fq->nv; v++)
+    for (int32_t i = fq->start[v]; i < fq->start[v + 1]; i++)
+      for (int32_t j = fq->start[v]; j < fq->start[v + 1]; j++)
+        if (fq->eq[i] >= fq->eq[j]) {
+          fq->gpair[n][0] = i;
+          fq->gpair[n][1] = j;
+          fq->gpair[n++][2] = fq->eq[i] * fq->nq + fq->eq[j];
+        }
+  return 1;
+}
+
 /* Assemble the Gram matrix of the entry gradients into fq->gram; with
 ** `lower` only the entries (q, r) with q >= r (the others are then
 ** undefined; each is the same sum in the same order as its mirror). */
 static void gram(tds_fixq *fq, int lower) {
   int32_t nq = fq->nq;
   memset(fq->gram, 0, (size_t)nq * (size_t)nq * sizeof *fq->gram);
+  if (lower && (fq->gpair || gram_pairs(fq))) { /* the same sums, without the search */
+    const int32_t(*p)[3] = (const int32_t(*)[3])fq->gpair;
+    for (int64_t k = 0; k < fq->ngpair; k++) {
+      const double *a = fq->g[p[k][0]], *b = fq->g[p[k][1]];
+      fq->gram[p[k][2]] += a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    }
+    return;
+  }
   for (int32_t v = 0; v < fq->nv; v++)
     for (int32_t i = fq->start[v]; i < fq->start[v + 1]; i++)
       for (int32_t j = fq->start[v]; j < fq->start[v + 1]; j++)

@@ -29,6 +29,12 @@ typedef struct tds_fixq {
   double *mult;         /* scratch: multipliers of the last solve */
   double *gram;         /* nq*nq, scratch; NULL when nq > TDS_FIXQ_DENSE_MAX
                            (then the Gram matrix is sparse: fixq.c) */
+  int32_t (*gpair)[3];  /* the dense Gram matrix's entry pairs (fixq.c's
+                           gram, lower triangle): entries i, j and the
+                           index in gram, in the order the vertices list
+                           them; made at the first use (NULL: not yet, or
+                           no memory: then the pairs are searched) */
+  int64_t ngpair;
   int32_t nv;           /* vertex slots covered by the pattern */
   int32_t *start;       /* per-vertex entry range, nv + 1 */
   int32_t *eq;          /* entry -> q */
