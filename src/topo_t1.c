@@ -43,6 +43,10 @@ static tds_id conn_edge(const tds_mesh *m, const tds_id *conn, int nc, tds_id p,
 
 #define MAXF 256
 
+static tds_id far_end(const tds_mesh *m, tds_id e, tds_id v) {
+  return m->ev[e][0] == v ? m->ev[e][1] : m->ev[e][0];
+}
+
 /* The live facets at v into fl (at most MAXF), each its own label in lab
 ** (for joining into fans); their count, or -1 when there are more. */
 static int star_facets(const tds_mesh *m, tds_id v, tds_id *fl, int *lab) {
@@ -58,11 +62,14 @@ static int star_facets(const tds_mesh *m, tds_id v, tds_id *fl, int *lab) {
 }
 
 /* Expand vertex v: triple edge te[i] goes to new vertex tv[i]; conn are
-** the edges among new vertices. TDS_OK, or TDS_ETOPO when the star is
-** not fans bounded by two listed triple edges each. Room for nt new edges
-** and facets must be reserved. */
+** the edges among new vertices. A fan whose two ends go to different new
+** vertices follows the end met first (the other with flip), or with
+** axis given the end counterclockwise after the other about axis (right-
+** hand rule), so that the fans all turn one way. TDS_OK, or TDS_ETOPO
+** when the star is not fans bounded by two listed triple edges each.
+** Room for nt new edges and facets must be reserved. */
 static int expand(tds_mesh *m, tds_id v, int nt, const tds_id *te, const tds_id *tv,
-                  const tds_id *conn, int nc, int flip) {
+                  const tds_id *conn, int nc, int flip, const double *axis) {
   tds_id fl[MAXF];
   int lab[MAXF], nf = star_facets(m, v, fl, lab);
   if (nf < 0) return TDS_ETOPO;
@@ -101,6 +108,19 @@ static int expand(tds_mesh *m, tds_id v, int nt, const tds_id *te, const tds_id 
     }
   for (int i = 0; i < nf; i++)
     if (lab[i] == i && (endx[i] < 0 || endy[i] < 0)) return TDS_ETOPO;
+  for (int i = 0; axis && i < nf; i++) {
+    if (lab[i] != i || tv[endx[i]] == tv[endy[i]]) continue;
+    double px[3], py[3], c[3];
+    v3_sub(px, m->x[far_end(m, te[endx[i]], v)], m->x[v]);
+    v3_sub(py, m->x[far_end(m, te[endy[i]], v)], m->x[v]);
+    v3_cross(c, px, py);
+    if (v3_dot(c, axis) > 0) { /* y is counterclockwise after x */
+      int t = endx[i];
+      endx[i] = endy[i], endy[i] = t;
+      t = xfacet[i];
+      xfacet[i] = yfacet[i], yfacet[i] = t;
+    }
+  }
   for (int i = 0; i < nf; i++) {
     int r = lab[i];
     if (tv[endx[r]] != tv[endy[r]] &&
@@ -185,10 +205,6 @@ static int free_vertex(const tds_surf *s, tds_id v) {
   const tds_mesh *m = &s->m;
   return !(m->vflags[v] & TDS_FIXED) && !(m->vcon[v] & ~tds_surf_global_cons(s)) &&
          m->vbdry[v] == TDS_NONE;
-}
-
-static tds_id far_end(const tds_mesh *m, tds_id e, tds_id v) {
-  return m->ev[e][0] == v ? m->ev[e][1] : m->ev[e][0];
 }
 
 /* Bodies on the facets around edge e contain b? */
@@ -304,15 +320,15 @@ static int edge_to_tri(tds_surf *s, tds_id e, int dry) {
   v3_copy(xa, m->x[a]);
   v3_copy(xb, m->x[b]);
   v3_sub(dab, xa, xb);
-  double len = v3_norm(dab);
   if (tds_mesh_room(m, TDS_VERTEX, m->nv + 3) || tds_mesh_room(m, TDS_EDGE, m->ne + 12) ||
       tds_mesh_room(m, TDS_FACET, m->nf + 8))
     return TDS_ENOMEM;
   int r = tds_collapse_edge(s, e);
   if (r <= 0) return r < 0 ? TDS_ENOMEM : 0;
   tds_id v = tds_alive(m->vflags, a) ? a : b;
-  /* each wall's two triple edges at v go to one new vertex, a quarter
-  ** of the edge's length from the collapse point toward their far ends */
+  /* each wall's two triple edges at v go to one new vertex, a third of
+  ** the way from the collapse point to the midpoint of their far ends
+  ** (as Evolver's, to 1e-10 on a five-bubble cluster) */
   tds_id p[3], te[6], tv[6], conn[3];
   for (int k = 0; k < 3; k++) {
     te[2 * k] = triple_to(m, v, fa[k]);
@@ -321,16 +337,18 @@ static int edge_to_tri(tds_surf *s, tds_id e, int dry) {
     p[k] = tds_mesh_add_vertex(m, m->x[v]);
     m->vcon[p[k]] = m->vcon[v];
     tv[2 * k] = tv[2 * k + 1] = p[k];
-    double dir[3], q[3];
+    double q[3];
     v3_add(q, m->x[fa[k]], m->x[fb[k]]);
     v3_scale(q, 0.5);
-    v3_sub(dir, q, m->x[v]);
-    double dn = v3_norm(dir);
-    if (dn > 0) v3_scale(dir, 0.25 * len / dn);
-    v3_add(m->x[p[k]], m->x[v], dir);
+    for (int i = 0; i < 3; i++) m->x[p[k]][i] = m->x[v][i] + (q[i] - m->x[v][i]) / 3;
   }
   for (int k = 0; k < 3; k++) conn[k] = tds_mesh_add_edge(m, p[k], p[(k + 1) % 3]);
-  int rc = expand(m, v, 6, te, tv, conn, 3, 0);
+  /* each film between two triple edges at one end follows the corner
+  ** counterclockwise after the other about the old edge a -> b (as
+  ** Evolver's on the cluster and on twelve seeded prisms) */
+  double axis[3];
+  v3_sub(axis, xb, xa);
+  int rc = expand(m, v, 6, te, tv, conn, 3, 0, axis);
   if (rc != TDS_OK) return rc;
   int32_t t3[3] = {TDS_OREF(conn[0], 0), TDS_OREF(conn[1], 0), TDS_OREF(conn[2], 0)};
   tds_id T = tds_mesh_add_facet(m, t3);
@@ -429,7 +447,7 @@ static int tri_to_edge(tds_surf *s, tds_id f, int dry) {
     tv[nt++] = hd ? a : b;
   }
   if (nt != 6) return TDS_ETOPO;
-  int rc = expand(m, v, 6, te, tv, &ab, 1, 0);
+  int rc = expand(m, v, 6, te, tv, &ab, 1, 0, NULL);
   if (rc != TDS_OK) return rc;
   tds_motion_enforce(s, a);
   tds_motion_enforce(s, b);
@@ -622,7 +640,7 @@ int tds_pop_prism(tds_surf *s, tds_id v, int to_face) {
   tds_id conn[3];
   int nc = to_face ? 3 : 1;
   for (int k = 0; k < nc; k++) conn[k] = tds_mesh_add_edge(m, nw[k], nw[(k + 1) % nn]);
-  int rc = expand(m, v, 6, t, tv, conn, nc, to_face); /* as Evolver triangulates */
+  int rc = expand(m, v, 6, t, tv, conn, nc, to_face, NULL); /* as Evolver triangulates */
   if (rc != TDS_OK) return -rc;
   if (to_face) {
     int32_t t3[3] = {TDS_OREF(conn[0], 0), TDS_OREF(conn[1], 0), TDS_OREF(conn[2], 0)};
