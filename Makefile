@@ -14,9 +14,10 @@ CFLAGS_ALL = -std=c11 $(OPT) -g $(WARN) -D_POSIX_C_SOURCE=200809L $(SAN) $(CFLAG
 # pg's passes use OpenMP (la_chol.c only to turn CHOLMOD's off); the
 # program and unit tests link its runtime.
 OMP_SRC := src/pg.c src/pg_pass.c src/la_chol.c
-# The assembly loop (eval.c) at -O3 when the build is -O2: 20-28% faster
-# evaluations on the periodic foam bench (doc/performance.md); the same
-# floating-point results (no -ffast-math; ISO C contracts no a*b+c).
+# The assembly loop (eval.c, and the torus's facet pass eval_torus.c) at
+# -O3 when the build is -O2: 20-28% faster evaluations on the periodic foam
+# bench (doc/performance.md); the same floating-point results (no
+# -ffast-math; ISO C contracts no a*b+c).
 O3_SRC := src/eval.c src/eval_torus.c
 O3 = $(if $(and $(filter $(O3_SRC),$1),$(filter -O2,$(OPT))),-O3)
 # Evaluated when a recipe runs, so after `deps` has installed pkg-config/Lua.
