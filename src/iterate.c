@@ -280,12 +280,13 @@ static int restore_evolver(tds_ctx *ctx, tds_surf *s, work *w) {
   tds_fixq *fq = &w->fq;
   size_t nb = (size_t)fq->nent * sizeof *fq->g;
   double prev = INFINITY;
+  memcpy(fq->g, w->g0, nb); /* the moves go along the start's gradients */
   for (int k = 0;; k++) {
-    tds_eval_out out = {.fq = fq};
+    tds_eval_out out = {0}; /* values only: the gradients stay g0 */
     if (tds_eval(ctx, s, &out) != TDS_OK) return -1;
+    tds_fixq_values(s, fq);
     s->energy = out.energy;
     s->area = out.area;
-    memcpy(fq->g, w->g0, nb); /* the evaluation put the gradients here */
     double off = evolver_off(fq);
     if (!isfinite(off) || !isfinite(s->energy)) return -1;
     if (k > 0 && !(off < prev)) { /* the moves diverge (a long trial): project */
