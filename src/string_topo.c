@@ -25,6 +25,7 @@
 
 #include "gather.h"
 #include "snap.h"
+#include "torus.h"
 #include "vec3.h"
 
 #define MAXSTAR 64 /* edges at one vertex considered */
@@ -208,7 +209,7 @@ static int other_two(const tds_mesh *m, tds_id v, tds_id e, int32_t out[2]) {
   return n == 2;
 }
 
-static int t1_once(tds_surf *s, tds_id e) {
+static int t1_once(tds_ctx *ctx, tds_surf *s, tds_id e) {
   tds_mesh *m = &s->m;
   tds_strings *st = s->str;
   if (!tds_alive(m->eflags, e) || (m->eflags[e] & TDS_FIXED) || m->econ[e] ||
@@ -254,6 +255,12 @@ static int t1_once(tds_surf *s, tds_id e) {
       break;
     }
   }
+  /* the torus: h moves to the copy that e reaches (wrap_vertex keeps the
+  ** surface), so e has no wrap and its two ends, their new places and the
+  ** reconnected edges are all in t's frame */
+  if (m->ewrap && m->ewrap[e]) {
+    if (tds_mesh_rotates(m) || tds_torus_wrap_vertex(ctx, s, h, m->ewrap[e]) != TDS_OK) return 0;
+  }
   double mid[3], perp[3] = {-d[1], d[0], 0};
   for (int i = 0; i < 3; i++) mid[i] = (m->x[t][i] + m->x[h][i]) / 2;
   for (int i = 0; i < 2; i++) {
@@ -291,7 +298,7 @@ static int t1_all(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nflip)
     for (tds_id e = 0; e < ne; e++) {
       if (sel && !sel[e]) continue;
       if (tds_mesh_adjacency(m) != TDS_OK) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
-      if (!t1_once(s, e)) continue;
+      if (!t1_once(ctx, s, e)) continue;
       if (t1_cells(s->str, m, e) != TDS_OK) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
       count++;
     }
