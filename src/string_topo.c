@@ -341,6 +341,13 @@ static int crosscut(tds_ctx *ctx, tds_surf *s, tds_id f, tds_id tv, tds_id hv, t
   if (!oe) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   tds_id e = tds_mesh_add_edge(m, tv, hv);
   m->eten[e] = 0;
+  /* the torus: the new edge reaches hv where the cell's edges from tv do
+  ** (the product of their wraps), so both new loops still close */
+  if (m->ewrap) {
+    int32_t w = 0;
+    for (int32_t q = i; q != j; q = (q + 1) % n) w = tds_wrap_mul(m, w, tds_oe_wrap(m, st->oe[a + q]));
+    m->ewrap[e] = w;
+  }
   int32_t k = 0;
   for (tds_id g = 0; g < st->nf; g++) {
     int32_t b0 = st->start[g], b1 = st->start[g + 1];
