@@ -171,13 +171,13 @@ static int pop_all(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npopp
 
 int tds_strings_pop_raw(tds_ctx *ctx, tds_surf *s, int32_t *npopped) {
   if (npopped) *npopped = 0;
-  if (!s->str) return tds_seterr(ctx, TDS_ERANGE, "works in the string model only (STRING)");
+  if (!s->str) return tds_seterr(ctx, TDS_ERANGE, "string pop works in the string model only (STRING)");
   return pop_all(ctx, s, NULL, npopped);
 }
 
 int tds_strings_pop(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npopped) {
   if (npopped) *npopped = 0;
-  if (!s->str) return tds_seterr(ctx, TDS_ERANGE, "works in the string model only (STRING)");
+  if (!s->str) return tds_seterr(ctx, TDS_ERANGE, "tds.string_pop works in the string model only (STRING)");
   tds_snap sn;
   int rc = tds_snap_take(ctx, s, &sn);
   if (rc != TDS_OK) return rc;
@@ -308,7 +308,7 @@ static int t1_all(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nflip)
 
 int tds_strings_t1(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nflip) {
   if (nflip) *nflip = 0;
-  if (!s->str) return tds_seterr(ctx, TDS_ERANGE, "works in the string model only (STRING)");
+  if (!s->str) return tds_seterr(ctx, TDS_ERANGE, "t1_edgeswap (tds.string_t1) works in the string model only (STRING)");
   tds_snap sn;
   int rc = tds_snap_take(ctx, s, &sn);
   if (rc != TDS_OK) return rc;
