@@ -334,6 +334,10 @@ static int edgeswap(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
 }
 
 int tds_edgeswap(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  if (n) *n = 0;
+  if (s->str)
+    return tds_seterr(ctx, TDS_ERANGE, "edgeswap works on soap films only, not in the string "
+                      "model (its T1 is t1_edgeswap)");
   if (s->m.torus) return tds_torus_unsupported(ctx, "edgeswap");
   return tds_snap_run(ctx, s, edgeswap, sel, n);
 }
