@@ -234,6 +234,41 @@ static tds_id common_body(const tds_mesh *m, const tds_id *t) {
   return found;
 }
 
+/* The other edge of facet f at vertex v than g. */
+static tds_id other_at(const tds_mesh *m, tds_id f, tds_id v, tds_id g) {
+  for (int k = 0; k < 3; k++) {
+    tds_id h = TDS_OID(m->fe[f][k]);
+    if (h != g && (m->ev[h][0] == v || m->ev[h][1] == v)) return h;
+  }
+  return TDS_NONE;
+}
+
+/* The wall of facet f (on edge e at v) runs through v's valence-2 edges
+** to a triple edge: that edge, or TDS_NONE (a loop, or another valence). */
+static tds_id wall_end(const tds_mesh *m, tds_id v, tds_id e, tds_id f) {
+  for (int steps = 0; steps <= MAXF; steps++) {
+    tds_id g = other_at(m, f, v, e);
+    if (g == TDS_NONE) return TDS_NONE;
+    int val = tds_edge_valence(m, g);
+    if (val == 3) return g;
+    if (val != 2) return TDS_NONE;
+    int32_t sd = m->eside[g];
+    tds_id f2 = sd / 3;
+    f = f2 == f ? m->side_next[sd] / 3 : f2;
+    e = g;
+  }
+  return TDS_NONE;
+}
+
+/* The triple edge joining v and w, or TDS_NONE. */
+static tds_id triple_to(const tds_mesh *m, tds_id v, tds_id w) {
+  for (tds_id e = 0; e < m->ne; e++)
+    if (tds_alive(m->eflags, e) && far_end(m, e, v) == w && (m->ev[e][0] == v || m->ev[e][1] == v) &&
+        tds_edge_valence(m, e) == 3)
+      return e;
+  return TDS_NONE;
+}
+
 /* One edge to a triangle; 1 done, 0 not applicable, <0 error code. */
 static int edge_to_tri(tds_surf *s, tds_id e, int dry) {
   tds_mesh *m = &s->m;
@@ -247,7 +282,24 @@ static int edge_to_tri(tds_surf *s, tds_id e, int dry) {
     for (int j = 0; j < 3; j++)
       if (far_end(m, ta[i], a) == far_end(m, tb[j], b)) return 0;
   tds_id D = common_body(m, ta), E = common_body(m, tb);
-  if (D == -2 || E == -2 || D == E) return 0;
+  /* a film with no bodies (both sides none) pops as Evolver's does */
+  if (D == -2 || E == -2 || (D == E && D != TDS_NONE)) return 0;
+  /* the three walls on e: each joins a triple edge at a to one at b (by
+  ** their far ends, which the collapse keeps) */
+  tds_id fa[3], fb[3];
+  int nw = 0;
+  int32_t h0 = m->eside[e], sd = h0;
+  do {
+    tds_id f = sd / 3, ga = wall_end(m, a, e, f), gb = wall_end(m, b, e, f);
+    if (ga == TDS_NONE || gb == TDS_NONE) return 0;
+    fa[nw] = far_end(m, ga, a);
+    fb[nw] = far_end(m, gb, b);
+    for (int j = 0; j < nw; j++)
+      if (fa[j] == fa[nw] || fb[j] == fb[nw]) return 0;
+    nw++;
+    sd = m->side_next[sd];
+  } while (sd != h0 && nw < 3);
+  if (sd != h0) return 0;
   if (dry) return 1;
   double xa[3], xb[3], dab[3];
   v3_copy(xa, m->x[a]);
@@ -260,42 +312,18 @@ static int edge_to_tri(tds_surf *s, tds_id e, int dry) {
   int r = tds_collapse_edge(s, e);
   if (r <= 0) return r < 0 ? TDS_ENOMEM : 0;
   tds_id v = tds_alive(m->vflags, a) ? a : b;
-  /* The six triple edges at v now (merges may have renamed some): D's
-  ** side and E's side, each D-side one paired with the E-side one whose
-  ** walls hold the same two other bodies (a wall W_k of the old edge). */
-  tds_id td[3], tE[3];
-  int nd = 0, ne = 0;
-  for (tds_id d = 0; d < m->ne; d++) {
-    if (!tds_alive(m->eflags, d) || (m->ev[d][0] != v && m->ev[d][1] != v)) continue;
-    if (tds_edge_valence(m, d) != 3) continue;
-    int hd = around_has(m, d, D), he = around_has(m, d, E);
-    if (hd && !he && nd < 3) td[nd++] = d;
-    else if (he && !hd && ne < 3) tE[ne++] = d;
-    else return TDS_ETOPO;
-  }
-  if (nd != 3 || ne != 3) return TDS_ETOPO;
+  /* each wall's two triple edges at v go to one new vertex, a quarter
+  ** of the edge's length from the collapse point toward their far ends */
   tds_id p[3], te[6], tv[6], conn[3];
-  int used[3] = {0, 0, 0};
   for (int k = 0; k < 3; k++) {
-    tds_id bs[8];
-    int nb = bodies_around(m, td[k], bs), best = -1;
-    for (int j = 0; j < 3 && best < 0; j++) {
-      if (used[j]) continue;
-      int common = 0;
-      for (int z = 0; z < nb; z++) common += bs[z] != D && around_has(m, tE[j], bs[z]);
-      if (common == 2) best = j;
-    }
-    if (best < 0) return TDS_ETOPO;
-    used[best] = 1;
-    /* the new vertex toward the far ends of the pair, a quarter of the
-    ** edge's length from the collapse point */
+    te[2 * k] = triple_to(m, v, fa[k]);
+    te[2 * k + 1] = triple_to(m, v, fb[k]);
+    if (te[2 * k] == TDS_NONE || te[2 * k + 1] == TDS_NONE) return TDS_ETOPO;
     p[k] = tds_mesh_add_vertex(m, m->x[v]);
     m->vcon[p[k]] = m->vcon[v];
-    te[2 * k] = td[k];
-    te[2 * k + 1] = tE[best];
     tv[2 * k] = tv[2 * k + 1] = p[k];
     double dir[3], q[3];
-    v3_add(q, m->x[far_end(m, td[k], v)], m->x[far_end(m, tE[best], v)]);
+    v3_add(q, m->x[fa[k]], m->x[fb[k]]);
     v3_scale(q, 0.5);
     v3_sub(dir, q, m->x[v]);
     double dn = v3_norm(dir);
