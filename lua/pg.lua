@@ -41,7 +41,8 @@ projected_gradient = pg
 -- smallest angle now) nor the mean smallest angle down by more than
 -- max_loss degrees (default 1.5), each round followed by plain pg with no tangential
 -- step (s = 0, no flips) to restore the normal equilibrium and the volumes.
--- Returns { phi0, phi, moved, iterations, r, r_relative, converged }.
+-- Returns { phi0, phi, moved, iterations, r, r_relative, converged,
+-- cpu_seconds }.
 local POLISH_KEYS = { rounds = "number", steps = "number", min_angle = "number",
   max_loss = "number", max = "number" }
 function pg_polish(o)
@@ -61,6 +62,7 @@ function pg_polish(o)
   if floor ~= floor then floor = 0 end
   local mfloor = q.mean == q.mean and q.mean - (o.max_loss or 1.5) or 0
   local out = { iterations = 0, converged = true }
+  local c0 = os.clock()
   for round = 1, rounds do
     local p0, p1, n = tds.pg_polish(steps, floor, mfloor)
     if round == 1 then out.phi0 = p0 end
@@ -75,6 +77,7 @@ function pg_polish(o)
     if not r.converged then break end
   end
   if rounds == 0 then out.phi0, out.phi, out.moved = tds.pg_polish(0, floor, mfloor) end
+  out.cpu_seconds = os.clock() - c0
   return out
 end
 

@@ -211,6 +211,7 @@ function C.run(exp)
       -- polished mesh's; its plain s = 0 iterations are counted apart
       local p = pg_polish{}
       res.polish_iterations = p.iterations
+      res.polish_cpu = p.cpu_seconds
       res.r = p.r
     end
   end
@@ -235,7 +236,10 @@ function C.run(exp)
     "energy=" .. fmt(total_energy),
   }
   if res.reached then out[#out + 1] = "reached=" .. fmt(res.reached) end
-  if res.polish_iterations then out[#out + 1] = "polish_iters=" .. fmt(res.polish_iterations) end
+  if res.polish_iterations then
+    out[#out + 1] = "polish_iters=" .. fmt(res.polish_iterations)
+    out[#out + 1] = "polish_cpu=" .. fmt(res.polish_cpu)
+  end
   if res.status then out[#out + 1] = "status=" .. res.status end
   if res.newton_builds then out[#out + 1] = "builds=" .. fmt(res.newton_builds) end
   print(table.concat(out, " "))
