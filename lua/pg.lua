@@ -39,7 +39,7 @@ projected_gradient = pg
 -- that make |grad V_i| equal Meyer's mixed area at every vertex, never
 -- taking a facet's smallest angle below min_angle (default: the mesh's
 -- smallest angle now) nor the mean smallest angle down by more than
--- max_loss degrees (default 1.5), each round followed by plain pg with no tangential
+-- max_loss degrees (default 1), each round followed by plain pg with no tangential
 -- step (s = 0, no flips) to restore the normal equilibrium and the volumes.
 -- Returns { phi0, phi, moved, iterations, r, r_relative, converged,
 -- cpu_seconds }.
@@ -60,7 +60,7 @@ function pg_polish(o)
   local q = tds.quality()
   local floor = o.min_angle or q.min
   if floor ~= floor then floor = 0 end
-  local mfloor = q.mean == q.mean and q.mean - (o.max_loss or 1.5) or 0
+  local mfloor = q.mean == q.mean and q.mean - (o.max_loss or 1) or 0
   local out = { iterations = 0, converged = true }
   local c0 = os.clock()
   for round = 1, rounds do
