@@ -45,6 +45,27 @@ projected_gradient = pg
 -- cpu_seconds }.
 local POLISH_KEYS = { rounds = "number", steps = "number", min_angle = "number",
   max_loss = "number", max = "number" }
+local function polish_rounds(rounds, steps, floor, mfloor, max)
+  local out = { iterations = 0, converged = true }
+  local c0 = os.clock()
+  for round = 1, rounds do
+    local p0, p1, n = tds.pg_polish(steps, floor, mfloor)
+    if round == 1 then out.phi0 = p0 end
+    out.phi, out.moved = p1, n
+    -- Anderson mixing without Newton's preconditioning: with no
+    -- tangential step the map's tangential modes are null, and the
+    -- measured Jacobian is singular
+    local r = tds.pg { s = 0, newton = false, probe = false, flips = false,
+                       every = -1, max = max or 20000 }
+    out.iterations = out.iterations + r.iterations
+    out.r, out.r_relative, out.converged = r.r, r.r_relative, r.converged
+    if not r.converged then break end
+  end
+  if rounds == 0 then out.phi0, out.phi, out.moved = tds.pg_polish(0, floor, mfloor) end
+  out.cpu_seconds = os.clock() - c0
+  return out
+end
+
 function pg_polish(o)
   o = o or {}
   if type(o) ~= "table" then error("pg_polish{ rounds =, steps =, min_angle =, max = } expected", 2) end
@@ -61,25 +82,19 @@ function pg_polish(o)
   local floor = o.min_angle or q.min
   if floor ~= floor then floor = 0 end
   local mfloor = q.mean == q.mean and q.mean - (o.max_loss or 1) or 0
-  local out = { iterations = 0, converged = true }
-  local c0 = os.clock()
-  for round = 1, rounds do
-    local p0, p1, n = tds.pg_polish(steps, floor, mfloor)
-    if round == 1 then out.phi0 = p0 end
-    out.phi, out.moved = p1, n
-    -- Anderson mixing without Newton's preconditioning: with no
-    -- tangential step the map's tangential modes are null, and the
-    -- measured Jacobian is singular
-    local r = tds.pg { s = 0, newton = false, probe = false, flips = false,
-                       every = -1, max = o.max or 20000 }
-    out.iterations = out.iterations + r.iterations
-    out.r, out.r_relative, out.converged = r.r, r.r_relative, r.converged
-    if not r.converged then break end
+  -- all or nothing: a round whose pg fails puts the surface back as it was
+  local snap = tds.check_snapshot()
+  local ok, out = pcall(function()
+    return polish_rounds(rounds, steps, floor, mfloor, o.max)
+  end)
+  if not ok then
+    tds.check_restore(snap)
+    error(out, 0)
   end
-  if rounds == 0 then out.phi0, out.phi, out.moved = tds.pg_polish(0, floor, mfloor) end
-  out.cpu_seconds = os.clock() - c0
+  tds.check_release(snap)
   return out
 end
+
 
 local function pct(x) return ("%5.1f%%"):format(x) end
 
