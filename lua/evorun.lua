@@ -1116,7 +1116,7 @@ local UNSUPPORTED = {}
 for w in ([[J e A a b f k p Q W y Z z s P D F H h X
   hessian_menu
   dirichlet dirichlet_seek sobolev sobolev_seek
-  pop_quad_to_quad t1_edgeswap raw_vertex_average
+  t1_edgeswap raw_vertex_average
   rawest_vertex_average rawv rawestv
   edge_merge facet_merge facet_crosscut zoom
   logfile keylogfile history pause subcommand breakpoint whereami flush_counts
@@ -1288,6 +1288,9 @@ function E.oncollection(name, kind, list)
   elseif name == "pop_tri_to_edge" then
     if kind ~= "facet" then fail("pop_tri_to_edge needs facets") end
     tds.pop_tri_to_edge(list)
+  elseif name == "pop_quad_to_quad" then
+    if kind ~= "facet" then fail("pop_quad_to_quad needs facets") end
+    tds.pop_quad_to_quad(list)
   elseif name == "dissolve" then
     if #list > 0 then tds.dissolve(list) end
   elseif name == "reverse_orientation" then

@@ -144,6 +144,15 @@ int tds_pop_edge_to_tri(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *
 ** edge across, joining the two bodies' sides. *n: facets transformed. */
 int tds_pop_tri_to_edge(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
 
+/* pop_quad_to_quad (sel over facets; topo_quad.c): the film of each
+** selected facet, between two bodies and bounded by four triple edges
+** whose corners are free tetrahedral points, becomes the quadrilateral
+** across, between the two bodies beyond its long sides (Evolver's rules,
+** described in topo_quad.c). Facets without a triple edge are skipped
+** silently; others that do not fit are skipped with a line saying why
+** (for a selection). *n: quadrilaterals popped. */
+int tds_pop_quad_to_quad(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
+
 /* renumber_all (topo_renumber.c): the live elements of each kind get ids
 ** 1, 2, ... in their present order, every reference following; dead slots
 ** are dropped. *n: elements whose id changed. Refused in the string model
