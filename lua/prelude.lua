@@ -405,6 +405,9 @@ area_normalization = gtoggle("area_normalization", "Area normalization")
 -- prism frame (doc/commands.md); turning one on turns the other off.
 pop_to_edge = gtoggle("pop_to_edge", "pop_to_edge")
 pop_to_face = gtoggle("pop_to_face", "pop_to_face")
+-- pop_enjoin(on): o widens two cones meeting at a vertex into a neck
+-- instead of splitting them (doc/commands.md).
+pop_enjoin = gtoggle("pop_enjoin", "pop_enjoin")
 
 -- recalc(): after assigning parameters, put boundary vertices where their
 -- parameters say and constrained vertices back on their constraints (g, r

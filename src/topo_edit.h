@@ -117,6 +117,13 @@ int tds_pop_one_edge(tds_surf *s, tds_id e, int32_t *npulled);
 ** all or nothing; the two counts in *nedges, *nverts. */
 int tds_pop(tds_ctx *ctx, tds_surf *s, int32_t *nedges, int32_t *nverts);
 
+/* Widen vertex v, where two cones of facets meet, into a neck (Evolver's
+** pop_enjoin; topo_popneck.c). fl[0..nf-1] are v's facets, lab their
+** cone labels (lab[0] one cone). *done 0 when the cones do not fit (edges
+** at v of other than two facets, rims of different lengths): nothing
+** changed then. TDS_OK or TDS_ENOMEM. Needs the mesh adjacency. */
+int tds_pop_neck(tds_surf *s, tds_id v, const tds_id *fl, const int *lab, int nf, int *done);
+
 /* The same without a snapshot (for autopop inside g, which has one). */
 int tds_pop_raw(tds_ctx *ctx, tds_surf *s, int32_t *nedges, int32_t *nverts);
 
