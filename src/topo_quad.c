@@ -372,7 +372,7 @@ static int pop_quad(tds_surf *s, quad *q) {
     if (nt != 4) return -TDS_ETOPO;
     te[4] = LN, tv[4] = nw[h];
     te[5] = L, tv[5] = v;
-    int rc = tds_t1_expand(m, v, 6, te, tv, &conn[h], 1, 0, nw[h]);
+    int rc = tds_t1_expand(m, v, 6, te, tv, &conn[h], 1, 0, NULL, nw[h]);
     if (rc != TDS_OK) return -rc;
   }
   /* the new quadrilateral: (T, H_N, T_N) and (H, H_N, T) */

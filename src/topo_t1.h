@@ -9,13 +9,14 @@
 ** or v itself, which then stays); conn are the edges among them. The fans
 ** of facets at v (joined through its edges not listed in te) follow the
 ** vertex of one of their two bounding triple edges: the first found, the
-** other with flip, and `follow` when it is one of the two (TDS_NONE: no
-** preference); a fan whose ends part gains a facet (P, u, Q) on the edge
+** other with flip, `follow` when it is one of the two (TDS_NONE: no
+** preference), or, with axis given, the end counterclockwise after the
+** other about axis; a fan whose ends part gains a facet (P, u, Q) on the edge
 ** P-Q, u the far end of the triple edge at Q. TDS_OK, or TDS_ETOPO when
 ** the star is not fans bounded by two listed triple edges each (nothing
 ** changed then). Room for nt new edges and facets must be reserved. */
 int tds_t1_expand(tds_mesh *m, tds_id v, int nt, const tds_id *te, const tds_id *tv,
-                  const tds_id *conn, int nc, int flip, tds_id follow);
+                  const tds_id *conn, int nc, int flip, const double *axis, tds_id follow);
 
 /* The triple edges at v other than `not` into t3 (up to 4), when v is a
 ** tetrahedral point: four triple edges, every other edge of valence 2. */
