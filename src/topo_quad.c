@@ -356,18 +356,17 @@ static int pop_quad(tds_surf *s, quad *q) {
     /* H: old -> new; T: new -> old (Evolver's) */
     conn[h] = h == 0 ? tds_mesh_add_edge(m, v, nw[h]) : tds_mesh_add_edge(m, nw[h], v);
     tds_edge_inherit(m, conn[h], L);
+    /* the triple edges leaving v (found again: the collapses may have
+    ** merged some of them into edges of the films they bounded) */
     tds_id te[6], tv[6];
     int nt = 0;
-    for (int i = 0; i < 4; i++) {
-      tds_id c0 = q->corner[i];
-      (void)c0;
-      for (int j = 0; j < 2; j++) {
-        tds_id e = q->rad[i][j];
-        if (m->ev[e][0] != v && m->ev[e][1] != v) continue;
-        if (nt == 4) return -TDS_ETOPO;
-        te[nt] = e;
-        tv[nt++] = j == nside ? nw[h] : v;
-      }
+    for (tds_id e = 0; e < m->ne; e++) {
+      if (!tds_alive(m->eflags, e) || e == L || e == LN || e == conn[h]) continue;
+      if ((m->ev[e][0] != v && m->ev[e][1] != v) || tds_edge_valence(m, e) != 3) continue;
+      int ha = tds_t1_around_has(m, e, q->A), hb = tds_t1_around_has(m, e, q->B);
+      if (ha == hb || nt == 4) return -TDS_ETOPO;
+      te[nt] = e;
+      tv[nt++] = (hb ? 1 : 0) == nside ? nw[h] : v;
     }
     if (nt != 4) return -TDS_ETOPO;
     te[4] = LN, tv[4] = nw[h];
