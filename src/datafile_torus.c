@@ -222,7 +222,12 @@ int df_torus_finish(df *d) {
               "space): their volumes are not exact\n", d->name, bad);
   if (s->m.nb > 0) {
     int rc = tds_surf_update(d->ctx, s);
-    if (rc) return rc;
+    if (rc) { /* the whole file's (huge coordinates: an infinite energy) */
+      char msg[sizeof d->ctx->errmsg];
+      memcpy(msg, d->ctx->errmsg, sizeof msg);
+      msg[sizeof msg - 1] = 0;
+      return tds_seterr(d->ctx, rc, "%s: %.900s", d->name, msg);
+    }
     tds_torus_settle(s);
   }
   return TDS_OK;

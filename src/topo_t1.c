@@ -14,6 +14,7 @@
 ** skipped with the surface as before. */
 #include "torus.h"
 #include "topo_edit.h"
+#include "string_model.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -355,7 +356,9 @@ static int edge_to_tri(tds_surf *s, tds_id e, int dry) {
   v3_sub(axis, xb, xa);
   int rc = tds_t1_expand(m, v, 6, te, tv, conn, 3, 0, axis, TDS_NONE);
   if (rc != TDS_OK) return rc;
-  int32_t t3[3] = {TDS_OREF(conn[0], 0), TDS_OREF(conn[1], 0), TDS_OREF(conn[2], 0)};
+  /* the loop starts at the corner of the second wall (Evolver's, which
+  ** pop_tri_to_edge then collapses from its first edge) */
+  int32_t t3[3] = {TDS_OREF(conn[1], 0), TDS_OREF(conn[2], 0), TDS_OREF(conn[0], 0)};
   tds_id T = tds_mesh_add_facet(m, t3);
   double n[3], u1[3], u2[3];
   v3_sub(u1, m->x[p[1]], m->x[p[0]]);
@@ -404,13 +407,8 @@ static int tri_to_edge(tds_surf *s, tds_id f, int dry) {
                      far_end(m, x[i], pv[i]) == far_end(m, y[j], pv[j])))
         return 0;
   if (dry) return 1;
-  double c[3] = {0, 0, 0}, nrm[3], u1[3], u2[3];
-  for (int k = 0; k < 3; k++) v3_add(c, c, m->x[pv[k]]);
-  v3_scale(c, 1.0 / 3);
-  v3_sub(u1, m->x[pv[1]], m->x[pv[0]]);
-  v3_sub(u2, m->x[pv[2]], m->x[pv[0]]);
-  v3_cross(nrm, u1, u2);
-  double size = sqrt(v3_norm(nrm));
+  double cd[3] = {0, 0, 0}; /* the centroid of the far ends on D's side */
+  for (int k = 0; k < 3; k++) v3_axpy(cd, 1.0 / 3, m->x[far_end(m, x[k], pv[k])]);
   if (tds_mesh_room(m, TDS_VERTEX, m->nv + 2) || tds_mesh_room(m, TDS_EDGE, m->ne + 6) ||
       tds_mesh_room(m, TDS_FACET, m->nf + 6))
     return TDS_ENOMEM;
@@ -431,14 +429,17 @@ static int tri_to_edge(tds_surf *s, tds_id f, int dry) {
   tds_id v = TDS_NONE;
   for (int k = 0; k < 3; k++)
     if (tds_alive(m->vflags, pv[k])) v = pv[k];
-  v3_copy(m->x[v], c);
-  /* the new edge a-b across, a on the D side */
-  v3_scale(nrm, 0.5 * size / v3_norm(nrm));
+  /* As Evolver's (to 1e-10 on a five-bubble cluster): v is where the
+  ** two collapses left it, half way from the triangle's third corner to
+  ** the midpoint of its first edge; the new edge runs from b to a, a on
+  ** D's side a quarter of the way to cd and b opposite it through v. */
   double xa[3], xb[3];
-  v3_add(xa, c, nrm);
-  v3_sub(xb, c, nrm);
+  for (int i = 0; i < 3; i++) {
+    xa[i] = m->x[v][i] + (cd[i] - m->x[v][i]) / 4;
+    xb[i] = 2 * m->x[v][i] - xa[i];
+  }
   tds_id a = tds_mesh_add_vertex(m, xa), b = tds_mesh_add_vertex(m, xb);
-  tds_id ab = tds_mesh_add_edge(m, a, b);
+  tds_id ab = tds_mesh_add_edge(m, b, a);
   /* the triple edges at v now (merges may have renamed some): D's side
   ** goes to a, E's to b */
   tds_id te[6], tv[6];
@@ -497,11 +498,15 @@ static int run(tds_ctx *ctx, tds_surf *s, int kind, const uint8_t *sel, one_fn f
 }
 
 int tds_pop_edge_to_tri(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  if (n) *n = 0;
+  if (s->str) return tds_string_unsupported(ctx, "pop_edge_to_tri");
   if (s->m.torus) return tds_torus_unsupported(ctx, "pop_edge_to_tri");
   return run(ctx, s, TDS_EDGE, sel, edge_to_tri, n);
 }
 
 int tds_pop_tri_to_edge(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  if (n) *n = 0;
+  if (s->str) return tds_string_unsupported(ctx, "pop_tri_to_edge");
   if (s->m.torus) return tds_torus_unsupported(ctx, "pop_tri_to_edge");
   return run(ctx, s, TDS_FACET, sel, tri_to_edge, n);
 }
