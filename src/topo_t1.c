@@ -453,7 +453,8 @@ static int tri_to_edge(tds_surf *s, tds_id f, int dry) {
     tv[nt++] = hd ? a : b;
   }
   if (nt != 6) return TDS_ETOPO;
-  int rc = tds_t1_expand(m, v, 6, te, tv, &ab, 1, 0, NULL, TDS_NONE);
+  /* the films beside the new edge all follow b, as Evolver's (a gets gap facets) */
+  int rc = tds_t1_expand(m, v, 6, te, tv, &ab, 1, 0, NULL, b);
   if (rc != TDS_OK) return rc;
   tds_motion_enforce(s, a);
   tds_motion_enforce(s, b);
