@@ -201,6 +201,25 @@ for f in rotate flip_rotate cubelat; do
   evolver_dump "symmetry/sector/$f" "$f.ev" "$tmp/$f.fe" "r"
   kcompare "symmetry/sector/$f/evolver-dump-in-tds" "$tmp/$f.ev.dmp" 1e-12 "$SPRINT"
 done
+# V under the groups that rotate: Evolver 2.70 sums the facets' area
+# vectors (the normal V removes from a move) each where the facet's first
+# corner sees it, not turned into the moving vertex's frame (measured:
+# with that, V matches it on every vertex to rounding); tds does the same.
+# On the sectors (smooth, rough, flipped, with a body, screw, cubocta):
+# V; V and (but with the body, whose held volume g's steps treat apart)
+# V; g 5; V from the file, and V; V on Evolver's dump after r:
+# every vertex's position and the energy, 1e-12 (the same sums). Not
+# compared: Evolver's own r; V in one session, whose refined facets it
+# gathers from other corners than its dump of the same state says
+# (measured: that dump, read back by Evolver, gives tds's V to 1e-15).
+VPRINT='printf "K1 %.15g\n", total_energy; foreach vertex vv do printf "K4 %d %.15g %.15g %.15g\n", vv.id, vv.x, vv.y, vv.z;'
+for f in rotate roughrot flip_rotate rotbody screw cubocta; do
+  kcompare "symmetry/sector/$f/V" "$tmp/$f.fe" 1e-12 "V; V; $VPRINT"
+  [ $f = rotbody ] || kcompare "symmetry/sector/$f/VgV" "$tmp/$f.fe" 1e-12 "m 0.05; V; g 5; V; $VPRINT"
+  evolver_dump "symmetry/sector/$f" "$f.rv" "$tmp/$f.fe" "r"
+  kcompare "symmetry/sector/$f/r-dump-V" "$tmp/$f.rv.dmp" 1e-12 "V; V; $VPRINT"
+done
+
 # SYMMETRIC_CONTENT (volumes as the flux of (x,y,z)/3) under every group
 # but quarter_turn (below) and torus (further below): a sector of the
 # band as one body. Load, r, r: counts, energy, the volume (1e-12: the
