@@ -69,7 +69,14 @@ function E.all(kind)
   return list
 end
 
-function E.live(h) return true end
+-- Is h (a handle, reversed or not) still an element? Loops skip the
+-- elements an earlier command in the loop deleted, as Evolver's do.
+local function idof(h) return h.id end
+function E.live(h)
+  if getmetatable(h) == REV then h = h.h end
+  if not ishandle(h) then return true end
+  return (pcall(idof, h))
+end
 
 -- Adjacency of the current mesh, built in one pass when a generator
 -- needs it and dropped whenever the topology may have changed (E.touch:

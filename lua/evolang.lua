@@ -496,7 +496,7 @@ function P:generator()
       arr = "E.all(" .. q(kind) .. ")"
     end
   elseif t.t == "name" and self:lookup(t.s) and self:lookup(t.s).kind then
-    base = self:lookup(t.s).lua
+    base, kind = self:lookup(t.s).lua, self:lookup(t.s).kind
   else
     self:err("expected an element generator (vertex, edge, facet, body), found " .. self:desc(t), t)
   end

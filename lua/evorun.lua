@@ -1271,7 +1271,7 @@ function E.oncollection(name, kind, list)
   for i, x in ipairs(list) do list[i] = E.unwrap(x) end
   if name == "refine" then
     if kind ~= "edge" then fail("refine " .. kind .. ": not supported yet (refine edges)") end
-    tds.refine(list)
+    tds.edge_divide(list) -- each edge splits its facets in two, as Evolver's
   elseif name == "equiangulate" then
     if kind ~= "edge" then fail("equiangulate needs edges") end
     tds.equiangulate(list)

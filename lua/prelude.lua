@@ -299,7 +299,12 @@ function t(len) return tds.edgeweed(need(len, "edge length", "t(len)")) end
 edgeweed = t
 function w(area) return tds.areaweed(need(area, "facet area", "w(area)")) end
 areaweed = w
-function l(len) return tds.edge_divide(need(len, "edge length", "l(len)")) end
+-- l(len), or l(set): split those edges, each splitting its facets in two
+function l(x)
+  local k = type(x)
+  if k == "number" or k == "table" or k == "userdata" or k == "function" then return tds.edge_divide(x) end
+  need(x, "edge length", "l(len)")
+end
 edge_divide = l
 function K(angle) return tds.skinny(need(angle, "angle", "K(angle)")) end
 function n(angle) return tds.notch(need(angle, "angle", "n(angle)")) end

@@ -40,9 +40,12 @@ static int l_edgeweed(lua_State *L) {
 static int l_areaweed(lua_State *L) {
   return cut(L, tds_areaweed, "facet area", "Skinny triangles weeded: %d\n");
 }
-/* tds.edge_divide(len) -> edges split */
+/* tds.edge_divide(len | edges) -> edges split (the set: Evolver's
+** `refine edges`, printed as it prints it) */
 static int l_edge_divide(lua_State *L) {
-  return cut(L, tds_edge_divide, "edge length", "New edges: %d\n");
+  if (lua_type(L, 1) == LUA_TNUMBER || lua_isnoneornil(L, 1))
+    return cut(L, tds_edge_divide, "edge length", "New edges: %d\n");
+  return on_set(L, TDS_EDGE, tds_edge_divide_set, "Edges refined: %d\n");
 }
 /* tds.skinny(angle) -> edges split */
 static int l_skinny(lua_State *L) {

@@ -56,6 +56,12 @@ int tds_areaweed(tds_ctx *ctx, tds_surf *s, double area, int32_t *n);
 ** ignores no_refine, as Evolver's l does. */
 int tds_edge_divide(tds_ctx *ctx, tds_surf *s, double len, int32_t *n);
 
+/* The same on the selected edges (Evolver's `refine edges ...`: each edge
+** in id order splits its facets in two, so a facet with two of them is
+** cut as the splits fall, not along its shorter diagonal as r cuts it).
+** In the torus and string models, tds_refine on the set. */
+int tds_edge_divide_set(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
+
 /* K: split the longest edge of every facet whose smallest angle is below
 ** `angle` (radians). */
 int tds_skinny(tds_ctx *ctx, tds_surf *s, double angle, int32_t *n);

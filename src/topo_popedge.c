@@ -23,7 +23,9 @@
 **   wedge's fins; a
 **   spoke edge v -> v', copies of the incoming and outgoing chain edges
 **   for the other facets, and two triangles (a, v, v') and (v, b, v')
-**   between the two chains are new, in that order. Each vertex pulled
+**   between the two chains are new, in that order, turned round where
+**   that makes them one sheet with the second wedge facet (octa.fe's O:
+**   tests/evolver/popo.sh, O-orient). Each vertex pulled
 **   counts as one edge popped (Evolver's count).
 ** The new triangles separate the two regions beside the wedge: they take
 ** the body on either side. Volumes change by the slivers; g brings bodies
@@ -356,10 +358,16 @@ static tds_id body_toward(const tds_mesh *m, tds_id f, const double u[3]) {
 
 /* The triangle between the two chains along chain edge g (now at v'),
 ** with copy c of it still at v: (p, q, v') for g stored p -> q (one of
-** them v), following g's direction. */
-static tds_id between(tds_mesh *m, tds_id g, tds_id c, tds_id spoke, tds_id v) {
+** them v), following g's direction, or with flip the other way round,
+** starting from c reversed (Evolver's orders). */
+static tds_id between(tds_mesh *m, tds_id g, tds_id c, tds_id spoke, tds_id v, int flip) {
   int32_t oe[3];
-  if (m->ev[c][0] == v) { /* (v, q, v'): v -> q, q -> v', v' -> v */
+  int cv = m->ev[c][0] == v;
+  if (flip) { /* -c, then g and the spoke the other way round */
+    oe[0] = TDS_OREF(c, 1);
+    oe[1] = cv ? TDS_OREF(spoke, 0) : TDS_OREF(g, 0);
+    oe[2] = cv ? TDS_OREF(g, 0) : TDS_OREF(spoke, 1);
+  } else if (cv) { /* (v, q, v'): v -> q, q -> v', v' -> v */
     oe[0] = TDS_OREF(c, 0);
     oe[1] = TDS_OREF(g, 1);
     oe[2] = TDS_OREF(spoke, 1);
@@ -369,6 +377,13 @@ static tds_id between(tds_mesh *m, tds_id g, tds_id c, tds_id spoke, tds_id v) {
     oe[2] = TDS_OREF(g, 1);
   }
   return tds_mesh_add_facet(m, oe);
+}
+
+/* Does facet f run along edge g from g's tail to its head? */
+static int runs_forward(const tds_mesh *m, tds_id f, tds_id g) {
+  for (int k = 0; k < 3; k++)
+    if (TDS_OID(m->fe[f][k]) == g) return !TDS_OREV(m->fe[f][k]);
+  return 0;
 }
 
 /* Pull interior vertex v apart to a new vertex at x: near is the chain
@@ -434,7 +449,12 @@ static int pull(tds_surf *s, tds_id v, tds_id near, tds_id far, const tds_id *W,
         if (m->ev[g][j] == v) m->ev[g][j] = vp;
     }
   }
-  tds_id T[2] = {between(m, near, cn, spoke, v), between(m, far, cf, spoke, v)};
+  /* Evolver orients the new triangles as one sheet with the second wedge
+  ** facet (measured on octa.fe's O: five of its six pops run the other
+  ** way round from tds's former fixed order, and the cut corners of o
+  ** depend on it). Unturned, the first runs along near backwards. */
+  int flip = !runs_forward(m, wi[1], near);
+  tds_id T[2] = {between(m, near, cn, spoke, v, flip), between(m, far, cf, spoke, v, flip)};
   v3_sub(dif, u1, u2);
   for (int j = 0; j < 2; j++) {
     tds_facet_inherit(m, T[j], wi[0]);

@@ -116,11 +116,13 @@ static int room_for_split(tds_mesh *m, int nfe) {
   return TDS_OK;
 }
 
-static int divide(tds_ctx *ctx, tds_surf *s, double len, int32_t *n) {
+/* Split, once each and in id order, the live edges longer than len,
+** or with sel the selected ones (len ignored). */
+static int divide_some(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, double len, int32_t *n) {
   tds_mesh *m = &s->m;
   int32_t ne0 = m->ne, cnt = 0;
   for (tds_id e = 0; e < ne0; e++) {
-    if (!tds_alive(m->eflags, e) || !(edge_len(m, e) > len)) continue;
+    if (!tds_alive(m->eflags, e) || (sel ? !sel[e] : !(edge_len(m, e) > len))) continue;
     if (room_for_split(m, tds_edge_valence(m, e)) != TDS_OK)
       return tds_seterr(ctx, TDS_ENOMEM, "out of memory while dividing edges");
     split_one(s, e);
@@ -129,6 +131,14 @@ static int divide(tds_ctx *ctx, tds_surf *s, double len, int32_t *n) {
   *n = cnt;
   if (cnt) m->coord_gen++;
   return tds_surf_update(ctx, s);
+}
+
+static int divide(tds_ctx *ctx, tds_surf *s, double len, int32_t *n) {
+  return divide_some(ctx, s, NULL, len, n);
+}
+
+static int divide_set(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  return divide_some(ctx, s, sel, 0, n);
 }
 
 static double min_angle(const tds_mesh *m, tds_id f, int *klong) {
@@ -188,6 +198,13 @@ int tds_edge_divide(tds_ctx *ctx, tds_surf *s, double len, int32_t *n) {
   if (n) *n = 0;
   int rc = check_cut(ctx, len, "the edge length");
   return rc != TDS_OK ? rc : with_snap(ctx, s, divide, len, n);
+}
+
+int tds_edge_divide_set(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  /* strings have no facets to cut; the torus splits edges as r does */
+  if (s->m.torus || s->str) return tds_refine(ctx, s, sel, n);
+  if (n) *n = 0;
+  return tds_snap_run(ctx, s, divide_set, sel, n);
 }
 
 int tds_skinny(tds_ctx *ctx, tds_surf *s, double angle, int32_t *n) {

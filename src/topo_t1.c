@@ -43,6 +43,10 @@ static tds_id conn_edge(const tds_mesh *m, const tds_id *conn, int nc, tds_id p,
 
 #define MAXF 256
 
+static tds_id far_end(const tds_mesh *m, tds_id e, tds_id v) {
+  return m->ev[e][0] == v ? m->ev[e][1] : m->ev[e][0];
+}
+
 /* The live facets at v into fl (at most MAXF), each its own label in lab
 ** (for joining into fans); their count, or -1 when there are more. */
 static int star_facets(const tds_mesh *m, tds_id v, tds_id *fl, int *lab) {
@@ -58,11 +62,14 @@ static int star_facets(const tds_mesh *m, tds_id v, tds_id *fl, int *lab) {
 }
 
 /* Expand vertex v: triple edge te[i] goes to new vertex tv[i]; conn are
-** the edges among new vertices. TDS_OK, or TDS_ETOPO when the star is
-** not fans bounded by two listed triple edges each. Room for nt new edges
-** and facets must be reserved. */
+** the edges among new vertices. A fan whose two ends go to different new
+** vertices follows the end met first (the other with flip), or with
+** axis given the end counterclockwise after the other about axis (right-
+** hand rule), so that the fans all turn one way. TDS_OK, or TDS_ETOPO
+** when the star is not fans bounded by two listed triple edges each.
+** Room for nt new edges and facets must be reserved. */
 static int expand(tds_mesh *m, tds_id v, int nt, const tds_id *te, const tds_id *tv,
-                  const tds_id *conn, int nc, int flip) {
+                  const tds_id *conn, int nc, int flip, const double *axis) {
   tds_id fl[MAXF];
   int lab[MAXF], nf = star_facets(m, v, fl, lab);
   if (nf < 0) return TDS_ETOPO;
@@ -101,6 +108,19 @@ static int expand(tds_mesh *m, tds_id v, int nt, const tds_id *te, const tds_id 
     }
   for (int i = 0; i < nf; i++)
     if (lab[i] == i && (endx[i] < 0 || endy[i] < 0)) return TDS_ETOPO;
+  for (int i = 0; axis && i < nf; i++) {
+    if (lab[i] != i || tv[endx[i]] == tv[endy[i]]) continue;
+    double px[3], py[3], c[3];
+    v3_sub(px, m->x[far_end(m, te[endx[i]], v)], m->x[v]);
+    v3_sub(py, m->x[far_end(m, te[endy[i]], v)], m->x[v]);
+    v3_cross(c, px, py);
+    if (v3_dot(c, axis) > 0) { /* y is counterclockwise after x */
+      int t = endx[i];
+      endx[i] = endy[i], endy[i] = t;
+      t = xfacet[i];
+      xfacet[i] = yfacet[i], yfacet[i] = t;
+    }
+  }
   for (int i = 0; i < nf; i++) {
     int r = lab[i];
     if (tv[endx[r]] != tv[endy[r]] &&
@@ -187,10 +207,6 @@ static int free_vertex(const tds_surf *s, tds_id v) {
          m->vbdry[v] == TDS_NONE;
 }
 
-static tds_id far_end(const tds_mesh *m, tds_id e, tds_id v) {
-  return m->ev[e][0] == v ? m->ev[e][1] : m->ev[e][0];
-}
-
 /* Bodies on the facets around edge e contain b? */
 static int around_has(const tds_mesh *m, tds_id e, tds_id b) {
   int32_t h = m->eside[e], sd = h;
@@ -233,6 +249,41 @@ static tds_id common_body(const tds_mesh *m, const tds_id *t) {
   return found;
 }
 
+/* The other edge of facet f at vertex v than g. */
+static tds_id other_at(const tds_mesh *m, tds_id f, tds_id v, tds_id g) {
+  for (int k = 0; k < 3; k++) {
+    tds_id h = TDS_OID(m->fe[f][k]);
+    if (h != g && (m->ev[h][0] == v || m->ev[h][1] == v)) return h;
+  }
+  return TDS_NONE;
+}
+
+/* The wall of facet f (on edge e at v) runs through v's valence-2 edges
+** to a triple edge: that edge, or TDS_NONE (a loop, or another valence). */
+static tds_id wall_end(const tds_mesh *m, tds_id v, tds_id e, tds_id f) {
+  for (int steps = 0; steps <= MAXF; steps++) {
+    tds_id g = other_at(m, f, v, e);
+    if (g == TDS_NONE) return TDS_NONE;
+    int val = tds_edge_valence(m, g);
+    if (val == 3) return g;
+    if (val != 2) return TDS_NONE;
+    int32_t sd = m->eside[g];
+    tds_id f2 = sd / 3;
+    f = f2 == f ? m->side_next[sd] / 3 : f2;
+    e = g;
+  }
+  return TDS_NONE;
+}
+
+/* The triple edge joining v and w, or TDS_NONE. */
+static tds_id triple_to(const tds_mesh *m, tds_id v, tds_id w) {
+  for (tds_id e = 0; e < m->ne; e++)
+    if (tds_alive(m->eflags, e) && far_end(m, e, v) == w && (m->ev[e][0] == v || m->ev[e][1] == v) &&
+        tds_edge_valence(m, e) == 3)
+      return e;
+  return TDS_NONE;
+}
+
 /* One edge to a triangle; 1 done, 0 not applicable, <0 error code. */
 static int edge_to_tri(tds_surf *s, tds_id e, int dry) {
   tds_mesh *m = &s->m;
@@ -246,65 +297,62 @@ static int edge_to_tri(tds_surf *s, tds_id e, int dry) {
     for (int j = 0; j < 3; j++)
       if (far_end(m, ta[i], a) == far_end(m, tb[j], b)) return 0;
   tds_id D = common_body(m, ta), E = common_body(m, tb);
-  if (D == -2 || E == -2 || D == E) return 0;
+  /* a film with no bodies (both sides none) pops as Evolver's does */
+  if (D == -2 || E == -2 || (D == E && D != TDS_NONE)) return 0;
+  /* the three walls on e: each joins a triple edge at a to one at b (by
+  ** their far ends, which the collapse keeps) */
+  tds_id fa[3], fb[3];
+  int nw = 0;
+  int32_t h0 = m->eside[e], sd = h0;
+  do {
+    tds_id f = sd / 3, ga = wall_end(m, a, e, f), gb = wall_end(m, b, e, f);
+    if (ga == TDS_NONE || gb == TDS_NONE) return 0;
+    fa[nw] = far_end(m, ga, a);
+    fb[nw] = far_end(m, gb, b);
+    for (int j = 0; j < nw; j++)
+      if (fa[j] == fa[nw] || fb[j] == fb[nw]) return 0;
+    nw++;
+    sd = m->side_next[sd];
+  } while (sd != h0 && nw < 3);
+  if (sd != h0) return 0;
   if (dry) return 1;
   double xa[3], xb[3], dab[3];
   v3_copy(xa, m->x[a]);
   v3_copy(xb, m->x[b]);
   v3_sub(dab, xa, xb);
-  double len = v3_norm(dab);
   if (tds_mesh_room(m, TDS_VERTEX, m->nv + 3) || tds_mesh_room(m, TDS_EDGE, m->ne + 12) ||
       tds_mesh_room(m, TDS_FACET, m->nf + 8))
     return TDS_ENOMEM;
   int r = tds_collapse_edge(s, e);
   if (r <= 0) return r < 0 ? TDS_ENOMEM : 0;
   tds_id v = tds_alive(m->vflags, a) ? a : b;
-  /* The six triple edges at v now (merges may have renamed some): D's
-  ** side and E's side, each D-side one paired with the E-side one whose
-  ** walls hold the same two other bodies (a wall W_k of the old edge). */
-  tds_id td[3], tE[3];
-  int nd = 0, ne = 0;
-  for (tds_id d = 0; d < m->ne; d++) {
-    if (!tds_alive(m->eflags, d) || (m->ev[d][0] != v && m->ev[d][1] != v)) continue;
-    if (tds_edge_valence(m, d) != 3) continue;
-    int hd = around_has(m, d, D), he = around_has(m, d, E);
-    if (hd && !he && nd < 3) td[nd++] = d;
-    else if (he && !hd && ne < 3) tE[ne++] = d;
-    else return TDS_ETOPO;
-  }
-  if (nd != 3 || ne != 3) return TDS_ETOPO;
+  /* each wall's two triple edges at v go to one new vertex, a third of
+  ** the way from the collapse point to the midpoint of their far ends
+  ** (as Evolver's, to 1e-10 on a five-bubble cluster) */
   tds_id p[3], te[6], tv[6], conn[3];
-  int used[3] = {0, 0, 0};
   for (int k = 0; k < 3; k++) {
-    tds_id bs[8];
-    int nb = bodies_around(m, td[k], bs), best = -1;
-    for (int j = 0; j < 3 && best < 0; j++) {
-      if (used[j]) continue;
-      int common = 0;
-      for (int z = 0; z < nb; z++) common += bs[z] != D && around_has(m, tE[j], bs[z]);
-      if (common == 2) best = j;
-    }
-    if (best < 0) return TDS_ETOPO;
-    used[best] = 1;
-    /* the new vertex toward the far ends of the pair, a quarter of the
-    ** edge's length from the collapse point */
+    te[2 * k] = triple_to(m, v, fa[k]);
+    te[2 * k + 1] = triple_to(m, v, fb[k]);
+    if (te[2 * k] == TDS_NONE || te[2 * k + 1] == TDS_NONE) return TDS_ETOPO;
     p[k] = tds_mesh_add_vertex(m, m->x[v]);
     m->vcon[p[k]] = m->vcon[v];
-    te[2 * k] = td[k];
-    te[2 * k + 1] = tE[best];
     tv[2 * k] = tv[2 * k + 1] = p[k];
-    double dir[3], q[3];
-    v3_add(q, m->x[far_end(m, td[k], v)], m->x[far_end(m, tE[best], v)]);
+    double q[3];
+    v3_add(q, m->x[fa[k]], m->x[fb[k]]);
     v3_scale(q, 0.5);
-    v3_sub(dir, q, m->x[v]);
-    double dn = v3_norm(dir);
-    if (dn > 0) v3_scale(dir, 0.25 * len / dn);
-    v3_add(m->x[p[k]], m->x[v], dir);
+    for (int i = 0; i < 3; i++) m->x[p[k]][i] = m->x[v][i] + (q[i] - m->x[v][i]) / 3;
   }
   for (int k = 0; k < 3; k++) conn[k] = tds_mesh_add_edge(m, p[k], p[(k + 1) % 3]);
-  int rc = expand(m, v, 6, te, tv, conn, 3, 0);
+  /* each film between two triple edges at one end follows the corner
+  ** counterclockwise after the other about the old edge a -> b (as
+  ** Evolver's on the cluster and on twelve seeded prisms) */
+  double axis[3];
+  v3_sub(axis, xb, xa);
+  int rc = expand(m, v, 6, te, tv, conn, 3, 0, axis);
   if (rc != TDS_OK) return rc;
-  int32_t t3[3] = {TDS_OREF(conn[0], 0), TDS_OREF(conn[1], 0), TDS_OREF(conn[2], 0)};
+  /* the loop starts at the corner of the second wall (Evolver's, which
+  ** pop_tri_to_edge then collapses from its first edge) */
+  int32_t t3[3] = {TDS_OREF(conn[1], 0), TDS_OREF(conn[2], 0), TDS_OREF(conn[0], 0)};
   tds_id T = tds_mesh_add_facet(m, t3);
   double n[3], u1[3], u2[3];
   v3_sub(u1, m->x[p[1]], m->x[p[0]]);
@@ -353,13 +401,8 @@ static int tri_to_edge(tds_surf *s, tds_id f, int dry) {
                      far_end(m, x[i], pv[i]) == far_end(m, y[j], pv[j])))
         return 0;
   if (dry) return 1;
-  double c[3] = {0, 0, 0}, nrm[3], u1[3], u2[3];
-  for (int k = 0; k < 3; k++) v3_add(c, c, m->x[pv[k]]);
-  v3_scale(c, 1.0 / 3);
-  v3_sub(u1, m->x[pv[1]], m->x[pv[0]]);
-  v3_sub(u2, m->x[pv[2]], m->x[pv[0]]);
-  v3_cross(nrm, u1, u2);
-  double size = sqrt(v3_norm(nrm));
+  double cd[3] = {0, 0, 0}; /* the centroid of the far ends on D's side */
+  for (int k = 0; k < 3; k++) v3_axpy(cd, 1.0 / 3, m->x[far_end(m, x[k], pv[k])]);
   if (tds_mesh_room(m, TDS_VERTEX, m->nv + 2) || tds_mesh_room(m, TDS_EDGE, m->ne + 6) ||
       tds_mesh_room(m, TDS_FACET, m->nf + 6))
     return TDS_ENOMEM;
@@ -380,14 +423,17 @@ static int tri_to_edge(tds_surf *s, tds_id f, int dry) {
   tds_id v = TDS_NONE;
   for (int k = 0; k < 3; k++)
     if (tds_alive(m->vflags, pv[k])) v = pv[k];
-  v3_copy(m->x[v], c);
-  /* the new edge a-b across, a on the D side */
-  v3_scale(nrm, 0.5 * size / v3_norm(nrm));
+  /* As Evolver's (to 1e-10 on a five-bubble cluster): v is where the
+  ** two collapses left it, half way from the triangle's third corner to
+  ** the midpoint of its first edge; the new edge runs from b to a, a on
+  ** D's side a quarter of the way to cd and b opposite it through v. */
   double xa[3], xb[3];
-  v3_add(xa, c, nrm);
-  v3_sub(xb, c, nrm);
+  for (int i = 0; i < 3; i++) {
+    xa[i] = m->x[v][i] + (cd[i] - m->x[v][i]) / 4;
+    xb[i] = 2 * m->x[v][i] - xa[i];
+  }
   tds_id a = tds_mesh_add_vertex(m, xa), b = tds_mesh_add_vertex(m, xb);
-  tds_id ab = tds_mesh_add_edge(m, a, b);
+  tds_id ab = tds_mesh_add_edge(m, b, a);
   /* the triple edges at v now (merges may have renamed some): D's side
   ** goes to a, E's to b */
   tds_id te[6], tv[6];
@@ -401,7 +447,7 @@ static int tri_to_edge(tds_surf *s, tds_id f, int dry) {
     tv[nt++] = hd ? a : b;
   }
   if (nt != 6) return TDS_ETOPO;
-  int rc = expand(m, v, 6, te, tv, &ab, 1, 0);
+  int rc = expand(m, v, 6, te, tv, &ab, 1, 0, NULL);
   if (rc != TDS_OK) return rc;
   tds_motion_enforce(s, a);
   tds_motion_enforce(s, b);
@@ -594,7 +640,7 @@ int tds_pop_prism(tds_surf *s, tds_id v, int to_face) {
   tds_id conn[3];
   int nc = to_face ? 3 : 1;
   for (int k = 0; k < nc; k++) conn[k] = tds_mesh_add_edge(m, nw[k], nw[(k + 1) % nn]);
-  int rc = expand(m, v, 6, t, tv, conn, nc, to_face); /* as Evolver triangulates */
+  int rc = expand(m, v, 6, t, tv, conn, nc, to_face, NULL); /* as Evolver triangulates */
   if (rc != TDS_OK) return -rc;
   if (to_face) {
     int32_t t3[3] = {TDS_OREF(conn[0], 0), TDS_OREF(conn[1], 0), TDS_OREF(conn[2], 0)};

@@ -7,12 +7,14 @@
 # undefined.cmd at a definition naming an unknown command;
 # histogram.cmd's lines are the histograms' (bins and counts); model.cmd's
 # also the messages of linear, lagrange 1 and M 1; view.cmd's those of
-# the transforms toggle. Files in data/ (views.fe) are used before the
+# the transforms toggle; elemvar.cmd runs element commands on a loop
+# variable (foreach edge ee ... do delete ee), skipping what an earlier
+# pass deleted. Files in data/ (views.fe) are used before the
 # examples of that name.
 . "$(dirname "$0")/lib.sh"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-for run in flow:cube elements:cube elements:catbody errors:cube undefined:cube histogram:cube define:cube matrix:cube facetedge:cube facetedge:catbody named:cube model:cube feattr:cube feattr:catbody view:views resize:cube defcmd:cube phview:phelanc; do
+for run in flow:cube elements:cube elemvar:cube elements:catbody errors:cube undefined:cube histogram:cube define:cube matrix:cube facetedge:cube facetedge:catbody named:cube model:cube feattr:cube feattr:catbody view:views resize:cube defcmd:cube phview:phelanc; do
   c=${run%%:*} fe=${run#*:}
   src=$EXAMPLES/$fe.fe
   [ -f "$ROOT/tests/evolver/data/$fe.fe" ] && src=$ROOT/tests/evolver/data/$fe.fe

@@ -3,8 +3,8 @@
 # octa.fe's gogo and on seeded random states.
 # * octa/gogo-trace: octa.fe's gogo run command by command (five o with
 #   U, g, t, u, V between), with tds's own line search (with Evolver's,
-#   tds's U steps are 1e-5 from Evolver's and t .1 then deletes other
-#   edges): the counts after every command equal Evolver's exactly; the
+#   the second o triangulates a prism cone's films otherwise than Evolver
+#   and the paths part there): the counts after every command equal Evolver's exactly; the
 #   energies part by the line searches in between (up to 2e-3), so only
 #   the last is compared: both end on the film with a tetrahedral point,
 #   of area 16 sqrt(2) (measured 2e-14 apart), 1e-9.
@@ -58,6 +58,23 @@ dofile('$ROOT/tests/evolver/compare.lua')
 tds.quiet(true)
 gogo()
 same('popo/octa/gogo-16sqrt2', total_energy, 16 * math.sqrt(2), 1e-9)" | grep -v "^Conjugate"
+
+# octa/O-orient: the triangles an edge pop makes between the two chains
+# run as Evolver's (one sheet with the second wedge facet): every facet
+# after O, as its vertex cycle from its smallest id, equals Evolver's
+# exactly (five of octa's six pops used to run the other way round, which
+# sent o's corner cuts along the other diagonals).
+F='foreach facet ff do { printf "F"; foreach ff.vertex vv do printf " %d", vv.id; printf "\n" }'
+rot='{ m = 2; for (i = 3; i <= NF; i++) if ($i + 0 < $m + 0) m = i; printf "K"; for (i = 0; i < NF - 1; i++) printf " %s", $(2 + (m - 2 + i) % (NF - 1)); printf "\n" }'
+evolver_run "$OCTA" "O; $F" | grep '^F ' | awk "$rot" > "$tmp/ev.k"
+"$TDS" -q "$OCTA" -e "evolver [[ O; $F ]]" 2>&1 | grep '^F ' | awk "$rot" > "$tmp/tds.k"
+"$TDS" -q -e "
+dofile('$ROOT/tests/evolver/numcmp.lua')
+numcmp('popo/octa/O-orient', lines_of('$tmp/ev.k', '^K'), lines_of('$tmp/tds.k', '^K'), 0)"
+# octa/first-pops: so with Evolver's line search the gogo up to its second
+# o (o, U, g 20, t .1, g 10) takes Evolver's steps: the energy after each
+# command measured 7e-12 apart (it was 2e-4 after the first g), 1e-10.
+cmp octa/first-pops "$OCTA" "o; $E; U; g 20; $E; t .1; $E; g 10; $E" 1e-10
 
 P1='o; U; g 20; t .1; g 10'
 P2="$P1; o; g 20; u; V; t .1"
