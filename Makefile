@@ -55,7 +55,8 @@ FUZZ_NAMES := $(patsubst tests/fuzz/fuzz_%.c,%,$(wildcard tests/fuzz/fuzz_*.c))
 FUZZ_REPLAY := $(FUZZ_NAMES:%=$(BUILD)/test_fuzz_%)
 TDS_BIN ?= tds
 
-.PHONY: module all deps deps-test web demo test plan test-asan unit bench bench-paper clean fuzz fuzz-bins fuzz-smoke fuzz-cov
+.PHONY: module all deps deps-test web demo test plan test-asan unit bench bench-paper clean fuzz fuzz-bins fuzz-smoke fuzz-cov \
+  random-long random-long-asan
 
 all: $(TDS_BIN) web
 
@@ -145,6 +146,18 @@ plan: $(TDS_BIN) unit web $(TDS_SO) | deps-test
 test-asan:
 	LSAN_OPTIONS=suppressions=$(abspath tests/lsan.supp) $(MAKE) BUILD=build-asan TDS_BIN=build-asan/tds OPT=-O1 \
 	  SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined -DTDS_CHECKS" test
+
+# Long runs of the seeded random testers (doc/reliability.md, "Random
+# command sequences"): RANDOM_TRIALS sequences and mutants from RANDOM_SEED;
+# random-long-asan runs them on the ASan/UBSan build of test-asan.
+RANDOM_TRIALS ?= 3000
+RANDOM_SEED ?= 1
+random-long: $(TDS_BIN)
+	TDS_CHECK=1 TDS_RST_TRIALS=$(RANDOM_TRIALS) TDS_RST_SEED=$(RANDOM_SEED) ./$(TDS_BIN) -q tests/scripts/random_string_torus.tds
+	TDS_CHECK=1 TDS_MUT_TRIALS=$(RANDOM_TRIALS) TDS_MUT_SEED=$(RANDOM_SEED) ./$(TDS_BIN) -q tests/scripts/datafile_mutate.tds
+random-long-asan:
+	LSAN_OPTIONS=suppressions=$(abspath tests/lsan.supp) $(MAKE) BUILD=build-asan TDS_BIN=build-asan/tds OPT=-O1 \
+	  SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined -DTDS_CHECKS" random-long
 
 # libFuzzer harnesses (tests/fuzz/, doc/reliability.md "Fuzzing"), built
 # with clang, ASan and UBSan into build-fuzz/. fuzz-smoke runs each one for

@@ -312,12 +312,18 @@ notch = n
 function delete(set) return tds.delete(list_of(set, "delete")) end
 -- o() pops edges then vertices; o(set) pops the set's edges or vertices;
 -- O() pops edges only.
+-- In the string model both are Evolver's o for strings (tds.string_pop,
+-- doc/string.md), as in the command language.
 function o(set)
   if type(set) == "function" then set = list_of(set) end
+  if tds.dimensions() == 1 then return tds.string_pop(set) end
   return tds.pop(set)
 end
 pop = o
-function O() return tds.pop_edges(nil) end
+function O()
+  if tds.dimensions() == 1 then return tds.string_pop() end
+  return tds.pop_edges(nil)
+end
 -- renumber_all(): ids 1, 2, ... for the live elements of each kind, in
 -- order (after deletions); returns how many ids changed.
 function renumber_all() return tds.renumber_all() end

@@ -304,6 +304,12 @@ static int e_wrap_dumped(const tds_surf *s, tds_id id) {
   return k[0] * k[0] > 1 || k[1] * k[1] > 1 || k[2] * k[2] > 1;
 }
 
+/* A string model's edge defaults to tension 1 when read (a film's to 0),
+** so there every tension is written, 0 too. */
+static int e_tension_dumped(const tds_surf *s, tds_id id) {
+  return s->str || s->m.eten[id] != 0;
+}
+
 static const tds_attr edge_rows[] = {
     RO(TDS_EDGE, "length", TDS_AT_REAL, 1, e_length),
     ORIGINAL(TDS_EDGE),
@@ -322,7 +328,7 @@ static const tds_attr edge_rows[] = {
     FLAGROW(TDS_EDGE, "noncontent", NULL, NULL, TDS_NONCONTENT, FE_DECL),
     ROW(.name = "tension", .alias = "density", .fe_alias = "density", .kind = TDS_EDGE,
         .type = TDS_AT_REAL, .size = 1, .io = FE_DECL, .get = get_dcol, .set = e_tension_set,
-        .off = OFF(eten)),
+        .dumped = e_tension_dumped, .off = OFF(eten)),
     ROW(.name = "color", .fe_alias = "colour", .kind = TDS_EDGE, .type = TDS_AT_COLOR,
         .size = 1,
         .io = FE_DECL, .get = get_scol, .set = e_color_set, .off = OFF(ecolor)),

@@ -342,6 +342,26 @@ static int push_oe(df *d, const char *at, int32_t v) {
   return TDS_OK;
 }
 
+/* A warning of the core, forwarded with "file:line: " in front. */
+typedef struct at_line {
+  tds_out_fn fn;
+  void *ud;
+  const char *name;
+  int line;
+} at_line;
+
+static void warn_at_line(void *ud, const char *text) {
+  const at_line *w = ud;
+  char buf[2300];
+  snprintf(buf, sizeof buf, "%.280s:%d: %.2000s", w->name, w->line, text);
+  if (w->fn) {
+    w->fn(w->ud, buf);
+  } else {
+    fputs(buf, stderr);
+    fflush(stderr);
+  }
+}
+
 /* ---- the four kinds of lines ---- */
 
 static int vertex_line(df *d) {
@@ -386,14 +406,25 @@ static int vertex_line(df *d) {
                   "%s: (%g, %g) is not inside the unit disk, the Klein model of KLEIN_METRIC",
                   what, x[0], x[1]);
   int line = df_line_of(d, NULL);
+  /* the core's warnings (a projection that did not converge) get the
+  ** file and line */
+  at_line w = {d->ctx->warn, d->ctx->warn_ud, d->name, line};
+  d->ctx->warn = warn_at_line;
+  d->ctx->warn_ud = &w;
   rc = tds_decl_vertex(d->ctx, d->s, id, x, bd, p, flags, con);
+  if (rc == TDS_OK) {
+    d->s->m.vfile[id] = line_file_id(d);
+    rc = apply_attrs(d, TDS_VERTEX, id, pv0, d->npv, line);
+    if (rc == TDS_OK && d->s->nxa_kind[TDS_VERTEX] && d->s->m.vcon[id])
+      rc = tds_decl_vertex_done(d->ctx, d->s, id);
+    else if (rc != TDS_OK)
+      rc = -rc; /* apply_attrs's message has its line already */
+  }
+  d->ctx->warn = w.fn;
+  d->ctx->warn_ud = w.ud;
+  if (rc < 0) return -rc;
   if (rc) return df_core(d, line, rc, NULL);
-  d->s->m.vfile[id] = line_file_id(d);
-  rc = apply_attrs(d, TDS_VERTEX, id, pv0, d->npv, line);
-  if (rc == TDS_OK && d->s->nxa_kind[TDS_VERTEX] && d->s->m.vcon[id] &&
-      (rc = tds_decl_vertex_done(d->ctx, d->s, id)))
-    return df_core(d, line, rc, NULL);
-  return rc;
+  return TDS_OK;
 }
 
 static int edge_line(df *d) {

@@ -14,6 +14,7 @@
 #include <strings.h>
 
 #include "model.h"
+#include "symgroup.h"
 
 /* ---- not supported yet ---- */
 
@@ -489,6 +490,8 @@ static int h_symmetric(df *d, const hdr_kw *k) {
   return TDS_OK;
 }
 
+static int string_after_sym(df *d);
+
 /* SPACE_DIMENSION 2 or 3; SURFACE_DIMENSION 1 (the string model, as
 ** STRING) or 2: anything else is refused. The string model is set up when
 ** the VERTICES section starts (the keywords may come in any order). */
@@ -503,6 +506,7 @@ static int h_dimension(df *d, const hdr_kw *k) {
     return df_err(d, NULL, TDS_ESYNTAX, "%s %lld is not supported yet", u, (long long)n);
   if (d->app && (space ? n != 3 : n != 2))
     return df_err(d, NULL, TDS_ESYNTAX, "addload of a string-model datafile is not supported yet");
+  if (!space && n == 1 && (rc = string_after_sym(d)) != TDS_OK) return rc;
   if (space) d->space_dim = (int)n;
   else d->string_model = n == 1;
   return TDS_OK;
@@ -523,9 +527,19 @@ static int h_klein(df *d, const hdr_kw *k) {
   return TDS_OK;
 }
 
+/* The string model after SYMMETRY_GROUP: refused as in the other order
+** (df_klein_check), but for genus2, which the string model has. */
+static int string_after_sym(df *d) {
+  if (!d->s->m.sym || d->s->m.sym == TDS_SYM_GENUS2) return TDS_OK;
+  return df_err(d, NULL, TDS_ESYNTAX,
+                "SYMMETRY_GROUP (line %d) in the string model is not supported yet", d->torus_line);
+}
+
 static int h_string(df *d, const hdr_kw *k) {
   (void)k;
   if (d->app) return df_err(d, NULL, TDS_ESYNTAX, "addload of a string-model datafile is not supported yet");
+  int rc = string_after_sym(d);
+  if (rc) return rc;
   d->string_model = 1;
   return TDS_OK;
 }

@@ -28,10 +28,9 @@ int df_klein_check(df *d) {
     return df_err_line(d, d->torus_line, TDS_ESYNTAX,
                        "SYMMETRY_GROUP \"genus2\" on a soapfilm surface is not supported yet "
                        "(the string model has it: STRING, SPACE_DIMENSION 2)");
-  if (sym > TDS_SYM_TORUS && sym != TDS_SYM_GENUS2 && d->string_model)
+  if (sym && sym != TDS_SYM_GENUS2 && d->string_model)
     return df_err_line(d, d->torus_line, TDS_ESYNTAX,
-                       "SYMMETRY_GROUP \"%s\" in the string model is not supported yet "
-                       "(torus and genus2 are)", tds_sym_name(sym));
+                       "SYMMETRY_GROUP in the string model is not supported yet");
   return TDS_OK;
 }
 

@@ -66,6 +66,8 @@ int df_symmetry_group(df *d) {
     return df_err(d, at, TDS_ESYNTAX,
                   "SYMMETRY_GROUP \"%s\" is not supported yet (it needs KLEIN_METRIC on "
                   "films)", name);
+  if (d->string_model && id != TDS_SYM_GENUS2) /* genus2: datafile_string.c */
+    return df_err(d, at, TDS_ESYNTAX, "SYMMETRY_GROUP in the string model is not supported yet");
   if (tds_mesh_set_torus(&d->s->m, 1)) return df_core(d, df_line_of(d, at), TDS_ENOMEM, NULL);
   d->s->m.sym = id;
   for (int k = 0; k < 2; k++) d->s->m.symp[k] = tds_sym_param_default(id, k);
@@ -221,7 +223,12 @@ int df_torus_finish(df *d) {
               "space): their volumes are not exact\n", d->name, bad);
   if (s->m.nb > 0) {
     int rc = tds_surf_update(d->ctx, s);
-    if (rc) return rc;
+    if (rc) { /* the whole file's (huge coordinates: an infinite energy) */
+      char msg[sizeof d->ctx->errmsg];
+      memcpy(msg, d->ctx->errmsg, sizeof msg);
+      msg[sizeof msg - 1] = 0;
+      return tds_seterr(d->ctx, rc, "%s: %.900s", d->name, msg);
+    }
     tds_torus_settle(s);
   }
   return TDS_OK;

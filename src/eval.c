@@ -693,6 +693,12 @@ int tds_eval_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out, int facet_core)
   if (!isfinite(out->energy))
     return tds_seterr(ctx, TDS_ENUM, "energy is not finite (%s)",
                       isnan(out->energy) ? "NaN" : out->energy > 0 ? "inf" : "-inf");
+  /* a volume can be NaN with a finite energy (a constraint's content
+  ** integrand at a point where it is not defined) */
+  for (tds_id b = 0; b < s->m.nb; b++)
+    if (tds_alive(s->m.bflags, b) && !isfinite(s->m.bvol[b]))
+      return tds_seterr(ctx, TDS_ENUM, "body %d: volume is not finite (%s)", (int)b + 1,
+                        isnan(s->m.bvol[b]) ? "NaN" : s->m.bvol[b] > 0 ? "inf" : "-inf");
   return TDS_OK;
 }
 

@@ -41,6 +41,10 @@ typedef struct work {
   int spec;
   uint64_t spec_gen;
   double spec_E;
+  /* why the last trial's projection failed: a status whose message is in
+  ** ctx (the Gram matrix singular: a body left without free vertices),
+  ** or 0 (a value not finite, or no failure) */
+  int trial_why;
   tds_alloc al;      /* the ctx's allocator */
 } work;
 
@@ -186,7 +190,11 @@ static int direction(tds_ctx *ctx, tds_surf *s, work *w) {
 ** the values here). Returns 0, or -1 if the Gram system is singular. */
 static int restore_move(tds_ctx *ctx, tds_surf *s, work *w) {
   tds_mesh *m = &s->m;
-  if (tds_fixq_restore(ctx, &w->fq, m->nv, w->rest) != TDS_OK) return -1;
+  int rc = tds_fixq_restore(ctx, &w->fq, m->nv, w->rest);
+  if (rc != TDS_OK) {
+    w->trial_why = rc;
+    return -1;
+  }
   for (tds_id v = 0; v < m->nv; v++) {
     if (tds_vertex_plain(s, v)) {
       v3_add(m->x[v], m->x[v], w->rest[v]);
@@ -280,12 +288,13 @@ static int restore_evolver(tds_ctx *ctx, tds_surf *s, work *w) {
   tds_fixq *fq = &w->fq;
   size_t nb = (size_t)fq->nent * sizeof *fq->g;
   double prev = INFINITY;
+  memcpy(fq->g, w->g0, nb); /* the moves go along the start's gradients */
   for (int k = 0;; k++) {
-    tds_eval_out out = {.fq = fq};
+    tds_eval_out out = {0}; /* values only: the gradients stay g0 */
     if (tds_eval(ctx, s, &out) != TDS_OK) return -1;
+    tds_fixq_values(s, fq);
     s->energy = out.energy;
     s->area = out.area;
-    memcpy(fq->g, w->g0, nb); /* the evaluation put the gradients here */
     double off = evolver_off(fq);
     if (!isfinite(off) || !isfinite(s->energy)) return -1;
     if (k > 0 && !(off < prev)) { /* the moves diverge (a long trial): project */
@@ -305,6 +314,7 @@ static int restore_evolver(tds_ctx *ctx, tds_surf *s, work *w) {
 static double trial(tds_ctx *ctx, tds_surf *s, work *w, double scale) {
   tds_mesh *m = &s->m;
   int bad = 0;
+  w->trial_why = 0;
   for (tds_id v = 0; v < m->nv; v++) {
     if (!tds_vertex_free(s, v)) continue;
     double d[3] = {scale * w->vel[v][0], scale * w->vel[v][1],
@@ -672,8 +682,9 @@ static int step(tds_ctx *ctx, tds_surf *s, work *w) {
                           : line_search_tds(ctx, s, w, E0, w->slope, &E);
     s->scale = scale;
   }
-  if (!isfinite(E)) /* tds_iterate puts the surface back */
-    return tds_seterr(ctx, TDS_ENUM, "iteration produced a non-finite energy");
+  /* tds_iterate puts the surface back; a projection that failed says why */
+  if (!isfinite(E) && w->trial_why) return w->trial_why;
+  if (!isfinite(E)) return tds_seterr(ctx, TDS_ENUM, "iteration produced a non-finite energy");
   if (s->check_increase && E > w->E0) { /* Evolver's check_increase */
     if (m->nv) {
       memcpy(m->x, w->x0, (size_t)m->nv * sizeof *w->x0);

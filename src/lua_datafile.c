@@ -108,6 +108,11 @@ static int l_datafile_name(lua_State *L) {
   return 1;
 }
 
+static void silent(void *ud, const char *text) {
+  (void)ud;
+  (void)text;
+}
+
 /* tds.load_replace(path): Evolver's `load`: a new surface from path in
 ** place of the current one. The file is parsed into a scratch surface
 ** first, so a bad file leaves the current surface as it was. */
@@ -116,7 +121,12 @@ static int l_load_replace(lua_State *L) {
   const char *path = luaL_checkstring(L, 1);
   tds_surf *tmp = lua_newuserdatauv(L, sizeof *tmp, 0);
   tds_surf_init(tmp);
+  /* the trial parse is quiet: its warnings come again from the real load */
+  tds_out_fn warn = st->ctx.warn, out = st->ctx.out;
+  st->ctx.warn = st->ctx.out = silent;
   int rc = tds_datafile_load(&st->ctx, tmp, path);
+  st->ctx.warn = warn;
+  st->ctx.out = out;
   tds_surf_free(tmp);
   if (rc != TDS_OK) return raise_msg(L, st->ctx.errmsg);
   tds_surf_free(&st->s);

@@ -343,9 +343,11 @@ int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
   if (scale) *scale = t;
   if (in.neg) tds_printf(ctx, "WARNING 1825: Hessian not positive definite. Index: %d\n", (int)in.neg);
   if (seekmax > 0)
-    tds_printf(ctx, "%3d. area: %#17.15g energy: %#17.15g  scale: %#g\n", 1, s->area, s->energy, t);
+    tds_printf(ctx, "%3d. %s: %#17.15g energy: %#17.15g  scale: %#g\n", 1, s->str ? "length" : "area",
+               tds_surf_area(s), s->energy, t);
   else
-    tds_printf(ctx, "%3d. area: %#17.15g energy: %#17.15g\n", 1, s->area, s->energy);
+    tds_printf(ctx, "%3d. %s: %#17.15g energy: %#17.15g\n", 1, s->str ? "length" : "area",
+               tds_surf_area(s), s->energy);
   tds_snap_free(&sn);
   return TDS_OK;
 }
@@ -477,7 +479,8 @@ int tds_newton_saddle(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, doubl
   if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
   *moved = t != 0;
   s->energy = E;
-  tds_printf(ctx, "stepsize %g\n1. area: %#17.15g energy: %#17.15g \n", t, s->area, s->energy);
+  tds_printf(ctx, "stepsize %g\n1. %s: %#17.15g energy: %#17.15g \n", t, s->str ? "length" : "area",
+             tds_surf_area(s), s->energy);
   tds_snap_free(&sn);
   return TDS_OK;
 }

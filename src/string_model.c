@@ -138,6 +138,10 @@ int tds_strings_add(tds_ctx *ctx, tds_surf *s, tds_id f, int n, const int32_t *o
   return TDS_OK;
 }
 
+int tds_string_unsupported(tds_ctx *ctx, const char *what) {
+  return tds_seterr(ctx, TDS_ERANGE, "%s works on soap films only, not in the string model", what);
+}
+
 int32_t tds_strings_count(const tds_strings *st) {
   int32_t n = 0;
   for (tds_id f = 0; f < st->nf; f++) n += !(st->flags[f] & TDS_DEAD);

@@ -60,6 +60,10 @@ int tds_strings_add(tds_ctx *ctx, tds_surf *s, tds_id f, int n, const int32_t *o
 /* Room for nf cell slots and noe loop entries. TDS_OK or TDS_ENOMEM. */
 int tds_strings_room(tds_strings *st, int32_t nf, int32_t noe);
 
+/* The refusal of a soap-film command in the string model, as Evolver's
+** ("Can only do area weed on soapfilm model."): TDS_ERANGE. */
+int tds_string_unsupported(tds_ctx *ctx, const char *what);
+
 /* Live cell count. */
 int32_t tds_strings_count(const tds_strings *st);
 /* Live element count of kind in s: cells for facets in the string model. */

@@ -25,6 +25,7 @@
 
 #include "gather.h"
 #include "snap.h"
+#include "torus.h"
 #include "vec3.h"
 
 #define MAXSTAR 64 /* edges at one vertex considered */
@@ -170,13 +171,13 @@ static int pop_all(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npopp
 
 int tds_strings_pop_raw(tds_ctx *ctx, tds_surf *s, int32_t *npopped) {
   if (npopped) *npopped = 0;
-  if (!s->str) return tds_seterr(ctx, TDS_ERANGE, "works in the string model only (STRING)");
+  if (!s->str) return tds_seterr(ctx, TDS_ERANGE, "string pop works in the string model only (STRING)");
   return pop_all(ctx, s, NULL, npopped);
 }
 
 int tds_strings_pop(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npopped) {
   if (npopped) *npopped = 0;
-  if (!s->str) return tds_seterr(ctx, TDS_ERANGE, "works in the string model only (STRING)");
+  if (!s->str) return tds_seterr(ctx, TDS_ERANGE, "tds.string_pop works in the string model only (STRING)");
   tds_snap sn;
   int rc = tds_snap_take(ctx, s, &sn);
   if (rc != TDS_OK) return rc;
@@ -208,7 +209,7 @@ static int other_two(const tds_mesh *m, tds_id v, tds_id e, int32_t out[2]) {
   return n == 2;
 }
 
-static int t1_once(tds_surf *s, tds_id e) {
+static int t1_once(tds_ctx *ctx, tds_surf *s, tds_id e) {
   tds_mesh *m = &s->m;
   tds_strings *st = s->str;
   if (!tds_alive(m->eflags, e) || (m->eflags[e] & TDS_FIXED) || m->econ[e] ||
@@ -254,6 +255,12 @@ static int t1_once(tds_surf *s, tds_id e) {
       break;
     }
   }
+  /* the torus: h moves to the copy that e reaches (wrap_vertex keeps the
+  ** surface), so e has no wrap and its two ends, their new places and the
+  ** reconnected edges are all in t's frame */
+  if (m->ewrap && m->ewrap[e]) {
+    if (tds_mesh_rotates(m) || tds_torus_wrap_vertex(ctx, s, h, m->ewrap[e]) != TDS_OK) return 0;
+  }
   double mid[3], perp[3] = {-d[1], d[0], 0};
   for (int i = 0; i < 3; i++) mid[i] = (m->x[t][i] + m->x[h][i]) / 2;
   for (int i = 0; i < 2; i++) {
@@ -291,7 +298,7 @@ static int t1_all(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nflip)
     for (tds_id e = 0; e < ne; e++) {
       if (sel && !sel[e]) continue;
       if (tds_mesh_adjacency(m) != TDS_OK) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
-      if (!t1_once(s, e)) continue;
+      if (!t1_once(ctx, s, e)) continue;
       if (t1_cells(s->str, m, e) != TDS_OK) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
       count++;
     }
@@ -301,7 +308,7 @@ static int t1_all(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nflip)
 
 int tds_strings_t1(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *nflip) {
   if (nflip) *nflip = 0;
-  if (!s->str) return tds_seterr(ctx, TDS_ERANGE, "works in the string model only (STRING)");
+  if (!s->str) return tds_seterr(ctx, TDS_ERANGE, "t1_edgeswap (tds.string_t1) works in the string model only (STRING)");
   tds_snap sn;
   int rc = tds_snap_take(ctx, s, &sn);
   if (rc != TDS_OK) return rc;
@@ -334,6 +341,13 @@ static int crosscut(tds_ctx *ctx, tds_surf *s, tds_id f, tds_id tv, tds_id hv, t
   if (!oe) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   tds_id e = tds_mesh_add_edge(m, tv, hv);
   m->eten[e] = 0;
+  /* the torus: the new edge reaches hv where the cell's edges from tv do
+  ** (the product of their wraps), so both new loops still close */
+  if (m->ewrap) {
+    int32_t w = 0;
+    for (int32_t q = i; q != j; q = (q + 1) % n) w = tds_wrap_mul(m, w, tds_oe_wrap(m, st->oe[a + q]));
+    m->ewrap[e] = w;
+  }
   int32_t k = 0;
   for (tds_id g = 0; g < st->nf; g++) {
     int32_t b0 = st->start[g], b1 = st->start[g + 1];

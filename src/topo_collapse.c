@@ -308,6 +308,8 @@ int tds_delete_facets(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n)
 }
 
 int tds_areaweed(tds_ctx *ctx, tds_surf *s, double area, int32_t *n) {
+  if (n) *n = 0;
+  if (s->str) return tds_string_unsupported(ctx, "w (areaweed)");
   if (s->m.torus) return tds_torus_unsupported(ctx, "w (areaweed)");
   return run(ctx, s, 1, BY_AREA, NULL, area, n);
 }

@@ -11,6 +11,7 @@
 #include "geom.h"
 #include "motion.h"
 #include "snap.h"
+#include "string_model.h"
 #include "topo.h"
 #include "vec3.h"
 
@@ -33,8 +34,9 @@ static int check_cut(tds_ctx *ctx, double v, const char *what) {
 ** vertex; the facet keeps the part with the head half, a new facet takes
 ** the other. The new vertex inherits fixedness, constraints and boundary
 ** from the edge and is projected onto them. Room must be reserved: 1
-** vertex, 1 + valence edges, valence facets. */
-static void split_one(tds_surf *s, tds_id e) {
+** vertex, 1 + valence edges, valence facets. Returns the new edge (the
+** head half). */
+static tds_id split_one(tds_surf *s, tds_id e) {
   tds_mesh *m = &s->m;
   tds_id h = m->ev[e][1];
   tds_id v = tds_edge_midpoint(s, e);
@@ -105,6 +107,7 @@ static void split_one(tds_surf *s, tds_id e) {
   }
   m->topo_gen++;
   tds_motion_enforce(s, v);
+  return n;
 }
 
 /* Make room for splitting one more edge of valence nfe. */
@@ -121,13 +124,27 @@ static int room_for_split(tds_mesh *m, int nfe) {
 static int divide_some(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, double len, int32_t *n) {
   tds_mesh *m = &s->m;
   int32_t ne0 = m->ne, cnt = 0;
+  /* the string model: the cells' loops take both halves of a split edge
+  ** (tds_strings_split), as after r */
+  tds_id *half = NULL;
+  if (s->str) {
+    half = tds_malloc(&m->alloc, ((size_t)ne0 + 1) * sizeof *half);
+    if (!half) return tds_seterr(ctx, TDS_ENOMEM, "out of memory while dividing edges");
+    for (tds_id e = 0; e < ne0; e++) half[e] = TDS_NONE;
+  }
   for (tds_id e = 0; e < ne0; e++) {
     if (!tds_alive(m->eflags, e) || (sel ? !sel[e] : !(edge_len(m, e) > len))) continue;
-    if (room_for_split(m, tds_edge_valence(m, e)) != TDS_OK)
+    if (room_for_split(m, tds_edge_valence(m, e)) != TDS_OK) {
+      tds_free(&m->alloc, half);
       return tds_seterr(ctx, TDS_ENOMEM, "out of memory while dividing edges");
-    split_one(s, e);
+    }
+    tds_id h = split_one(s, e);
+    if (half) half[e] = h;
     cnt++;
   }
+  int rc = half && cnt ? tds_strings_split(s->str, half, ne0) : TDS_OK;
+  tds_free(&m->alloc, half);
+  if (rc != TDS_OK) return tds_seterr(ctx, rc, "out of memory while dividing edges");
   *n = cnt;
   if (cnt) m->coord_gen++;
   return tds_surf_update(ctx, s);
@@ -172,7 +189,7 @@ static int skinny(tds_ctx *ctx, tds_surf *s, double angle, int32_t *n) {
     }
     for (int32_t sd = m->eside[e], i = 0; sd != TDS_NONE && (i == 0 || sd != m->eside[e]); sd = m->side_next[sd], i++)
       if (sd / 3 < nf0) done[sd / 3] = 1;
-    split_one(s, e);
+    (void)split_one(s, e);
     cnt++;
   }
   tds_free(&m->alloc, done);
@@ -334,6 +351,10 @@ static int edgeswap(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
 }
 
 int tds_edgeswap(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  if (n) *n = 0;
+  if (s->str)
+    return tds_seterr(ctx, TDS_ERANGE, "edgeswap works on soap films only, not in the string "
+                      "model (its T1 is t1_edgeswap)");
   if (s->m.torus) return tds_torus_unsupported(ctx, "edgeswap");
   return tds_snap_run(ctx, s, edgeswap, sel, n);
 }

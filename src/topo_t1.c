@@ -14,6 +14,7 @@
 ** skipped with the surface as before. */
 #include "torus.h"
 #include "topo_edit.h"
+#include "string_model.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -492,11 +493,15 @@ static int run(tds_ctx *ctx, tds_surf *s, int kind, const uint8_t *sel, one_fn f
 }
 
 int tds_pop_edge_to_tri(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  if (n) *n = 0;
+  if (s->str) return tds_string_unsupported(ctx, "pop_edge_to_tri");
   if (s->m.torus) return tds_torus_unsupported(ctx, "pop_edge_to_tri");
   return run(ctx, s, TDS_EDGE, sel, edge_to_tri, n);
 }
 
 int tds_pop_tri_to_edge(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
+  if (n) *n = 0;
+  if (s->str) return tds_string_unsupported(ctx, "pop_tri_to_edge");
   if (s->m.torus) return tds_torus_unsupported(ctx, "pop_tri_to_edge");
   return run(ctx, s, TDS_FACET, sel, tri_to_edge, n);
 }

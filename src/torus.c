@@ -118,9 +118,12 @@ int tds_torus_lifts(tds_ctx *ctx, tds_surf *s) {
   }
   int32_t *queue = tds_malloc(&m->alloc, (size_t)need * sizeof *queue);
   uint8_t *seen = tds_calloc(&m->alloc, (size_t)need, 1);
-  if (!queue || !seen) {
+  /* the bodies found open (a body's facets may start several walks) */
+  uint8_t *open = tds_calloc(&m->alloc, (size_t)m->nb + 1, 1);
+  if (!queue || !seen || !open) {
     tds_free(&m->alloc, queue);
     tds_free(&m->alloc, seen);
+    tds_free(&m->alloc, open);
     tds_seterr(ctx, TDS_ENOMEM, "out of memory");
     return -TDS_ENOMEM;
   }
@@ -167,10 +170,14 @@ int tds_torus_lifts(tds_ctx *ctx, tds_surf *s) {
         }
       }
     }
-    bad += !closed;
+    if (!closed && !open[b]) {
+      open[b] = 1;
+      bad++;
+    }
   }
   tds_free(&m->alloc, queue);
   tds_free(&m->alloc, seen);
+  tds_free(&m->alloc, open);
   s->tlift_gen = m->topo_gen;
   return bad;
 }

@@ -317,7 +317,8 @@ typedef struct opcase {
                         addload of the same file, 'R' replace_load, 'T'
                         replacing the view transforms, 'D' detorus, 'G'
                         g with Evolver's line search, 'W' every vertex's
-                        vertex_normal (hessian_normal_one) */
+                        vertex_normal (hessian_normal_one), 'P' pg's
+                        curvature polish (tds_pg_polish) */
 } opcase;
 
 static int prepare(tds_ctx *ctx, tds_surf *s, const opcase *c) {
@@ -363,6 +364,10 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
     po.max_iterations = 3; /* until converged (its arrays: the probe's too), capped */
     po.every = -1;
     return tds_pg_run(ctx, s, &po, &pr);
+  case 'P': {
+    double p0, p1;
+    return tds_pg_polish(ctx, s, 2, 0, 0, &p0, &p1, &n);
+  }
   case 'h': return hessian(ctx, s);
   case 'n':
   case 's': {
@@ -530,7 +535,7 @@ static void sweep(const opcase *c) {
   O.nkeys = 0;
   int rc0 = run_op(&ctx, &E, c);
   O.record = 0;
-  if (rc0 != TDS_OK && strchr("pnseS", c->op)) { /* not every model */
+  if (rc0 != TDS_OK && strchr("pnseSP", c->op)) { /* not every model */
     fprintf(stderr, "test_oom: %s: %c refuses it (%s)\n", c->file, c->op, ctx.errmsg);
     tds_surf_free(&S);
     tds_surf_free(&R);
@@ -703,7 +708,10 @@ static void oom_iterate(void) {
 static void oom_equiangulate(void) { sweep_all('u', 1, 2); }
 static void oom_vertex_average(void) { sweep_all('V', 1, 2); }
 static void oom_dump(void) { sweep_all('d', 1, 2); }
-static void oom_pg(void) { sweep_all('p', 1, 0); }
+static void oom_pg(void) {
+  sweep_all('p', 1, 0);
+  sweep_all('P', 1, 0);
+}
 static void oom_hessian(void) { sweep_all('h', 1, 2); }
 static void oom_export(void) { sweep_all('x', 1, 0); }
 static void oom_newton(void) {
