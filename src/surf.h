@@ -103,6 +103,8 @@ typedef struct tds_surf {
                              entries 0), string model only; metric_on says
                              whether one was declared (METRIC) */
   int metric_on;
+  int klein;              /* KLEIN_METRIC (string model): edge lengths are
+                             hyperbolic distances in the Klein model */
   double constraint_tol;  /* level-set projection tolerance */
 
   /* iteration settings and state */
