@@ -12,6 +12,9 @@
 # (PAPER_GEN_FAMILIES, PAPER_GEN_CASES choose; PAPER_GEN_CASES=none skips
 # them), without the plain tds row (PAPER_GEN_PLAIN=1 adds it), and a
 # summary per family ends the output with its worst input.
+# PAPER_POLISH_EXPS: the paper's experiments that also get a row
+# "tds pg+polish" (pg() then pg_polish{}, doc/method.md); default: those
+# with a nonzero curvature ("none": no such rows).
 TDS=${1:-./tds}
 [ $# -gt 0 ] && shift
 case $TDS in /*) ;; *) TDS=$(pwd)/$TDS ;; esac
@@ -96,6 +99,13 @@ for exp in $EXPS; do
   fi
   row "tds pg" "$tline"
   [ -n "$pline" ] && row "tds pg plain" "$pline"
+  poline=
+  case " ${PAPER_POLISH_EXPS:-hemisphere random_hemisphere cmc_1 cmc_2 cmc_3 pendant pendant_random sessile} " in
+    *" $exp "*)
+      tds_best "$d/polish.out" PAPER_POLISH=1
+      poline=$(grep '^RESULT' "$d/polish.out")
+      [ -n "$poline" ] && row "tds pg+polish" "$poline" ;;
+  esac
   if [ $have_evolver = 1 ]; then
     if [ -n "$PAPER_G_ITERS" ]; then
       sed -i "s/inx < [0-9]*/inx < $PAPER_G_ITERS/; s/ITERS [0-9]*/ITERS $PAPER_G_ITERS/" "$d/gloop.cmd"
@@ -133,6 +143,7 @@ for exp in $EXPS; do
   fi
   reached=$(field reached "$tline"); preached=$(field reached "$pline")
   [ -n "$reached" ] && echo "r < 1e-13 x mean edge at iteration: pg $reached, plain ${preached:--}"
+  [ -n "$poline" ] && echo "pg_polish: $(field polish_iters "$poline") s = 0 iterations after pg's, $(printf %.3f "$(field polish_cpu "$poline")") processor seconds"
   st=$(field status "$tline")
   [ -n "$st" ] && [ "$st" != converged ] && echo "tds pg: $st"
 done

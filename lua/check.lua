@@ -50,7 +50,7 @@ end
 local function setting(_, ...) return select("#", ...) > 0 end -- a write
 for _, name in ipairs { "iterate", "refine", "equiangulate", "vertex_average", "pg",
                         "edgeweed", "areaweed", "edge_divide", "skinny", "notch", "delete",
-                        "edgeswap", "pop", "jiggle", "pop_edge_to_tri", "pop_tri_to_edge",
+                        "edgeswap", "pop", "jiggle", "pop_edge_to_tri", "pop_tri_to_edge", "pop_quad_to_quad",
                         "dissolve", "reverse_orientation",
                         "totals" } do
   guard(name, true, true)

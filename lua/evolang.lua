@@ -124,7 +124,7 @@ local STMT = {}
 for w in ([[if while do for foreach return break continue abort local procedure
   function define print printf binary_printf errprintf eprint list set unset fix unfix refine
   equiangulate vertex_average delete dissolve pop edgeswap t1_edgeswap pop_edge_to_tri
-  pop_tri_to_edge reverse_orientation read exec]]):gmatch("%S+") do
+  pop_tri_to_edge pop_quad_to_quad reverse_orientation read exec]]):gmatch("%S+") do
   STMT[w] = true
 end
 
@@ -1248,7 +1248,7 @@ local function oncollection(name)
   end
 end
 for _, w in ipairs { "refine", "equiangulate", "vertex_average", "delete", "dissolve", "pop", "edgeswap",
-                     "t1_edgeswap", "pop_edge_to_tri", "pop_tri_to_edge", "reverse_orientation" } do
+                     "t1_edgeswap", "pop_edge_to_tri", "pop_tri_to_edge", "pop_quad_to_quad", "reverse_orientation" } do
   P["s_" .. w] = oncollection(w)
 end
 -- rawv / rawestv on a generator (src/topo_vavg_ev.c)

@@ -737,6 +737,7 @@ local TOGGLE_MSG = {
   area_normalization = "Area normalization %s. (was %s)",
   pop_to_edge = "pop_to_edge %s. (was %s)",
   pop_to_face = "pop_to_face %s. (was %s)",
+  pop_enjoin = "pop_enjoin %s. (was %s)",
   little_endian = "little_endian %s. (was %s)",
   big_endian = "big_endian %s. (was %s)",
   hessian_normal = "hessian_normal %3s. (was %s)",
@@ -759,7 +760,7 @@ local function toggle_get(name)
   if name == "gravity" then local _, on = tds.gravity(); return on end
   if name == "check_increase" then return tds.setting("check_increase") end
   if name == "autopop" or name == "immediate_autopop" or name == "autochop"
-      or name == "area_normalization" or name == "pop_to_edge" or name == "pop_to_face" then
+      or name == "area_normalization" or name == "pop_to_edge" or name == "pop_to_face" or name == "pop_enjoin" then
     return tds.setting(name)
   end
   if name == "little_endian" then return endian == "<" end
@@ -778,7 +779,7 @@ local function toggle_set(name, on)
   elseif name == "gravity" then local g = tds.gravity(); tds.gravity(g, on)
   elseif name == "check_increase" then tds.setting("check_increase", on)
   elseif name == "autopop" or name == "immediate_autopop" or name == "autochop"
-      or name == "area_normalization" or name == "pop_to_edge" or name == "pop_to_face" then
+      or name == "area_normalization" or name == "pop_to_edge" or name == "pop_to_face" or name == "pop_enjoin" then
     tds.setting(name, on)
   elseif name == "little_endian" then endian = on and "<" or ">"
   elseif name == "big_endian" then endian = on and ">" or "<"
@@ -1116,7 +1117,7 @@ local UNSUPPORTED = {}
 for w in ([[J e A a b f k p Q W y Z z s P D F H h X
   hessian_menu
   dirichlet dirichlet_seek sobolev sobolev_seek
-  pop_quad_to_quad t1_edgeswap raw_vertex_average
+  t1_edgeswap raw_vertex_average
   rawest_vertex_average rawv rawestv
   edge_merge facet_merge facet_crosscut zoom
   logfile keylogfile history pause subcommand breakpoint whereami flush_counts
@@ -1132,7 +1133,7 @@ for w in ([[J e A a b f k p Q W y Z z s P D F H h X
   itdebug memdebug debug estimate extrapolate set_body_target quantity]]):gmatch("%S+") do UNSUPPORTED[w] = true end
 for w in ([[deturck diffusion hessian_special_normal
   hessian_double_normal sobolev_mode dirichlet_mode metis_factor hessian_quiet pop_disjoin
-  pop_enjoin septum_flag force_deletion star_finagling
+  septum_flag force_deletion star_finagling
   force_edgeswap k_altitude_mode assume_oriented calculate_in_3d self_similar
   immediate_autopop autopop_quartic longj simplex_to_fe ooglfile geompipe reorder_storage
   free_discards dump_memlist]]):gmatch("%S+") do
@@ -1288,6 +1289,9 @@ function E.oncollection(name, kind, list)
   elseif name == "pop_tri_to_edge" then
     if kind ~= "facet" then fail("pop_tri_to_edge needs facets") end
     tds.pop_tri_to_edge(list)
+  elseif name == "pop_quad_to_quad" then
+    if kind ~= "facet" then fail("pop_quad_to_quad needs facets") end
+    tds.pop_quad_to_quad(list)
   elseif name == "dissolve" then
     if #list > 0 then tds.dissolve(list) end
   elseif name == "reverse_orientation" then

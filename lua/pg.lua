@@ -34,6 +34,68 @@ function pg(arg)
 end
 projected_gradient = pg
 
+-- pg_polish{ rounds = 2, steps = 30, min_angle = degrees }: the curvature
+-- polish after pg() (doc/method.md, Curvature polish): tangential steps
+-- that make |grad V_i| equal Meyer's mixed area at every vertex, never
+-- taking a facet's smallest angle below min_angle (default: the mesh's
+-- smallest angle now) nor the mean smallest angle down by more than
+-- max_loss degrees (default 1), each round followed by plain pg with no tangential
+-- step (s = 0, no flips) to restore the normal equilibrium and the volumes.
+-- Returns { phi0, phi, moved, iterations, r, r_relative, converged,
+-- cpu_seconds }.
+local POLISH_KEYS = { rounds = "number", steps = "number", min_angle = "number",
+  max_loss = "number", max = "number" }
+local function polish_rounds(rounds, steps, floor, mfloor, max)
+  local out = { iterations = 0, converged = true }
+  local c0 = os.clock()
+  for round = 1, rounds do
+    local p0, p1, n = tds.pg_polish(steps, floor, mfloor)
+    if round == 1 then out.phi0 = p0 end
+    out.phi, out.moved = p1, n
+    -- Anderson mixing without Newton's preconditioning: with no
+    -- tangential step the map's tangential modes are null, and the
+    -- measured Jacobian is singular
+    local r = tds.pg { s = 0, newton = false, probe = false, flips = false,
+                       every = -1, max = max or 20000 }
+    out.iterations = out.iterations + r.iterations
+    out.r, out.r_relative, out.converged = r.r, r.r_relative, r.converged
+    if not r.converged then break end
+  end
+  if rounds == 0 then out.phi0, out.phi, out.moved = tds.pg_polish(0, floor, mfloor) end
+  out.cpu_seconds = os.clock() - c0
+  return out
+end
+
+function pg_polish(o)
+  o = o or {}
+  if type(o) ~= "table" then error("pg_polish{ rounds =, steps =, min_angle =, max = } expected", 2) end
+  tds.check_options(o, "pg_polish", POLISH_KEYS, 2)
+  local rounds = o.rounds or 1
+  local steps = o.steps or 20
+  for _, k in ipairs { "rounds", "steps" } do
+    local v = o[k] or 1
+    if math.type(v) ~= "integer" or v < 0 then
+      error(("pg_polish: option '%s' must be a whole number, 0 or more"):format(k), 2)
+    end
+  end
+  local q = tds.quality()
+  local floor = o.min_angle or q.min
+  if floor ~= floor then floor = 0 end
+  local mfloor = q.mean == q.mean and q.mean - (o.max_loss or 1) or 0
+  -- all or nothing: a round whose pg fails puts the surface back as it was
+  local snap = tds.check_snapshot()
+  local ok, out = pcall(function()
+    return polish_rounds(rounds, steps, floor, mfloor, o.max)
+  end)
+  if not ok then
+    tds.check_restore(snap)
+    error(out, 0)
+  end
+  tds.check_release(snap)
+  return out
+end
+
+
 local function pct(x) return ("%5.1f%%"):format(x) end
 
 -- quality(): smallest facet angles; prints a table unless quality{quiet=true}.

@@ -344,6 +344,7 @@ end
 pop_edges = O
 function pop_edge_to_tri(set) return tds.pop_edge_to_tri(list_of(set, "pop_edge_to_tri")) end
 function pop_tri_to_edge(set) return tds.pop_tri_to_edge(list_of(set, "pop_tri_to_edge")) end
+function pop_quad_to_quad(set) return tds.pop_quad_to_quad(list_of(set, "pop_quad_to_quad")) end
 function dissolve(set) return tds.dissolve(list_of(set, "dissolve")) end
 function reverse_orientation(set) return tds.reverse_orientation(list_of(set, "reverse_orientation")) end
 -- new_vertex(x, y, z), new_edge(tail, head), new_facet(e1, e2, e3, ...)
@@ -415,6 +416,9 @@ area_normalization = gtoggle("area_normalization", "Area normalization")
 -- prism frame (doc/commands.md); turning one on turns the other off.
 pop_to_edge = gtoggle("pop_to_edge", "pop_to_edge")
 pop_to_face = gtoggle("pop_to_face", "pop_to_face")
+-- pop_enjoin(on): o widens two cones meeting at a vertex into a neck
+-- instead of splitting them (doc/commands.md).
+pop_enjoin = gtoggle("pop_enjoin", "pop_enjoin")
 
 -- recalc(): after assigning parameters, put boundary vertices where their
 -- parameters say and constrained vertices back on their constraints (g, r

@@ -235,6 +235,11 @@ static const tds_attr vertex_rows[] = {
 static int e_length(GETTER_ARGS) {
   UNUSED(ctx);
   UNUSED(a);
+  if (s->klein) { /* KLEIN_METRIC: the hyperbolic length */
+    tds_corners C;
+    tds_gather_edge(&s->m, TDS_OREF(id, 0), &C);
+    return one(v, n, tds_klein_dist(C.x[0], C.x[1]));
+  }
   if (s->metric_on) { /* METRIC: the length in the metric */
     tds_corners C;
     tds_gather_edge(&s->m, TDS_OREF(id, 0), &C);

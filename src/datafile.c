@@ -53,6 +53,7 @@ static int begin_section(df *d, int sec, const char *at) {
   if (sec == S_VERTICES) {
     d->seen_vertices = 1;
     if ((rc = df_torus_start(d, at))) return rc;
+    if ((rc = df_klein_check(d))) return rc;
     /* the model, now that the top section has said which */
     if (d->string_model) {
       rc = tds_strings_enable(d->ctx, d->s, d->space_dim ? d->space_dim : 3);

@@ -14,13 +14,14 @@
 #include <strings.h>
 
 #include "model.h"
+#include "symgroup.h"
 
 /* ---- not supported yet ---- */
 
 /* Evolver keywords whose features the core does not have yet. */
 static const char *const unsupported[] = {
     "quadratic", "lagrange", "lagrange_order", "simplex_representation",
-    "conformal_metric", "klein_metric",
+    "conformal_metric",
     "method_instance", "optimizing_parameter", "optimising_parameter", "wulff",
     "phasefile", "diffusion", "pressure", "squared_curvature",
     "square_curvature", "mean_curvature_integral", "gauss_curvature",
@@ -516,10 +517,20 @@ static int h_metric(df *d, const hdr_kw *k) {
   return df_metric(d, d->p);
 }
 
+/* KLEIN_METRIC: hyperbolic lengths in the Klein model (string model:
+** checked when the vertices begin, df_klein_check). */
+static int h_klein(df *d, const hdr_kw *k) {
+  (void)k;
+  if (d->klein_line) return df_err(d, NULL, TDS_ESYNTAX, "KLEIN_METRIC given twice");
+  d->klein_line = df_line_of(d, NULL);
+  d->s->klein = 1;
+  return TDS_OK;
+}
+
 /* The string model after SYMMETRY_GROUP: refused as in the other order
-** (df_symmetry_group); it was read, and its dump then refused. */
+** (df_klein_check), but for genus2, which the string model has. */
 static int string_after_sym(df *d) {
-  if (!d->s->m.sym) return TDS_OK;
+  if (!d->s->m.sym || d->s->m.sym == TDS_SYM_GENUS2) return TDS_OK;
   return df_err(d, NULL, TDS_ESYNTAX,
                 "SYMMETRY_GROUP (line %d) in the string model is not supported yet", d->torus_line);
 }
@@ -722,6 +733,7 @@ static const hdr_kw header_kw[] = {
     {"symmetric_content", h_symmetric, 0, 0},
     {"string", h_string, 0, 0},
     {"metric", h_metric, 0, 0},
+    {"klein_metric", h_klein, 0, 0},
     {"torus", h_torus, 0, 0},
     {"torus_filled", h_torus, 0, 0},
     {"periods", h_periods, 0, 0},

@@ -128,6 +128,7 @@ typedef struct df {
   int space_dim;       /* SPACE_DIMENSION given (0: not given) */
   int string_model;    /* STRING or SURFACE_DIMENSION 1 given */
   int torus_line;      /* line of TORUS / TORUS_FILLED (0: none) */
+  int klein_line;      /* line of KLEIN_METRIC (0: none) */
   int periods_line;    /* line of PERIODS (0: none) */
   int periods_dim;     /* rows (and values per row) PERIODS had: 2 or 3 */
   /* Element ids: as Evolver, elements are numbered 1, 2, ... in the order
@@ -172,6 +173,9 @@ int df_string_model(df *d);
 /* METRIC (the cursor after the keyword at `at`): the string model's
 ** Riemannian metric into s->metric. */
 int df_metric(df *d, const char *at);
+/* When the vertices begin: KLEIN_METRIC and SYMMETRY_GROUP "genus2" only
+** in the string model, other groups not in it. */
+int df_klein_check(df *d);
 /* At the end: check the cells. */
 int df_string_finish(df *d);
 

@@ -9,13 +9,36 @@
 
 #include "attr.h"
 #include "string_model.h"
+#include "symgroup.h"
 
 static int by_id(const void *a, const void *b) {
   const df_face *x = a, *y = b;
   return (x->id > y->id) - (x->id < y->id);
 }
 
+int df_klein_check(df *d) {
+  int sym = d->s->m.sym;
+  if (d->klein_line && !d->string_model)
+    return df_err_line(d, d->klein_line, TDS_ESYNTAX,
+                       "KLEIN_METRIC on a soapfilm surface is not supported yet (the string "
+                       "model has it: STRING, SPACE_DIMENSION 2)");
+  if (d->klein_line && d->s->metric_on)
+    return df_err_line(d, d->klein_line, TDS_ESYNTAX, "KLEIN_METRIC and METRIC both given");
+  if (sym == TDS_SYM_GENUS2 && !d->string_model)
+    return df_err_line(d, d->torus_line, TDS_ESYNTAX,
+                       "SYMMETRY_GROUP \"genus2\" on a soapfilm surface is not supported yet "
+                       "(the string model has it: STRING, SPACE_DIMENSION 2)");
+  if (sym && sym != TDS_SYM_GENUS2 && d->string_model)
+    return df_err_line(d, d->torus_line, TDS_ESYNTAX,
+                       "SYMMETRY_GROUP in the string model is not supported yet");
+  return TDS_OK;
+}
+
 int df_string_faces(df *d) {
+  if (d->s->m.sym == TDS_SYM_GENUS2 && d->nfaces)
+    return df_err_line(d, d->faces[0].line, TDS_ESYNTAX,
+                       "faces under SYMMETRY_GROUP \"genus2\" are not supported yet (edges "
+                       "with tension are)");
   qsort(d->faces, (size_t)d->nfaces, sizeof *d->faces, by_id);
   for (int32_t i = 0; i < d->nfaces; i++) {
     df_face *r = &d->faces[i];
@@ -111,6 +134,14 @@ int df_string_model(df *d) {
 }
 
 int df_string_finish(df *d) {
+  if (d->s->klein) /* the Klein model is the open unit ball */
+    for (tds_id v = 0; v < d->s->m.nv; v++) {
+      const double *x = d->s->m.x[v];
+      if (!(d->s->m.vflags[v] & TDS_DEAD) && !(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] < 1))
+        return df_err_line(d, 0, TDS_ERANGE,
+                           "vertex %d: (%g, %g) is not inside the unit disk, the Klein model "
+                           "of KLEIN_METRIC", v + 1, x[0], x[1]);
+    }
   int rc = tds_strings_check(d->ctx, d->s);
   return rc ? df_core(d, 0, rc, NULL) : TDS_OK;
 }

@@ -51,8 +51,6 @@ int df_symmetry_group(df *d) {
   }
   memcpy(name, at + 1, (size_t)(q - at - 1));
   name[q - at - 1] = 0;
-  if (d->string_model)
-    return df_err(d, at, TDS_ESYNTAX, "SYMMETRY_GROUP in the string model is not supported yet");
   if (d->app)
     return df_err(d, at, TDS_ESYNTAX, "SYMMETRY_GROUP in a file added by addload is not supported yet");
   if (d->s->m.torus)
@@ -66,7 +64,10 @@ int df_symmetry_group(df *d) {
                   "central_symmetry, screw_symmetry, quarter_turn)", name);
   if (id < 0)
     return df_err(d, at, TDS_ESYNTAX,
-                  "SYMMETRY_GROUP \"%s\" is not supported yet (it needs KLEIN_METRIC)", name);
+                  "SYMMETRY_GROUP \"%s\" is not supported yet (it needs KLEIN_METRIC on "
+                  "films)", name);
+  if (d->string_model && id != TDS_SYM_GENUS2) /* genus2: datafile_string.c */
+    return df_err(d, at, TDS_ESYNTAX, "SYMMETRY_GROUP in the string model is not supported yet");
   if (tds_mesh_set_torus(&d->s->m, 1)) return df_core(d, df_line_of(d, at), TDS_ENOMEM, NULL);
   d->s->m.sym = id;
   for (int k = 0; k < 2; k++) d->s->m.symp[k] = tds_sym_param_default(id, k);

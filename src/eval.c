@@ -624,7 +624,9 @@ static int edge_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
     }
     anyten = any != 0;
   }
-  if (anyten && s->metric_on) /* METRIC: lengths in the metric */
+  if (anyten && s->klein) /* KLEIN_METRIC: hyperbolic lengths */
+    rc = energy_term(ctx, s, out, make(s, TDS_M_KLEIN_LENGTH, s_edge_tension, NULL, 0));
+  else if (anyten && s->metric_on) /* METRIC: lengths in the metric */
     rc = energy_term(ctx, s, out, make(s, TDS_M_METRIC_LENGTH, s_edge_tension, s->metric, 0));
   else if (anyten && s->str) /* string_terms: fused with the cells' areas */
     return string_terms(ctx, s, out, 1);
@@ -722,7 +724,9 @@ static double string_length(const tds_surf *s) {
     if (m->eflags[e] & TDS_DEAD) continue;
     tds_corners C;
     tds_gather_edge(m, TDS_OREF(e, 0), &C);
-    if (s->metric_on) {
+    if (s->klein) {
+      sum += tds_klein_dist(C.x[0], C.x[1]);
+    } else if (s->metric_on) {
       tds_mlocal L = {.x = {C.x[0], C.x[1]}, .ig = s->metric, .param = s->parval,
                       .G = s->gravity_on ? s->gravity : 0};
       sum += tds_methods[TDS_M_METRIC_LENGTH].eval(&L, NULL, NULL);

@@ -167,6 +167,10 @@ int tds_fixq_build(tds_ctx *ctx, tds_surf *s, tds_fixq *fq) {
   fq->g = tds_calloc(&fq->alloc, (size_t)n, sizeof *fq->g);
   if (!fq->g) goto nomem;
   emap_build(s, fq);
+  if (s->str && tds_fixq_dependent(ctx, s, fq, &fq->dep_first, &fq->dep_count) != TDS_OK) {
+    tds_fixq_free(fq);
+    return TDS_ENOMEM;
+  }
   return TDS_OK;
 nomem:
   tds_fixq_free(fq);
@@ -410,7 +414,24 @@ static int dense_chol(tds_fixq *fq, double *rhs) {
   return info == 0 ? 0 : -1;
 }
 
+/* The combinatorial dependence found at the build (fixq_dep.c). */
+static int dependent(tds_ctx *ctx, const tds_fixq *fq) {
+  int b = fq->dep_first + 1;
+  if (fq->dep_count == 1)
+    return tds_seterr(ctx, TDS_ENUM,
+                      "volume constraints are dependent: no vertex on the walls of body %d "
+                      "can move its area; leave it without a target (body[%d].target = nil)",
+                      b, b);
+  return tds_seterr(ctx, TDS_ENUM,
+                    "volume constraints are dependent: the area targets of the %d bodies "
+                    "joined to body %d by movable walls fix the sum of their areas, which the "
+                    "foam already fixes (the torus's area, or the area inside fixed edges); "
+                    "leave one of them without a target (body[%d].target = nil), or use "
+                    "TORUS_FILLED", (int)fq->dep_count, b, b);
+}
+
 static int solve(tds_ctx *ctx, tds_fixq *fq, double *rhs, double rtol, int mults) {
+  if (fq->dep_count > 0) return dependent(ctx, fq);
   if (!fq->gram) return solve_sparse(ctx, fq, rhs, rtol, mults);
   int chol = fq->nq >= FIXQ_CHOL_MIN;
   gram(fq, chol);

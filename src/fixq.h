@@ -73,6 +73,12 @@ typedef struct tds_fixq {
   ** solve is then cheaper, and each move still shrinks the error by
   ** about this factor. */
   double restore_rtol;
+  /* String model: bodies whose area targets are dependent by the foam's
+  ** combinatorics (tds_fixq_dependent, at the build): the lowest such
+  ** body and how many bodies its dependent set has (0: none found). The
+  ** solves then refuse with a message naming them. */
+  tds_id dep_first;
+  int32_t dep_count;
   tds_alloc alloc;      /* the allocator of the arrays (the ctx's at build) */
 } tds_fixq;
 
@@ -81,6 +87,14 @@ typedef struct tds_fixq {
 ** adjacency. TDS_OK or TDS_ENOMEM. */
 int tds_fixq_build(tds_ctx *ctx, tds_surf *s, tds_fixq *fq);
 void tds_fixq_free(tds_fixq *fq);
+/* String model (fixq_dep.c): a set of bodies with targets in fq whose
+** signed areas add up to a constant whatever the free vertices do (all
+** cells of a torus foam; cells closed in by fixed edges): *first its
+** lowest body, *count its size; 0 and TDS_NONE when the combinatorics
+** show none (the targets may still be dependent by coincidence of the
+** positions: the numerical solve finds those). TDS_OK or TDS_ENOMEM. */
+int tds_fixq_dependent(tds_ctx *ctx, const tds_surf *s, const tds_fixq *fq, tds_id *first,
+                       int32_t *count);
 
 /* The quantities' values (fq->value) from an evaluation made without fq
 ** (the bodies' volumes in m.bvol, the named quantities' values): the

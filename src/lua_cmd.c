@@ -223,7 +223,7 @@ static int l_setting(lua_State *L) {
                                       "evolver_line_search", "autopop",
                                       "immediate_autopop", "autochop",
                                       "autochop_length", "area_normalization", "pop_to_edge",
-                                      "pop_to_face", NULL};
+                                      "pop_to_face", "pop_enjoin", NULL};
   int which = luaL_checkoption(L, 1, NULL, names);
   tds_surf *s = &st->s;
   int set = !lua_isnone(L, 2);
@@ -296,6 +296,10 @@ static int l_setting(lua_State *L) {
     lua_pushboolean(L, *mine);
     break;
   }
+  case 17:
+    if (set) s->pop_enjoin = lua_toboolean(L, 2);
+    lua_pushboolean(L, s->pop_enjoin);
+    break;
   case 8: /* the jiggle's generator state (jiggle.h) */
     if (set) s->rng = (uint64_t)luaL_checkinteger(L, 2);
     lua_pushinteger(L, (lua_Integer)s->rng);

@@ -284,6 +284,22 @@ static int l_pg_flip_all(lua_State *L) {
   return 1;
 }
 
+/* tds.pg_polish(steps, floor_degrees, mean_floor_degrees) -> phi0, phi1, moved */
+static int l_pg_polish(lua_State *L) {
+  tds_state *st = TDS_STATE(L);
+  lua_Integer steps = luaL_checkinteger(L, 1);
+  double fl = luaL_checknumber(L, 2), mfl = luaL_optnumber(L, 3, 0);
+  if (steps < 0 || steps > 1000000) return luaL_error(L, "pg_polish: steps must be 0 to 1000000");
+  double p0 = 0, p1 = 0;
+  int32_t n = 0;
+  int rc = tds_pg_polish(&st->ctx, &st->s, (int)steps, fl, mfl, &p0, &p1, &n);
+  if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
+  lua_pushnumber(L, p0);
+  lua_pushnumber(L, p1);
+  lua_pushinteger(L, n);
+  return 3;
+}
+
 void tds_open_pg(lua_State *L, tds_state *st) {
   static const luaL_Reg fns[] = {
       {"pg", l_pg},
@@ -294,6 +310,7 @@ void tds_open_pg(lua_State *L, tds_state *st) {
       {"facet_min_angle", l_facet_min_angle},
       {"pg_multipliers", l_pg_multipliers},
       {"pg_flip_all", l_pg_flip_all},
+      {"pg_polish", l_pg_polish},
       {NULL, NULL}};
   tds_lua_register(L, st, fns);
 }

@@ -108,6 +108,10 @@ static int l_pop(lua_State *L) {
 static int l_pop_edge_to_tri(lua_State *L) {
   return on_set(L, TDS_EDGE, tds_pop_edge_to_tri, "Edges popped to triangles: %d\n");
 }
+/* tds.pop_quad_to_quad([facets]) -> quadrilaterals popped */
+static int l_pop_quad_to_quad(lua_State *L) {
+  return on_set(L, TDS_FACET, tds_pop_quad_to_quad, "pop_quad_to_quad count: %d\n");
+}
 static int l_pop_tri_to_edge(lua_State *L) {
   return on_set(L, TDS_FACET, tds_pop_tri_to_edge, "Triangles popped to edges: %d\n");
 }
@@ -233,6 +237,7 @@ void tds_open_topo(lua_State *L, tds_state *st) {
       {"rebody", l_rebody},
       {"dissolve", l_dissolve},         {"reverse_orientation", l_reverse},
       {"pop_edge_to_tri", l_pop_edge_to_tri}, {"pop_tri_to_edge", l_pop_tri_to_edge},
+      {"pop_quad_to_quad", l_pop_quad_to_quad},
       {NULL, NULL}};
   tds_lua_register(L, st, fns);
 }

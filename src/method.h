@@ -82,6 +82,8 @@ enum {
                                        constant (method_torus.c) */
   TDS_M_EDGE_SHIFT,                 /* string torus: x1[k] - x0[k], k the row
                                        constant (method_string.c) */
+  TDS_M_KLEIN_LENGTH,               /* KLEIN_METRIC: hyperbolic length in the
+                                       Klein model (method_klein.c) */
   TDS_M_NROWS
 };
 
@@ -136,6 +138,11 @@ double tds_mk_string_gravity(const tds_mlocal *L, double g[3][3], double h[9][9]
 double tds_mk_vertex_head(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_vertex_tail(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_metric_length(const tds_mlocal *L, double g[3][3], double h[9][9]);
+/* KLEIN_METRIC (method_klein.c): the hyperbolic distance of a and b in the
+** Klein model (+infinity unless both are inside the unit ball), and the
+** edge row's kernel (exact gradient and Hessian). */
+double tds_klein_dist(const double a[3], const double b[3]);
+double tds_mk_klein_length(const tds_mlocal *L, double g[3][3], double h[9][9]);
 /* The torus model's row (method_torus.c). */
 double tds_mk_facet_flux(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_edge_shift(const tds_mlocal *L, double g[3][3], double h[9][9]);

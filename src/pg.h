@@ -105,6 +105,19 @@ void tds_pg_defaults(tds_pg_opts *o);
 int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
                tds_pg_result *res);
 
+/* The curvature polish (pg_polish.c, doc/method.md): `steps` steps of
+** steepest descent of Phi = sum (|grad V_i| / A_mixed,i - 1)^2 over the
+** measured vertices, moving the vertices free of constraints and
+** boundaries along their tangent planes; no step takes a facet's smallest
+** angle below floor_deg (degrees). Stops early when a step cannot lower
+** Phi, or only by taking the mean of the measured facets' smallest
+** angles (quality()) below mean_floor_deg. *phi0, *phi1: Phi before and
+** after; *nmoved: vertices it may move.
+** The normal equilibrium is left to the caller (pg{ s = 0 }). TDS_OK,
+** TDS_ENOMEM, TDS_ERANGE (string model), torus: unsupported. */
+int tds_pg_polish(tds_ctx *ctx, tds_surf *s, int steps, double floor_deg,
+                  double mean_floor_deg, double *phi0, double *phi1, int32_t *nmoved);
+
 /* Kernels, exposed for the unit tests and the metrics. --------------- */
 
 /* Sum of the area vectors N_F = (b - a) x (c - a) of the live facets

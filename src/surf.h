@@ -103,6 +103,8 @@ typedef struct tds_surf {
                              entries 0), string model only; metric_on says
                              whether one was declared (METRIC) */
   int metric_on;
+  int klein;              /* KLEIN_METRIC (string model): edge lengths are
+                             hyperbolic distances in the Klein model */
   double constraint_tol;  /* level-set projection tolerance */
 
   /* iteration settings and state */
@@ -123,6 +125,7 @@ typedef struct tds_surf {
   int immediate_autopop;  /* ... each as soon as it is found (autopop.h) */
   int pop_to_edge;        /* o pops a prism cone to an edge (tds_pop_prism) */
   int pop_to_face;        /* ... or to a triangle (at most one of the two on) */
+  int pop_enjoin;         /* o widens two cones at a vertex into a neck (tds_pop_neck) */
   int autochop;           /* g bisects edges about to grow past autochop_length */
   double autochop_length;
   int area_normalization; /* g divides each vertex's force by its share of

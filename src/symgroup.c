@@ -15,12 +15,12 @@ static const char *const names[TDS_SYM_COUNT] = {
     [TDS_SYM_FLIP_ROTATE] = "flip_rotate", [TDS_SYM_CUBOCTA] = "cubocta",
     [TDS_SYM_XYZ] = "xyz",             [TDS_SYM_CUBELAT] = "cubelat",
     [TDS_SYM_CENTRAL] = "central_symmetry", [TDS_SYM_SCREW] = "screw_symmetry",
-    [TDS_SYM_QUARTER_TURN] = "quarter_turn"};
+    [TDS_SYM_QUARTER_TURN] = "quarter_turn", [TDS_SYM_GENUS2] = "genus2"};
 
 int tds_sym_lookup(const char *name) {
   for (int i = 1; i < TDS_SYM_COUNT; i++)
     if (!strcasecmp(name, names[i])) return i;
-  if (!strcasecmp(name, "genus2") || !strcasecmp(name, "dodecahedron")) return -1;
+  if (!strcasecmp(name, "dodecahedron")) return -1;
   return 0;
 }
 
@@ -148,7 +148,9 @@ static void qt_unturn(int c, int *a, int *b) {
 }
 
 int32_t tds_sym_mul(int id, const double p[2], int32_t a, int32_t b) {
+  if (a == TDS_SYM_OUTSIDE || b == TDS_SYM_OUTSIDE) return TDS_SYM_OUTSIDE;
   switch (id) {
+  case TDS_SYM_GENUS2: return tds_g2_mul(a, b);
   case TDS_SYM_TORUS: return tds_wrap_add(a, b);
   case TDS_SYM_ROTATE:
   case TDS_SYM_FLIP_ROTATE: return mod_n((int64_t)a + b, p);
@@ -181,7 +183,9 @@ int32_t tds_sym_mul(int id, const double p[2], int32_t a, int32_t b) {
 }
 
 int32_t tds_sym_inv(int id, const double p[2], int32_t a) {
+  if (a == TDS_SYM_OUTSIDE) return TDS_SYM_OUTSIDE;
   switch (id) {
+  case TDS_SYM_GENUS2: return tds_g2_inv(a);
   case TDS_SYM_TORUS: return a ? tds_wrap_neg(a) : 0;
   case TDS_SYM_ROTATE:
   case TDS_SYM_FLIP_ROTATE: return mod_n(-(int64_t)a, p);
@@ -333,12 +337,34 @@ int tds_sym_from_code(int id, const double p[2], double code, int32_t *w) {
     *w = (int32_t)code;
     return TDS_OK;
   case TDS_SYM_SCREW: *w = (int32_t)code; return TDS_OK;
+  case TDS_SYM_GENUS2: return tds_g2_from_code(code, w) ? TDS_ERANGE : TDS_OK;
   default: return TDS_ERANGE;
   }
 }
 
+int tds_sym_affine_group(int id) {
+  return id != TDS_SYM_GENUS2;
+}
+
+void tds_sym_jacobian(int id, const double p[2], const double (*period)[3], int32_t w,
+                      const double x[3], double out[3], double J[3][3], double T[3][3][3]) {
+  if (id == TDS_SYM_GENUS2) {
+    tds_g2_apply(w, x, out, J, T);
+    return;
+  }
+  double R[3][3], d[3];
+  tds_sym_affine(id, p, period, w, R, d);
+  for (int i = 0; i < 3; i++) out[i] = R[i][0] * x[0] + R[i][1] * x[1] + R[i][2] * x[2] + d[i];
+  if (J) memcpy(J, R, sizeof R);
+  if (J && T) memset(T, 0, 27 * sizeof(double));
+}
+
 void tds_sym_apply(int id, const double p[2], const double (*period)[3], int32_t w,
                    const double x[3], double out[3]) {
+  if (id == TDS_SYM_GENUS2) {
+    tds_g2_apply(w, x, out, NULL, NULL);
+    return;
+  }
   double R[3][3], d[3];
   tds_sym_affine(id, p, period, w, R, d);
   for (int i = 0; i < 3; i++) out[i] = R[i][0] * x[0] + R[i][1] * x[1] + R[i][2] * x[2] + d[i];

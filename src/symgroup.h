@@ -34,7 +34,12 @@
 **                translation k p[0] along z (screw_angle, screw_height);
 **   QUARTER_TURN x^a y^b z^c packed as the torus's counts (a, b, c): the
 **                map p -> Q^c (p + (a, b, 0)) + (0, 0, c p[0]), Q the
-**                quarter turn (x, y) -> (-y, x), p[0] = quarter_turn_period.
+**                quarter turn (x, y) -> (-y, x), p[0] = quarter_turn_period;
+**   GENUS2       Evolver's code byte a + 16 b, the run G_a ... G_(b-1) of
+**                the octagon's eight translations in the Klein model
+**                (symgroup_g2.c); not affine: projective maps of the
+**                Klein disk (tds_sym_jacobian). A product that is no run
+**                is TDS_SYM_OUTSIDE (Evolver: "Wrap outside known range").
 ** No Lua, no globals: pure functions of (group, parameters, codes).
 */
 #ifndef TDS_SYMGROUP_H
@@ -53,12 +58,17 @@ enum {
   TDS_SYM_CENTRAL,
   TDS_SYM_SCREW,
   TDS_SYM_QUARTER_TURN,
+  TDS_SYM_GENUS2,
   TDS_SYM_COUNT
 };
 
+/* What tds_sym_mul returns for a product the group's codes cannot name
+** (GENUS2 only): never a valid code, never 0. */
+#define TDS_SYM_OUTSIDE INT32_MIN
+
 /* The group of Evolver's name (case-insensitive): its TDS_SYM_* id, 0 for
 ** an unknown name, -1 for a group Evolver has that tds does not (genus2,
-** dodecahedron: they need the Klein metric). */
+** dodecahedron). */
 int tds_sym_lookup(const char *name);
 /* Evolver's name of group id. */
 const char *tds_sym_name(int id);
@@ -74,13 +84,32 @@ const char *tds_sym_param_check(int id, const double p[2]);
 int32_t tds_sym_mul(int id, const double p[2], int32_t a, int32_t b);
 int32_t tds_sym_inv(int id, const double p[2], int32_t a);
 
-/* The isometry of code w: x -> R x + t. period: the torus's period rows
-** (TORUS only). */
+/* Whether group id's elements are affine maps x -> R x + t (all but
+** GENUS2, whose maps are projective). */
+int tds_sym_affine_group(int id);
+
+/* The isometry of code w: x -> R x + t (affine groups; the identity for
+** GENUS2). period: the torus's period rows (TORUS only). */
 void tds_sym_affine(int id, const double p[2], const double (*period)[3], int32_t w,
                     double R[3][3], double t[3]);
 /* out = R x + t for the isometry of code w (out may not be x). */
 void tds_sym_apply(int id, const double p[2], const double (*period)[3], int32_t w,
                    const double x[3], double out[3]);
+
+/* out = g(x) for the element g of code w, with J (when not NULL) its
+** Jacobian dg_i/dx_j at x and T (when not NULL, with J) its second
+** derivatives d2 g_i / dx_j dx_k (zero for affine groups). */
+void tds_sym_jacobian(int id, const double p[2], const double (*period)[3], int32_t w,
+                      const double x[3], double out[3], double J[3][3], double T[3][3][3]);
+
+/* GENUS2 (symgroup_g2.c): the element's 4x4 matrix on (x, y, z, 1), its
+** product, inverse, code (0 or -1: no element), and action with
+** derivatives as in tds_sym_jacobian. */
+void tds_g2_matrix(int32_t w, double M[4][4]);
+int32_t tds_g2_mul(int32_t x, int32_t y);
+int32_t tds_g2_inv(int32_t w);
+int tds_g2_from_code(double code, int32_t *w);
+void tds_g2_apply(int32_t w, const double x[3], double out[3], double J[3][3], double T[3][3][3]);
 
 /* Evolver's integer code of internal code w (datafile, dump, the wrap
 ** attribute), and back: TDS_OK, or TDS_ERANGE when code is no element of

@@ -123,6 +123,13 @@ int tds_pop_one_edge(tds_surf *s, tds_id e, int32_t *npulled);
 ** all or nothing; the two counts in *nedges, *nverts. */
 int tds_pop(tds_ctx *ctx, tds_surf *s, int32_t *nedges, int32_t *nverts);
 
+/* Widen vertex v, where two cones of facets meet, into a neck (Evolver's
+** pop_enjoin; topo_popneck.c). fl[0..nf-1] are v's facets, lab their
+** cone labels (lab[0] one cone). *done 0 when the cones do not fit (edges
+** at v of other than two facets, rims of different lengths): nothing
+** changed then. TDS_OK or TDS_ENOMEM. Needs the mesh adjacency. */
+int tds_pop_neck(tds_surf *s, tds_id v, const tds_id *fl, const int *lab, int nf, int *done);
+
 /* The same without a snapshot (for autopop inside g, which has one). */
 int tds_pop_raw(tds_ctx *ctx, tds_surf *s, int32_t *nedges, int32_t *nverts);
 
@@ -149,6 +156,15 @@ int tds_pop_edge_to_tri(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *
 ** different bodies, collapses to a point that opens into a short triple
 ** edge across, joining the two bodies' sides. *n: facets transformed. */
 int tds_pop_tri_to_edge(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
+
+/* pop_quad_to_quad (sel over facets; topo_quad.c): the film of each
+** selected facet, between two bodies and bounded by four triple edges
+** whose corners are free tetrahedral points, becomes the quadrilateral
+** across, between the two bodies beyond its long sides (Evolver's rules,
+** described in topo_quad.c). Facets without a triple edge are skipped
+** silently; others that do not fit are skipped with a line saying why
+** (for a selection). *n: quadrilaterals popped. */
+int tds_pop_quad_to_quad(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n);
 
 /* renumber_all (topo_renumber.c): the live elements of each kind get ids
 ** 1, 2, ... in their present order, every reference following; dead slots

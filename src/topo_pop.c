@@ -129,6 +129,23 @@ static int pop(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npop) {
       }
       continue;
     }
+    if (nc == 2 && s->pop_enjoin) { /* Evolver's pop_enjoin: a neck */
+      int done = 0;
+      rc = tds_pop_neck(s, v, fl, lab, nf, &done);
+      if (rc != TDS_OK) {
+        rc = tds_seterr(ctx, rc, "out of memory while popping vertex %d", v + 1);
+        break;
+      }
+      if (done) {
+        cnt++;
+        if (tds_mesh_adjacency(m) != TDS_OK) {
+          rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory while popping");
+          break;
+        }
+        continue;
+      }
+      tds_warnf(ctx, "pop_enjoin: vertex %d: its two cones do not pair up edge for edge; split instead\n", v + 1);
+    }
     if (tds_mesh_room(m, TDS_VERTEX, m->nv + nc) != TDS_OK) {
       rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory while popping");
       break;

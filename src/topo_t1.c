@@ -21,6 +21,7 @@
 
 #include "motion.h"
 #include "topo.h"
+#include "topo_t1.h"
 #include "snap.h"
 #include "vec3.h"
 
@@ -62,15 +63,9 @@ static int star_facets(const tds_mesh *m, tds_id v, tds_id *fl, int *lab) {
   return nf;
 }
 
-/* Expand vertex v: triple edge te[i] goes to new vertex tv[i]; conn are
-** the edges among new vertices. A fan whose two ends go to different new
-** vertices follows the end met first (the other with flip), or with
-** axis given the end counterclockwise after the other about axis (right-
-** hand rule), so that the fans all turn one way. TDS_OK, or TDS_ETOPO
-** when the star is not fans bounded by two listed triple edges each.
-** Room for nt new edges and facets must be reserved. */
-static int expand(tds_mesh *m, tds_id v, int nt, const tds_id *te, const tds_id *tv,
-                  const tds_id *conn, int nc, int flip, const double *axis) {
+/* Expand vertex v (topo_t1.h). */
+int tds_t1_expand(tds_mesh *m, tds_id v, int nt, const tds_id *te, const tds_id *tv,
+                  const tds_id *conn, int nc, int flip, const double *axis, tds_id follow) {
   tds_id fl[MAXF];
   int lab[MAXF], nf = star_facets(m, v, fl, lab);
   if (nf < 0) return TDS_ETOPO;
@@ -109,6 +104,14 @@ static int expand(tds_mesh *m, tds_id v, int nt, const tds_id *te, const tds_id 
     }
   for (int i = 0; i < nf; i++)
     if (lab[i] == i && (endx[i] < 0 || endy[i] < 0)) return TDS_ETOPO;
+  if (follow != TDS_NONE) /* fans that part follow `follow` */
+    for (int i = 0; i < nf; i++)
+      if (lab[i] == i && tv[endy[i]] == follow && tv[endx[i]] != follow) {
+        int t = endx[i];
+        endx[i] = endy[i], endy[i] = t;
+        t = xfacet[i];
+        xfacet[i] = yfacet[i], yfacet[i] = t;
+      }
   for (int i = 0; axis && i < nf; i++) {
     if (lab[i] != i || tv[endx[i]] == tv[endy[i]]) continue;
     double px[3], py[3], c[3];
@@ -179,14 +182,16 @@ static int expand(tds_mesh *m, tds_id v, int nt, const tds_id *te, const tds_id 
     tds_id g = tds_mesh_add_facet(m, g3);
     tds_facet_inherit(m, g, f);
   }
-  tds_mesh_kill(m, TDS_VERTEX, v);
+  int kept = 0;
+  for (int t = 0; t < nt; t++) kept |= tv[t] == v;
+  if (!kept) tds_mesh_kill(m, TDS_VERTEX, v);
   m->topo_gen++;
   return TDS_OK;
 }
 
 /* Triple edges at v other than `not` (up to 4), and whether every other
 ** edge at v has valence 2: a tetrahedral point. */
-static int tetra(const tds_mesh *m, tds_id v, tds_id not, tds_id *t3) {
+int tds_t1_tetra(const tds_mesh *m, tds_id v, tds_id not, tds_id *t3) {
   int n3 = 0, nt = 0;
   for (tds_id e = 0; e < m->ne; e++) {
     if (!tds_alive(m->eflags, e) || (m->ev[e][0] != v && m->ev[e][1] != v)) continue;
@@ -202,14 +207,14 @@ static int tetra(const tds_mesh *m, tds_id v, tds_id not, tds_id *t3) {
   return n3 == 4;
 }
 
-static int free_vertex(const tds_surf *s, tds_id v) {
+int tds_t1_free_vertex(const tds_surf *s, tds_id v) {
   const tds_mesh *m = &s->m;
   return !(m->vflags[v] & TDS_FIXED) && !(m->vcon[v] & ~tds_surf_global_cons(s)) &&
          m->vbdry[v] == TDS_NONE;
 }
 
 /* Bodies on the facets around edge e contain b? */
-static int around_has(const tds_mesh *m, tds_id e, tds_id b) {
+int tds_t1_around_has(const tds_mesh *m, tds_id e, tds_id b) {
   int32_t h = m->eside[e], sd = h;
   if (h == TDS_NONE) return 0;
   do {
@@ -221,7 +226,7 @@ static int around_has(const tds_mesh *m, tds_id e, tds_id b) {
 }
 
 /* Bodies on the facets around edge e (distinct, up to 8); count. */
-static int bodies_around(const tds_mesh *m, tds_id e, tds_id *out) {
+int tds_t1_bodies_around(const tds_mesh *m, tds_id e, tds_id *out) {
   int n = 0;
   int32_t h = m->eside[e], sd = h;
   if (h == TDS_NONE) return 0;
@@ -241,9 +246,9 @@ static int bodies_around(const tds_mesh *m, tds_id e, tds_id *out) {
 ** common vertex; -2 if there is none or more than one. */
 static tds_id common_body(const tds_mesh *m, const tds_id *t) {
   tds_id bs[8], found = -2;
-  int nb = bodies_around(m, t[0], bs);
+  int nb = tds_t1_bodies_around(m, t[0], bs);
   for (int z = 0; z < nb; z++)
-    if (around_has(m, t[1], bs[z]) && around_has(m, t[2], bs[z])) {
+    if (tds_t1_around_has(m, t[1], bs[z]) && tds_t1_around_has(m, t[2], bs[z])) {
       if (found != -2) return -2;
       found = bs[z];
     }
@@ -292,7 +297,7 @@ static int edge_to_tri(tds_surf *s, tds_id e, int dry) {
       m->ebdry[e] != TDS_NONE || tds_edge_valence(m, e) != 3)
     return 0;
   tds_id a = m->ev[e][0], b = m->ev[e][1], ta[4], tb[4];
-  if (!free_vertex(s, a) || !free_vertex(s, b) || !tetra(m, a, e, ta) || !tetra(m, b, e, tb))
+  if (!tds_t1_free_vertex(s, a) || !tds_t1_free_vertex(s, b) || !tds_t1_tetra(m, a, e, ta) || !tds_t1_tetra(m, b, e, tb))
     return 0;
   for (int i = 0; i < 3; i++)
     for (int j = 0; j < 3; j++)
@@ -349,7 +354,7 @@ static int edge_to_tri(tds_surf *s, tds_id e, int dry) {
   ** Evolver's on the cluster and on twelve seeded prisms) */
   double axis[3];
   v3_sub(axis, xb, xa);
-  int rc = expand(m, v, 6, te, tv, conn, 3, 0, axis);
+  int rc = tds_t1_expand(m, v, 6, te, tv, conn, 3, 0, axis, TDS_NONE);
   if (rc != TDS_OK) return rc;
   /* the loop starts at the corner of the second wall (Evolver's, which
   ** pop_tri_to_edge then collapses from its first edge) */
@@ -381,7 +386,7 @@ static int tri_to_edge(tds_surf *s, tds_id f, int dry) {
         tds_edge_valence(m, e) != 3)
       return 0;
     pv[k] = m->fv[f][k];
-    if (!free_vertex(s, pv[k]) || !tetra(m, pv[k], TDS_NONE, tx[k])) return 0;
+    if (!tds_t1_free_vertex(s, pv[k]) || !tds_t1_tetra(m, pv[k], TDS_NONE, tx[k])) return 0;
     /* the two triple edges off the triangle: x toward D, y toward E */
     x[k] = y[k] = TDS_NONE;
     for (int i = 0; i < 4; i++) {
@@ -389,7 +394,7 @@ static int tri_to_edge(tds_surf *s, tds_id f, int dry) {
       int onf = 0;
       for (int q = 0; q < 3; q++) onf |= TDS_OID(m->fe[f][q]) == t;
       if (onf) continue;
-      int hd = around_has(m, t, D), he = around_has(m, t, E);
+      int hd = tds_t1_around_has(m, t, D), he = tds_t1_around_has(m, t, E);
       if (hd && !he) x[k] = t;
       else if (he && !hd) y[k] = t;
     }
@@ -442,13 +447,14 @@ static int tri_to_edge(tds_surf *s, tds_id f, int dry) {
   for (tds_id d = 0; d < m->ne; d++) {
     if (d == ab || !tds_alive(m->eflags, d) || (m->ev[d][0] != v && m->ev[d][1] != v)) continue;
     if (tds_edge_valence(m, d) != 3) continue;
-    int hd = around_has(m, d, D), he = around_has(m, d, E);
+    int hd = tds_t1_around_has(m, d, D), he = tds_t1_around_has(m, d, E);
     if (nt == 6 || hd == he) return TDS_ETOPO;
     te[nt] = d;
     tv[nt++] = hd ? a : b;
   }
   if (nt != 6) return TDS_ETOPO;
-  int rc = expand(m, v, 6, te, tv, &ab, 1, 0, NULL);
+  /* the films beside the new edge all follow b, as Evolver's (a gets gap facets) */
+  int rc = tds_t1_expand(m, v, 6, te, tv, &ab, 1, 0, NULL, b);
   if (rc != TDS_OK) return rc;
   tds_motion_enforce(s, a);
   tds_motion_enforce(s, b);
@@ -514,7 +520,7 @@ int tds_pop_tri_to_edge(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *
 ** 1 if so, 0 if not. */
 static int prism(const tds_surf *s, tds_id v, tds_id t[6]) {
   const tds_mesh *m = &s->m;
-  if (!free_vertex(s, v)) return 0;
+  if (!tds_t1_free_vertex(s, v)) return 0;
   tds_id te[6];
   int nt = 0;
   for (tds_id e = 0; e < m->ne; e++) {
@@ -645,7 +651,7 @@ int tds_pop_prism(tds_surf *s, tds_id v, int to_face) {
   tds_id conn[3];
   int nc = to_face ? 3 : 1;
   for (int k = 0; k < nc; k++) conn[k] = tds_mesh_add_edge(m, nw[k], nw[(k + 1) % nn]);
-  int rc = expand(m, v, 6, t, tv, conn, nc, to_face, NULL); /* as Evolver triangulates */
+  int rc = tds_t1_expand(m, v, 6, t, tv, conn, nc, to_face, NULL, TDS_NONE); /* as Evolver triangulates */
   if (rc != TDS_OK) return -rc;
   if (to_face) {
     int32_t t3[3] = {TDS_OREF(conn[0], 0), TDS_OREF(conn[1], 0), TDS_OREF(conn[2], 0)};

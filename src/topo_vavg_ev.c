@@ -22,7 +22,9 @@
 **    (the chord between the two ends) for a triple vertex, else
 **    perpendicular to the facets' summed area vector, summed in star order
 **    with each facet's sign chosen to agree with the sum so far (a fan of
-**    one facet keeps its move). That keeps the volume exactly when the
+**    one facet keeps its move); each facet's area vector as its first
+**    corner sees it (under a group that rotates, not turned into v's
+**    frame: measured on sectors under rotate, flip_rotate, screw, cubocta). That keeps the volume exactly when the
 **    star is a fan around v.
 **  - rawestv uses every facet and the weighted rule for every vertex.
 **  - On constraints the move is made tangent to them (before and again
@@ -82,11 +84,14 @@ int tds_vavg_target(const tds_surf *s, tds_id v, int mode, double *g,
   for (int i = 0; i < nf; i++) {
     tds_id f = ord[i];
     int k = tds_facet_corner(m, f, v);
-    double P[3][3]; /* the facet in v's frame (a group may rotate it) */
-    tds_torus_facet_at(m, f, k, P);
+    /* the facet's area vector where its first corner sees it, not in v's
+    ** frame: under a group that rotates, Evolver 2.70 sums the normals so
+    ** (measured: V on sectors under rotate and flip_rotate) */
+    tds_corners P;
+    tds_gather_facet(m, f, &P);
     double ab[3], ac[3], N[3];
-    v3_sub(ab, P[1], P[0]);
-    v3_sub(ac, P[2], P[0]);
+    v3_sub(ab, P.x[1], P.x[0]);
+    v3_sub(ac, P.x[2], P.x[0]);
     v3_cross(N, ab, ac);
     /* the sum in star order, each facet signed to agree with it */
     v3_axpy(nall, ca++ && v3_dot(N, nall) < 0 ? -1 : 1, N);

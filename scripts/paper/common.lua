@@ -17,6 +17,7 @@
 --   PAPER_PLAIN=1        run plain pg (no acceleration)
 --   PAPER_S, PAPER_DEPTH pg's s and depth (defaults: pg's)
 --   PAPER_NEWTON=0       pg{ newton = false } (no Newton preconditioning)
+--   PAPER_POLISH=1       pg_polish{} after pg (the curvature polish)
 --   PAPER_ANALYSE=1      also print where the curvature error sits
 --                        (C.breakdown)
 -- and prints the metrics and one machine-readable line starting RESULT.
@@ -205,6 +206,14 @@ function C.run(exp)
     print("input:")
     quality()
     res = pg{ plain = env("PAPER_PLAIN") ~= nil, every = tonumber(env("PAPER_EVERY") or 500), depth = tonumber(env("PAPER_DEPTH") or ""), s = tonumber(env("PAPER_S") or ""), newton = env("PAPER_NEWTON") ~= "0" }
+    if env("PAPER_POLISH") == "1" then
+      -- the curvature polish (doc/method.md): r and the volumes are the
+      -- polished mesh's; its plain s = 0 iterations are counted apart
+      local p = pg_polish{}
+      res.polish_iterations = p.iterations
+      res.polish_cpu = p.cpu_seconds
+      res.r = p.r
+    end
   end
   print("result:")
   local q = quality()
@@ -227,6 +236,10 @@ function C.run(exp)
     "energy=" .. fmt(total_energy),
   }
   if res.reached then out[#out + 1] = "reached=" .. fmt(res.reached) end
+  if res.polish_iterations then
+    out[#out + 1] = "polish_iters=" .. fmt(res.polish_iterations)
+    out[#out + 1] = "polish_cpu=" .. fmt(res.polish_cpu)
+  end
   if res.status then out[#out + 1] = "status=" .. res.status end
   if res.newton_builds then out[#out + 1] = "builds=" .. fmt(res.newton_builds) end
   print(table.concat(out, " "))

@@ -610,6 +610,64 @@ static void hess_knot_fd(void) {
   tds_surf_free(&s);
 }
 
+/* SYMMETRY_GROUP "genus2" with KLEIN_METRIC (string model): the group's
+** maps are projective, so the pullback of a wrapped head's gradient is
+** J^T g and its Hessian J^T H J plus the map's curvature weighted by the
+** gradient (symmetry.c). A network with single generators and runs,
+** refined and jittered (seeded): the gradient against central
+** differences of the energy (step 1e-5: measured error 1e-9 relative,
+** where rounding of the energy, ~1e-12, gives 1e-7 at step 1e-6;
+** tolerance 1e-7 relative to the largest entry) and the Hessian as every
+** CHECK_FD;
+** the same without KLEIN_METRIC (Euclidean lengths of the same maps). */
+
+
+#define FDH 1e-5 /* the energy's rounding (~1e-12) over 1e-5: 1e-7 */
+static void genus2_fd(int klein) {
+  char text[1024];
+  snprintf(text, sizeof text,
+           "STRING\nSPACE_DIMENSION 2\n%sSYMMETRY_GROUP \"genus2\"\n"
+           "vertices\n1 0.1 0.05\n2 -0.2 0.3\n3 0.3 -0.4\n4 -0.35 -0.25 fixed\n"
+           "edges\n1 1 3 wrap 0x10\n2 3 1 wrap 0x21\n3 1 2 wrap 0x32\n4 2 1 wrap 0x43\n"
+           "5 1 2\n6 2 3 wrap 0x30\n7 4 1 wrap 0x75 tension 1.5\n8 3 4 wrap 0x01\n",
+           klein ? "KLEIN_METRIC\n" : "");
+  tds_ctx ctx;
+  tds_surf s;
+  h_setup(&ctx, &s);
+  REQUIRE_OK(&ctx, tds_datafile_load_buffer(&ctx, &s, "g2.fe", text, strlen(text)));
+  REQUIRE_OK(&ctx, tds_refine(&ctx, &s, NULL, NULL));
+  jitter(&s.m, 0.02, klein ? 41 : 43);
+  for (tds_id v = 0; v < s.m.nv; v++) s.m.x[v][2] = 0;
+  s.m.coord_gen++;
+  CHECK_FD(&ctx, &s, &ENERGY);
+  /* the gradient against differences of the energy */
+  double (*grad)[3] = calloc((size_t)s.m.nv, sizeof *grad);
+  tds_eval_out out = {.grad = grad};
+  REQUIRE_OK(&ctx, tds_eval(&ctx, &s, &out));
+  double worst = 0, big = 0;
+  for (tds_id v = 0; v < s.m.nv; v++)
+    for (int i = 0; i < 2; i++) {
+      double keep = s.m.x[v][i], e[2];
+      for (int k = 0; k < 2; k++) {
+        s.m.x[v][i] = keep + (k ? -FDH : FDH);
+        s.m.coord_gen++;
+        tds_eval_out o = {0};
+        REQUIRE_OK(&ctx, tds_eval(&ctx, &s, &o));
+        e[k] = o.energy;
+      }
+      s.m.x[v][i] = keep;
+      s.m.coord_gen++;
+      worst = fmax(worst, fabs((e[0] - e[1]) / (2 * FDH) - grad[v][i]));
+      big = fmax(big, fabs(grad[v][i]));
+    }
+  if (!(worst <= 1e-7 * big)) printf("  genus2 gradient: fd error %g of %g\n", worst, big);
+  CHECK(big > 0.1 && worst <= 1e-7 * big);
+  free(grad);
+  tds_surf_free(&s);
+}
+static void hess_genus2_klein(void) { genus2_fd(1); }
+static void hess_genus2_euclid(void) { genus2_fd(0); }
+
 /* Element attributes in integrands and formulas (xattr.h): a drop on a
 ** curved table whose curvature is a vertex attribute (the formula), with
 ** a contact angle per edge (the constraint's energy integrand), a weight
@@ -689,6 +747,8 @@ int main(void) {
   RUN(hess_cube_fd);
   RUN(hess_quantity_fd);
   RUN(hess_knot_fd);
+  RUN(hess_genus2_klein);
+  RUN(hess_genus2_euclid);
   RUN(hess_kkt_layout);
   RUN(hess_example_cube);
   RUN(hess_example_mound);

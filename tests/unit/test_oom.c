@@ -308,7 +308,7 @@ typedef struct opcase {
   const char *file;  /* datafile loaded by the set-up (or by the op) */
   int refine, steps; /* set-up after the load: r's, then g steps */
   char op;           /* 'L' load, 'r', 'g', 'u', 'V', 'd' dump, 'p' pg,
-                        'h' Hessian (assembly, KKT, reduction), 'x' export, 'O' pop edges, 'o' pop edges and vertices, 'E'/'F' o with pop_to_edge/pop_to_face, 'N' renumber_all, 'B' rebody,
+                        'h' Hessian (assembly, KKT, reduction), 'x' export, 'O' pop edges, 'o' pop edges and vertices, 'E'/'F' o with pop_to_edge/pop_to_face, 'Q' pop_quad_to_quad, 'J' o with pop_enjoin, 'N' renumber_all, 'B' rebody,
                         'q' and 'c' run-time define of a quantity and of a
                         global constraint with an energy integrand, 'n' a
                         Newton step (hessian), 's' hessian_seek, 'e'
@@ -317,7 +317,8 @@ typedef struct opcase {
                         addload of the same file, 'R' replace_load, 'T'
                         replacing the view transforms, 'D' detorus, 'G'
                         g with Evolver's line search, 'W' every vertex's
-                        vertex_normal (hessian_normal_one) */
+                        vertex_normal (hessian_normal_one), 'P' pg's
+                        curvature polish (tds_pg_polish) */
 } opcase;
 
 static int prepare(tds_ctx *ctx, tds_surf *s, const opcase *c) {
@@ -363,6 +364,10 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
     po.max_iterations = 3; /* until converged (its arrays: the probe's too), capped */
     po.every = -1;
     return tds_pg_run(ctx, s, &po, &pr);
+  case 'P': {
+    double p0, p1;
+    return tds_pg_polish(ctx, s, 2, 0, 0, &p0, &p1, &n);
+  }
   case 'h': return hessian(ctx, s);
   case 'n':
   case 's': {
@@ -428,6 +433,12 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
   case 'u': return tds_equiangulate(ctx, s, NULL, &n);
   case 'V': return tds_vertex_average(ctx, s, NULL, &n);
   case 'O': return tds_pop_edges(ctx, s, NULL, &n);
+  case 'Q': return tds_pop_quad_to_quad(ctx, s, NULL, &n);
+  case 'J': { /* o with pop_enjoin: a neck */
+    int32_t nv;
+    s->pop_enjoin = 1;
+    return tds_pop(ctx, s, &n, &nv);
+  }
   case 'N': return tds_renumber_all(ctx, s, &n);
   case 'B': return tds_rebody(ctx, s, &n);
   case 'o': {
@@ -530,7 +541,7 @@ static void sweep(const opcase *c) {
   O.nkeys = 0;
   int rc0 = run_op(&ctx, &E, c);
   O.record = 0;
-  if (rc0 != TDS_OK && strchr("pnseS", c->op)) { /* not every model */
+  if (rc0 != TDS_OK && strchr("pnseSP", c->op)) { /* not every model */
     fprintf(stderr, "test_oom: %s: %c refuses it (%s)\n", c->file, c->op, ctx.errmsg);
     tds_surf_free(&S);
     tds_surf_free(&R);
@@ -703,7 +714,10 @@ static void oom_iterate(void) {
 static void oom_equiangulate(void) { sweep_all('u', 1, 2); }
 static void oom_vertex_average(void) { sweep_all('V', 1, 2); }
 static void oom_dump(void) { sweep_all('d', 1, 2); }
-static void oom_pg(void) { sweep_all('p', 1, 0); }
+static void oom_pg(void) {
+  sweep_all('p', 1, 0);
+  sweep_all('P', 1, 0);
+}
 static void oom_hessian(void) { sweep_all('h', 1, 2); }
 static void oom_export(void) { sweep_all('x', 1, 0); }
 static void oom_newton(void) {
@@ -733,6 +747,12 @@ static void oom_pop_edges(void) {
   sweep(&c5);
   opcase c6 = {prism_path, 1, 0, 'F'};
   sweep(&c6);
+  /* pop_quad_to_quad on every facet of six bubbles round a quadrilateral */
+  opcase c7 = {"tests/evolver/data/quadfoam.fe", 0, 0, 'Q'};
+  sweep(&c7);
+  /* pop_enjoin on two cones meeting at a vertex */
+  opcase c8 = {"tests/evolver/data/doublecone.fe", 0, 0, 'J'};
+  sweep(&c8);
 }
 /* Element attributes in formulas and integrands (xattr.h): their slots
 ** are allocated as the expressions are compiled (load), and read by g
