@@ -52,9 +52,7 @@ void tds_quality(const tds_surf *s, tds_quality_out *q) {
   for (int i = 0; i < 4; i++) q->above[i] = n ? 100.0 * above[i] / n : (double)NAN;
 }
 
-/* A vertex is measured when it can move and every incident edge lies
-** between exactly two facets (a closed manifold star). */
-static int measured_vertex(const tds_surf *s, tds_id v) {
+int tds_vertex_measured(const tds_surf *s, tds_id v) {
   const tds_mesh *m = &s->m;
   if (m->vflags[v] & (TDS_DEAD | TDS_FIXED)) return 0;
   if (m->vf_start[v + 1] == m->vf_start[v]) return 0;
@@ -63,14 +61,12 @@ static int measured_vertex(const tds_surf *s, tds_id v) {
   return 1;
 }
 
-/* Sums over the star of measured vertex v: the cotangent vector K, the
-** facet area-vector sum S, Meyer's mixed area and the facet angles at v.
-** Returns 0 when a star facet is degenerate. */
-static int star_sums(const tds_surf *s, tds_id v, double K[3], double S[3],
-                     double *amixp, double *anglep) {
+int tds_vertex_star_sums(const tds_surf *s, tds_id v, double K[3], double S[3],
+                         double *amixp, double *anglep) {
   const tds_mesh *m = &s->m;
   double amix = 0, angle = 0;
-  for (int c = 0; c < 3; c++) K[c] = S[c] = 0;
+  for (int c = 0; c < 3; c++) S[c] = 0;
+  if (K) for (int c = 0; c < 3; c++) K[c] = 0;
   for (int32_t i = m->vf_start[v]; i < m->vf_start[v + 1]; i++) {
     tds_id f = m->vf[i];
     int k = tds_facet_corner(m, f, v);
@@ -90,39 +86,39 @@ static int star_sums(const tds_surf *s, tds_id v, double K[3], double S[3],
     double dk = v3_dot(eik, ejk);          /* at k: (xi - xk) . (xj - xk) */
     double cotj = dj / nl, cotk = dk / nl;
     /* edge ij is opposite k, edge ik opposite j */
-    for (int c = 0; c < 3; c++) K[c] += -cotk * eij[c] - cotj * eik[c];
-    angle += atan2(nl, di);
+    if (K) for (int c = 0; c < 3; c++) K[c] += -cotk * eij[c] - cotj * eik[c];
+    if (anglep) angle += atan2(nl, di);
     double A = 0.5 * nl;
     if (di < 0) amix += A / 2;
     else if (dj < 0 || dk < 0) amix += A / 4;
     else amix += (v3_dot(eij, eij) * cotk + v3_dot(eik, eik) * cotj) / 8;
   }
   *amixp = amix;
-  *anglep = angle;
+  if (anglep) *anglep = angle;
   return amix > 0;
 }
 
 double tds_vertex_mean_curvature(const tds_surf *s, tds_id v) {
-  if (!measured_vertex(s, v)) return NAN;
+  if (!tds_vertex_measured(s, v)) return NAN;
   double K[3], S[3], amix, angle;
-  if (!star_sums(s, v, K, S, &amix, &angle)) return NAN;
+  if (!tds_vertex_star_sums(s, v, K, S, &amix, &angle)) return NAN;
   double sl = v3_norm(S);
   if (!(sl > 0)) return NAN;
   return v3_dot(K, S) / (sl * 2 * amix);
 }
 
 double tds_vertex_meyer_curvature(const tds_surf *s, tds_id v) {
-  if (!measured_vertex(s, v)) return NAN;
+  if (!tds_vertex_measured(s, v)) return NAN;
   double K[3], S[3], amix, angle;
-  if (!star_sums(s, v, K, S, &amix, &angle)) return NAN;
+  if (!tds_vertex_star_sums(s, v, K, S, &amix, &angle)) return NAN;
   double k = v3_norm(K) / (2 * amix);
   return v3_dot(K, S) < 0 ? -k : k;
 }
 
 double tds_vertex_gauss_curvature(const tds_surf *s, tds_id v) {
-  if (!measured_vertex(s, v)) return NAN;
+  if (!tds_vertex_measured(s, v)) return NAN;
   double K[3], S[3], amix, angle;
-  if (!star_sums(s, v, K, S, &amix, &angle)) return NAN;
+  if (!tds_vertex_star_sums(s, v, K, S, &amix, &angle)) return NAN;
   return (2 * TDS_PI - angle) / amix;
 }
 
@@ -164,9 +160,9 @@ int tds_curvature(tds_ctx *ctx, tds_surf *s, int mode, double value,
   int32_t n = 0;
   for (tds_id v = 0; v < m->nv; v++) {
     double hv[2] = {NAN, NAN}, tv = NAN;
-    if (!(m->vflags[v] & TDS_DEAD) && measured_vertex(s, v)) {
+    if (!(m->vflags[v] & TDS_DEAD) && tds_vertex_measured(s, v)) {
       double K[3], S[3], amix, angle;
-      if (star_sums(s, v, K, S, &amix, &angle)) {
+      if (tds_vertex_star_sums(s, v, K, S, &amix, &angle)) {
         double sl = v3_norm(S), kn = v3_dot(K, S);
         if (sl > 0) {
           double k = v3_norm(K) / (2 * amix);

@@ -59,6 +59,17 @@ typedef struct tds_curv_out {
 ** current adjacency. */
 double tds_vertex_mean_curvature(const tds_surf *s, tds_id v);
 
+/* Whether vertex v is measured: it can move and every edge at it lies
+** between exactly two facets (a closed manifold star). */
+int tds_vertex_measured(const tds_surf *s, tds_id v);
+
+/* Sums over the star of measured vertex v: the cotangent vector K, the
+** facet area-vector sum S (twice the areas), Meyer's mixed area and the
+** facet angles at v; K and angle may be NULL. Returns 0 when a star facet
+** is degenerate or the mixed area is not positive. */
+int tds_vertex_star_sums(const tds_surf *s, tds_id v, double K[3], double S[3],
+                         double *amix, double *angle);
+
 /* Meyer's full estimate at vertex v: |K| (the length of the mean-curvature
 ** normal K = grad A / A_mixed, tangential part included) with the sign of
 ** K . n; NAN where tds_vertex_mean_curvature is NAN. Equal to it when K is

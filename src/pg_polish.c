@@ -27,43 +27,15 @@
 
 /* A vertex is measured when it can move and every incident edge lies
 ** between exactly two facets (as metrics.c's curvature). */
-static int measured(const tds_surf *s, tds_id v) {
-  const tds_mesh *m = &s->m;
-  if (m->vflags[v] & (TDS_DEAD | TDS_FIXED)) return 0;
-  if (m->vf_start[v + 1] == m->vf_start[v]) return 0;
-  for (int32_t i = m->ve_start[v]; i < m->ve_start[v + 1]; i++)
-    if (tds_edge_valence(m, TDS_OID(m->ve[i])) != 2) return 0;
-  return 1;
-}
-
 /* r_v = |sum of the star's area vectors| / (3 A_mixed) (= |grad V_v| /
 ** A_mixed on a closed star); the star's unit normal into n (may be NULL).
 ** NAN for a degenerate star. */
-static double star_ratio(const tds_mesh *m, tds_id v, double n[3]) {
-  double S[3] = {0, 0, 0}, amix = 0;
-  for (int32_t i = m->vf_start[v]; i < m->vf_start[v + 1]; i++) {
-    tds_id f = m->vf[i];
-    int k = tds_facet_corner(m, f, v);
-    tds_corners C;
-    tds_gather_facet(m, f, &C);
-    const double *xi = C.x[k], *xj = C.x[(k + 1) % 3], *xk = C.x[(k + 2) % 3];
-    double eij[3], eik[3], ejk[3], N[3];
-    v3_sub(eij, xj, xi);
-    v3_sub(eik, xk, xi);
-    v3_sub(ejk, xk, xj);
-    v3_cross(N, eij, eik);
-    double nl = v3_norm(N);
-    if (!(nl > 0)) return NAN;
-    v3_add(S, S, N);
-    double di = v3_dot(eij, eik), dj = -v3_dot(eij, ejk), dk = v3_dot(eik, ejk);
-    double A = 0.5 * nl;
-    if (di < 0) amix += A / 2;
-    else if (dj < 0 || dk < 0) amix += A / 4;
-    else amix += (v3_dot(eij, eij) * dk + v3_dot(eik, eik) * dj) / (8 * nl);
-  }
+static double star_ratio(const tds_surf *s, tds_id v, double n[3]) {
+  double S[3], amix;
+  if (!tds_vertex_star_sums(s, v, NULL, S, &amix, NULL)) return NAN;
   double sl = v3_norm(S);
   if (n) for (int c = 0; c < 3; c++) n[c] = sl > 0 ? S[c] / sl : 0;
-  return amix > 0 ? sl / (6 * amix) : (double)NAN;
+  return sl / (6 * amix);
 }
 
 static double facet_min_angle(const tds_mesh *m, tds_id f) {
@@ -94,7 +66,7 @@ static double phi_local(polish_ctx *p, tds_id v) {
       if (p->stamp[u] == p->tick) continue;
       p->stamp[u] = p->tick;
       if (!p->meas[u]) continue;
-      double r = star_ratio(m, u, NULL) - 1;
+      double r = star_ratio(p->s, u, NULL) - 1;
       sum += r * r;
     }
   }
@@ -105,7 +77,7 @@ static double phi_all(const tds_surf *s, const uint8_t *meas) {
   double sum = 0;
   for (tds_id v = 0; v < s->m.nv; v++)
     if (meas[v]) {
-      double r = star_ratio(&s->m, v, NULL) - 1;
+      double r = star_ratio(s, v, NULL) - 1;
       sum += r * r;
     }
   return sum;
@@ -158,7 +130,7 @@ int tds_pg_polish(tds_ctx *ctx, tds_surf *s, int steps, double floor_deg,
   hbar = ne ? hbar / ne : 1;
   int32_t nm = 0;
   for (tds_id v = 0; v < m->nv; v++) {
-    meas[v] = (uint8_t)measured(s, v);
+    meas[v] = (uint8_t)tds_vertex_measured(s, v);
     /* moved: free of constraints and boundaries, with a closed star */
     mov[v] = meas[v] && tds_vertex_free(s, v) && !m->vcon[v] && m->vbdry[v] == TDS_NONE;
     nm += mov[v];
@@ -175,7 +147,7 @@ int tds_pg_polish(tds_ctx *ctx, tds_surf *s, int steps, double floor_deg,
     for (tds_id v = 0; v < m->nv; v++) {
       if (!mov[v]) continue;
       double n[3];
-      star_ratio(m, v, n);
+      star_ratio(s, v, n);
       for (int c = 0; c < 3; c++) {
         double o = m->x[v][c];
         m->x[v][c] = o + eps;
