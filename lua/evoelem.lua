@@ -398,7 +398,11 @@ function E.attr(o, name)
   if not ok or v == nil then -- one of Evolver's that tds does not have is named as such
     if EV_ATTRS[name] then fail(("%s %d: attribute %s is not supported yet"):format(kindof(h), h.id, name)) end
   end
-  if not ok then fail(v) end
+  if not ok then
+    -- already positioned (the binding's message names the user's line)
+    if type(v) == "string" and v:find("^[^\n]-:%d+: ") then error(v, 0) end
+    fail(v)
+  end
   if v == nil then
     if name == "pressure" or name == "volume" or name == "density" or name == "tension" then return 0.0 end
     fail(("%s %d has no attribute '%s'"):format(kindof(h), h.id, name))

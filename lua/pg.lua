@@ -78,6 +78,20 @@ function pg_polish(o)
       error(("pg_polish: option '%s' must be a whole number, 0 or more"):format(k), 2)
     end
   end
+  -- refused, not silently read as something else: a NaN or out-of-range
+  -- angle (the floor never binds, or always does), a negative max (pg's
+  -- default cap)
+  local function real(k, lo, hi)
+    local v = o[k]
+    if v ~= nil and not (v >= lo and v <= hi) then
+      error(("pg_polish: option '%s' must be a number in [%g, %g], not %s"):format(k, lo, hi, v ~= v and "NaN" or tostring(v)), 3)
+    end
+  end
+  real("min_angle", 0, 60)
+  real("max_loss", 0, 60)
+  if o.max ~= nil and (math.type(o.max) ~= "integer" or o.max < 1) then
+    error("pg_polish: option 'max' must be a whole number, 1 or more", 2)
+  end
   local q = tds.quality()
   local floor = o.min_angle or q.min
   if floor ~= floor then floor = 0 end

@@ -29,7 +29,7 @@ static void locate(lua_State *L, where *w) {
   w->id = tds_check_elem(L, w->st, -1, -1, &kind);
   lua_getfield(L, mt, "name");
   if (!tds_attr_find(&w->st->s.m, kind, lua_tostring(L, -1), &w->a) || w->a.ndim < 1)
-    luaL_error(L, "attribute %s no longer exists", lua_tostring(L, -1));
+    tds_lua_error(L, "attribute %s no longer exists", lua_tostring(L, -1));
   lua_getfield(L, mt, "path");
   w->depth = (int)luaL_len(L, -1);
   for (int i = 0; i < w->depth && i < TDS_ATTR_MAXDIM; i++) {

@@ -93,7 +93,7 @@ tds_id tds_check_elem(lua_State *L, tds_state *st, int i, int kind, int *kindp) 
   if (h->st != st)
     tds_lua_error(L, "%s %d belongs to another surface", kind_name[h->kind], (int)h->id + 1);
   if (!alive(&st->s, h->kind, h->id))
-    luaL_error(L, "%s %d no longer exists", kind_name[h->kind], h->id + 1);
+    tds_lua_error(L, "%s %d no longer exists", kind_name[h->kind], h->id + 1);
   if (kindp) *kindp = h->kind;
   return h->id;
 }

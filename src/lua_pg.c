@@ -58,6 +58,7 @@ static int l_pg(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   tds_pg_opts o;
   tds_pg_defaults(&o);
+  o.threads = 1;
   if (!lua_isnoneornil(L, 1)) {
     luaL_checktype(L, 1, LUA_TTABLE);
     o.iterations = opt_int(L, 1, "iterations", 0);
@@ -78,6 +79,12 @@ static int l_pg(lua_State *L) {
   luaL_argcheck(L, o.iterations >= 0, 1, "iterations must not be negative");
   luaL_argcheck(L, o.nmax >= 1, 1, "nmax must be at least 1");
   luaL_argcheck(L, o.depth >= 0 && o.depth <= 50, 1, "depth must be in 0..50");
+  /* refused, not read as something else: a NaN or negative s (the step
+  ** would be non-finite), a NaN rtol (never met), a negative max (taken as
+  ** the default cap) */
+  luaL_argcheck(L, isfinite(o.s) && o.s >= 0, 1, "s must be a finite number >= 0");
+  luaL_argcheck(L, isfinite(o.rtol) && o.rtol >= 0, 1, "rtol must be a finite number >= 0");
+  luaL_argcheck(L, o.max_iterations >= 0, 1, "max must not be negative");
   tds_pg_result r;
   int rc = tds_pg_run(&st->ctx, &st->s, &o, &r);
   if (rc != TDS_OK) {

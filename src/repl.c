@@ -63,6 +63,33 @@ static void user_position(lua_State *L) {
   lua_remove(L, -2);
 }
 
+/* Does the message's first line carry a position ("file:12: ...")? */
+static int positioned(const char *msg) {
+  for (const char *p = msg; *p && *p != '\n'; p++) {
+    if (*p != ':' || !isdigit((unsigned char)p[1])) continue;
+    const char *q = p + 1;
+    while (isdigit((unsigned char)*q)) q++;
+    if (q[0] == ':' && (q[1] == ' ' || q[1] == 0)) return 1;
+  }
+  return 0;
+}
+
+/* A message without a position (raised by C code, or by error(msg, 2)
+** whose caller is C) gets the position of the innermost user code: every
+** error of a chunk names its file and line ("stdin:1: ..." at the prompt). */
+static void ensure_position(lua_State *L) {
+  if (positioned(lua_tostring(L, -1))) return;
+  tds_lua_where(L);
+  /* none on the stack: the chunk's frame was left by a tail call (the
+  ** prompt's `return f(x);`): the chunk's own position, the upvalue */
+  if (!*lua_tostring(L, -1) && lua_isstring(L, lua_upvalueindex(1))) {
+    lua_pop(L, 1);
+    lua_pushvalue(L, lua_upvalueindex(1));
+  }
+  lua_insert(L, -2);
+  lua_concat(L, 2);
+}
+
 static int message_handler(lua_State *L) {
   if (tds_lua_is_quit(L, 1, NULL)) return 1;
   if (lua_type(L, 1) != LUA_TSTRING &&
@@ -70,6 +97,7 @@ static int message_handler(lua_State *L) {
     lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
   if (lua_gettop(L) == 1) lua_pushvalue(L, 1);
   user_position(L);
+  if (lua_type(L, 1) == LUA_TSTRING) ensure_position(L);
   user_traceback(L);
   return 1;
 }
@@ -82,9 +110,15 @@ static void print_error(lua_State *L) {
 }
 
 int tds_run_chunk(lua_State *L, tds_state *st, int *quit_code) {
+  return tds_run_chunk_at(L, st, quit_code, NULL);
+}
+
+int tds_run_chunk_at(lua_State *L, tds_state *st, int *quit_code, const char *where) {
   fflush(stdout);
   int base = lua_gettop(L); /* the chunk */
-  lua_pushcfunction(L, message_handler);
+  if (where) lua_pushstring(L, where);
+  else lua_pushnil(L);
+  lua_pushcclosure(L, message_handler, 1);
   lua_insert(L, base);
   tds_lua_sigint(L, st, 1);
   int status = lua_pcall(L, 0, LUA_MULTRET, base);
@@ -334,7 +368,7 @@ int tds_repl(lua_State *L, tds_state *st) {
         add_history(buf);
         append_history(1, hist);
       }
-      int rc = tds_run_chunk(L, st, &code);
+      int rc = tds_run_chunk_at(L, st, &code, "stdin:1: ");
       if (rc == 2) {
         free(buf);
         goto done;
