@@ -156,6 +156,8 @@ RANDOM_SEED ?= 1
 random-long: $(TDS_BIN)
 	TDS_CHECK=1 TDS_RST_TRIALS=$(RANDOM_TRIALS) TDS_RST_SEED=$(RANDOM_SEED) ./$(TDS_BIN) -q tests/scripts/random_string_torus.tds
 	TDS_CHECK=1 TDS_MUT_TRIALS=$(RANDOM_TRIALS) TDS_MUT_SEED=$(RANDOM_SEED) ./$(TDS_BIN) -q tests/scripts/datafile_mutate.tds
+	TDS_CHECK=1 TDS_RT1_TRIALS=$(RANDOM_TRIALS) TDS_RT1_SEED=$(RANDOM_SEED) ./$(TDS_BIN) -q tests/scripts/random_t1.tds
+	TDS=$(abspath $(TDS_BIN)) TDS_CHECK=1 TDS_PE_TRIALS=$(RANDOM_TRIALS) TDS_PE_SEED=$(RANDOM_SEED) ./$(TDS_BIN) -q tests/scripts/prompt_errors.tds
 random-long-asan:
 	LSAN_OPTIONS=suppressions=$(abspath tests/lsan.supp) $(MAKE) BUILD=build-asan TDS_BIN=build-asan/tds OPT=-O1 \
 	  SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined -DTDS_CHECKS" random-long

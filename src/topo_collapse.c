@@ -74,6 +74,34 @@ static int same_edges(const tds_mesh *m, tds_id f, tds_id g) {
   return 1;
 }
 
+/* Facets f and g have the same three edges (a collapse pressed a body
+** between them flat). Seen from f's orientation, the one above the other
+** has the flat body below it: the pair becomes one film between the bodies
+** outside it, kept in f (g goes; 1). When those are the same body (or
+** both none) the pair encloses nothing and both go (2). When neither lies
+** on the other's side of one body they are left as they are (0), as
+** Evolver leaves them. */
+static int merge_pair(tds_mesh *m, tds_id f, tds_id g) {
+  int j = 0;
+  while (j < 3 && m->fv[g][j] != m->fv[f][0]) j++;
+  int same = j < 3 && m->fv[g][(j + 1) % 3] == m->fv[f][1];
+  tds_id gF = m->fb[g][same ? 0 : 1], gB = m->fb[g][same ? 1 : 0];
+  tds_id front, back;
+  if (m->fb[f][0] == gB) { /* g above f */
+    front = gF;
+    back = m->fb[f][1];
+  } else if (gF == m->fb[f][1]) { /* f above g */
+    front = m->fb[f][0];
+    back = gB;
+  } else {
+    return 0;
+  }
+  if (front == back) return 2;
+  m->fb[f][0] = front;
+  m->fb[f][1] = back;
+  return 1;
+}
+
 static int collapse(tds_surf *s, tds_id e, int end, int autopop);
 
 int tds_collapse_edge(tds_surf *s, tds_id e) { return collapse(s, e, -1, 0); }
@@ -190,16 +218,20 @@ static int collapse(tds_surf *s, tds_id e, int end, int autopop) {
     }
   }
   if (s->str) tds_strings_prune(s->str);
-  /* Facets that now share all three edges enclose nothing: both go. */
+  /* Facets that now share all three edges: one film between the bodies
+  ** outside the pair, or nothing when those are the same (merge_pair). */
   for (tds_id f = 0; f < m->nf; f++) {
     if (!tds_alive(m->fflags, f)) continue;
     if (m->fv[f][0] != keep && m->fv[f][1] != keep && m->fv[f][2] != keep) continue;
     for (tds_id g = f + 1; g < m->nf; g++) {
       if (!tds_alive(m->fflags, g) || !same_edges(m, f, g)) continue;
+      int how = merge_pair(m, f, g);
+      if (!how) continue;
       tds_id ed[3] = {TDS_OID(m->fe[f][0]), TDS_OID(m->fe[f][1]), TDS_OID(m->fe[f][2])};
-      tds_mesh_kill(m, TDS_FACET, f);
+      if (how == 2) tds_mesh_kill(m, TDS_FACET, f);
       tds_mesh_kill(m, TDS_FACET, g);
-      for (int k = 0; k < 3; k++) drop_if_bare(m, ed[k]);
+      if (how == 2)
+        for (int k = 0; k < 3; k++) drop_if_bare(m, ed[k]);
       break;
     }
   }
