@@ -1075,9 +1075,19 @@ B.M = function(n)
 end
 
 -- A toggle's name alone turns it on, as in Evolver (conj_grad; quiet).
-for name in pairs(TOGGLE_MSG) do B[name] = function() E.toggle(name, true) end end
+-- Anything else after it is an error (Evolver's syntax error), not ignored.
+local function toggle_on(name)
+  return function(...)
+    if select("#", ...) > 0 then
+      local v = ...
+      fail(("%s takes on or off, not %s"):format(name, type(v) == "number" and ("%g"):format(v) or tostring(v)))
+    end
+    E.toggle(name, true)
+  end
+end
+for name in pairs(TOGGLE_MSG) do B[name] = toggle_on(name) end
 
-for name in pairs(FIXED_TOGGLE) do B[name] = function() E.toggle(name, true) end end
+for name in pairs(FIXED_TOGGLE) do B[name] = toggle_on(name) end
 -- Energies are computed one way in tds: nothing to convert.
 B.convert_to_quantities = function() end
 
