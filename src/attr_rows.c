@@ -134,6 +134,15 @@ static int vx_get(GETTER_ARGS) {
 static int vx_set(SETTER_ARGS) {
   UNUSED(ctx);
   if (!n) return tds_seterr(ctx, TDS_ERANGE, "vertex %d: %s cannot be unset", id + 1, a->name);
+  if (s->klein) { /* the Klein model is the open unit ball: outside, no length */
+    double p[3] = {s->m.x[id][0], s->m.x[id][1], s->m.x[id][2]};
+    p[a->name[0] - 'x'] = v[0];
+    if (!(p[0] * p[0] + p[1] * p[1] + p[2] * p[2] < 1))
+      return tds_seterr(ctx, TDS_ERANGE,
+                        "vertex %d: %s = %.15g puts it at (%.15g, %.15g), not inside the unit "
+                        "disk, the Klein model of KLEIN_METRIC",
+                        id + 1, a->name, v[0], p[0], p[1]);
+  }
   s->m.x[id][a->name[0] - 'x'] = v[0];
   s->m.coord_gen++;
   return TDS_OK;
