@@ -401,6 +401,10 @@ end
 -- toggles.
 local function gtoggle(name, what)
   return function(on, len)
+    -- true, false, or nothing (toggle): 0 or "off" is an error, not on
+    if on ~= nil and type(on) ~= "boolean" then
+      error(("%s(on): on must be true or false, not %s"):format(name, type(on) == "string" and ("'" .. on .. "'") or tostring(on)), 2)
+    end
     local was = tds.setting(name)
     if on == nil then on = not was end
     if len ~= nil then tds.setting("autochop_length", len) end

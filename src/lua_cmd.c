@@ -227,6 +227,11 @@ static int l_setting(lua_State *L) {
   int which = luaL_checkoption(L, 1, NULL, names);
   tds_surf *s = &st->s;
   int set = !lua_isnone(L, 2);
+  /* the switches take true or false: 0, "off" or 5 is an error, not on */
+  static const char is_switch[] = {1, 0, 0, 0, 0, 1, 0, 1, 0, 1, 1, 1, 1, 0, 1, 1, 1, 1};
+  if (set && is_switch[which] && !lua_isboolean(L, 2))
+    return tds_lua_error(L, "tds.setting: %s is true or false, not %s", names[which],
+                         luaL_typename(L, 2));
   switch (which) {
   case 0:
     if (set) s->symmetric_content = lua_toboolean(L, 2);
