@@ -170,7 +170,7 @@ static int l_gravity(lua_State *L) {
 ** and the number of warnings. */
 static int l_check(lua_State *L) {
   tds_state *st = TDS_STATE(L);
-  if (tds_mesh_adjacency(&st->s.m) != TDS_OK) return luaL_error(L, "out of memory");
+  if (tds_mesh_adjacency(&st->s.m) != TDS_OK) return tds_lua_error(L, "out of memory");
   check_rc(L, st, tds_mesh_check(&st->ctx, &st->s.m));
   if (st->s.str) check_rc(L, st, tds_strings_check(&st->ctx, &st->s)); /* cells */
   lua_pushboolean(L, 1);
@@ -196,7 +196,7 @@ static int l_param(lua_State *L) {
     lua_pushfstring(L, "parameter %s", name);
     double v = tds_lua_checkfinite(L, 2, lua_tostring(L, -1));
     lua_pop(L, 1);
-    if (tds_surf_param_set(&st->s, name, v) < 0) return luaL_error(L, "out of memory");
+    if (tds_surf_param_set(&st->s, name, v) < 0) return tds_lua_error(L, "out of memory");
     st->s.m.coord_gen++;
   }
   int i = tds_surf_param_find(&st->s, name, len);

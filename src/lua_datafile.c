@@ -57,7 +57,7 @@ static int surface_in_use(const tds_state *st) {
 
 static void load(lua_State *L, tds_state *st, const char *path) {
   if (surface_in_use(st))
-    luaL_error(L, "%s: a surface is already loaded; start a new tds session "
+    tds_lua_error(L, "%s: a surface is already loaded; start a new tds session "
                "to load a datafile", path);
   int rc = tds_datafile_load(&st->ctx, &st->s, path);
   if (rc != TDS_OK) raise_msg(L, st->ctx.errmsg);

@@ -318,7 +318,7 @@ static int l_reserve(lua_State *L) {
     return tds_lua_nilmsg(L, "%s id %I is out of range (1 to %I)",
                           decl_name[kind], n, lim);
   if (tds_mesh_extend_dead(&st->s.m, kind, (int32_t)n) != TDS_OK)
-    return luaL_error(L, "out of memory");
+    return tds_lua_error(L, "out of memory");
   lua_pushboolean(L, 1);
   return 1;
 }

@@ -167,7 +167,7 @@ static tds_id opt_body(lua_State *L, tds_state *st, int i) {
     return TDS_NONE;
   if (lua_isinteger(L, i)) {
     lua_Integer b = lua_tointeger(L, i);
-    if (!alive(&st->s, TDS_BODY, (tds_id)b - 1)) luaL_error(L, "body %d does not exist", (int)b);
+    if (!alive(&st->s, TDS_BODY, (tds_id)b - 1)) tds_lua_error(L, "body %d does not exist", (int)b);
     return (tds_id)b - 1;
   }
   return tds_check_elem(L, st, i, TDS_BODY, NULL);
@@ -345,7 +345,7 @@ uint8_t *tds_lua_selection(lua_State *L, tds_state *st, int arg, int kind) {
   }
   lua_settop(L, top);
   uint8_t *copy = malloc((size_t)(n > 0 ? n : 1));
-  if (!copy) luaL_error(L, "out of memory");
+  if (!copy) tds_lua_error(L, "out of memory");
   memcpy(copy, sel, (size_t)(n > 0 ? n : 1));
   lua_pop(L, 1);
   return copy;

@@ -38,7 +38,7 @@ static int l_mark(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   const tds_mesh *m = &st->s.m;
   double (*x)[3] = malloc((size_t)(m->nv > 0 ? m->nv : 1) * sizeof *x);
-  if (!x) return luaL_error(L, "out of memory");
+  if (!x) return tds_lua_error(L, "out of memory");
   for (tds_id v = 0; v < m->nv; v++)
     for (int c = 0; c < 3; c++) x[v][c] = tds_alive(m->vflags, v) ? m->x[v][c] : (double)NAN;
   mark *mk = lua_newuserdatauv(L, sizeof *mk, 0);

@@ -106,7 +106,7 @@ static int l_eigenprobe(lua_State *L) {
     return tds_lua_error(L, "eigenprobe: the iteration count %d is out of range", (int)n);
   tds_surf *s = &st->s;
   double (*vec)[3] = calloc((size_t)s->m.nv + 1, sizeof *vec);
-  if (!vec) return luaL_error(L, "out of memory");
+  if (!vec) return tds_lua_error(L, "out of memory");
   double val = NAN;
   int iters = 0;
   int rc = tds_newton_invit(&st->ctx, s, &ns->o, c, (int)n, &val, &in, vec, &iters);
@@ -143,7 +143,7 @@ static int l_ritz(lua_State *L) {
   if (!vals || !vec) {
     free(vals);
     free(vec);
-    return luaL_error(L, "out of memory");
+    return tds_lua_error(L, "out of memory");
   }
   int32_t got = 0;
   int iters = 0;

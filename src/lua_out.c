@@ -30,7 +30,7 @@ typedef struct target {
 
 static target *check_target(lua_State *L, int i) {
   target *t = luaL_checkudata(L, i, OUT_META);
-  if (!t->f) luaL_error(L, "output target is closed");
+  if (!t->f) tds_lua_error(L, "output target is closed");
   return t;
 }
 

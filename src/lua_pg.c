@@ -25,7 +25,7 @@ static lua_Integer opt_int(lua_State *L, int t, const char *k, lua_Integer d) {
   if (!lua_isnil(L, -1)) {
     int ok;
     v = lua_tointegerx(L, -1, &ok);
-    if (!ok) luaL_error(L, "pg option '%s' must be an integer", k);
+    if (!ok) tds_lua_error(L, "pg option '%s' must be an integer", k);
   }
   lua_pop(L, 1);
   return v;
@@ -37,7 +37,7 @@ static double opt_num(lua_State *L, int t, const char *k, double d) {
   if (!lua_isnil(L, -1)) {
     int ok;
     v = lua_tonumberx(L, -1, &ok);
-    if (!ok) luaL_error(L, "pg option '%s' must be a number", k);
+    if (!ok) tds_lua_error(L, "pg option '%s' must be a number", k);
   }
   lua_pop(L, 1);
   return v;
@@ -245,7 +245,7 @@ static int l_curvature(lua_State *L) {
 int tds_lua_vertex_measure(lua_State *L, double (*measure)(const tds_surf *, tds_id)) {
   tds_state *st = TDS_STATE(L);
   tds_id v = tds_check_elem(L, st, 1, TDS_VERTEX, NULL);
-  if (tds_mesh_adjacency(&st->s.m) != TDS_OK) return luaL_error(L, "out of memory");
+  if (tds_mesh_adjacency(&st->s.m) != TDS_OK) return tds_lua_error(L, "out of memory");
   double h = measure(&st->s, v);
   if (isnan(h)) return 0;
   lua_pushnumber(L, h);
@@ -296,7 +296,7 @@ static int l_pg_polish(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   lua_Integer steps = luaL_checkinteger(L, 1);
   double fl = luaL_checknumber(L, 2), mfl = luaL_optnumber(L, 3, 0);
-  if (steps < 0 || steps > 1000000) return luaL_error(L, "pg_polish: steps must be 0 to 1000000");
+  if (steps < 0 || steps > 1000000) return tds_lua_error(L, "pg_polish: steps must be 0 to 1000000");
   double p0 = 0, p1 = 0;
   int32_t n = 0;
   int rc = tds_pg_polish(&st->ctx, &st->s, (int)steps, fl, mfl, &p0, &p1, &n);

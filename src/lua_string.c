@@ -52,7 +52,7 @@ static int l_facet_crosscut(lua_State *L) {
          h = id_arg(L, st, 3, TDS_VERTEX);
   if (t < 0 || t >= st->s.m.nv || !tds_alive(st->s.m.vflags, t) || h < 0 ||
       h >= st->s.m.nv || !tds_alive(st->s.m.vflags, h))
-    return luaL_error(L, "facet_crosscut: no such vertex");
+    return tds_lua_error(L, "facet_crosscut: no such vertex");
   tds_id e = TDS_NONE;
   int rc = tds_strings_crosscut(&st->ctx, &st->s, f, t, h, &e);
   if (rc != TDS_OK) return tds_lua_fail(L, st, rc);

@@ -30,10 +30,10 @@ static int l_symmetry_group(lua_State *L) {
 static int32_t check_wrap(lua_State *L, const tds_mesh *m, int i, const char *fn) {
   double code = tds_lua_checkfinite(L, i, "wrap code");
   int32_t w = 0;
-  if (!m->torus) return luaL_error(L, "%s needs the torus model or a SYMMETRY_GROUP", fn);
+  if (!m->torus) return tds_lua_error(L, "%s needs the torus model or a SYMMETRY_GROUP", fn);
   int rc = m->sym > TDS_SYM_TORUS ? tds_sym_from_code(m->sym, m->symp, code, &w)
                                   : tds_torus_wrap_from_code(code, &w);
-  if (rc != TDS_OK) return luaL_error(L, "%s: %f is no wrap code of the surface's group", fn, code);
+  if (rc != TDS_OK) return tds_lua_error(L, "%s: %f is no wrap code of the surface's group", fn, code);
   return w;
 }
 
@@ -45,12 +45,12 @@ static int l_wrap_compose(lua_State *L) {
   const tds_mesh *m = &TDS_STATE(L)->s.m;
   int32_t a = check_wrap(L, m, 1, "wrap_compose"), b = check_wrap(L, m, 2, "wrap_compose");
   if (!tds_mesh_rotates(m) && tds_wrap_overflows(a, b))
-    return luaL_error(L, "wrap_compose: the sum leaves the range of wrap codes");
+    return tds_lua_error(L, "wrap_compose: the sum leaves the range of wrap codes");
   /* a first, then b; genus2's runs compose as Evolver's do (measured:
   ** wrap_compose(0x10, 0x21) is 0x20, the run G_0 G_1, b first) */
   int32_t w = m->sym == TDS_SYM_GENUS2 ? tds_wrap_mul(m, a, b) : tds_wrap_mul(m, b, a);
   if (w == TDS_SYM_OUTSIDE)
-    return luaL_error(L, "wrap_compose: the product of %f and %f is no wrap code of "
+    return tds_lua_error(L, "wrap_compose: the product of %f and %f is no wrap code of "
                       "SYMMETRY_GROUP \"genus2\" (its codes name runs G_a ... G_(b-1))",
                       code_of(m, a), code_of(m, b));
   lua_pushnumber(L, code_of(m, w));
@@ -85,7 +85,7 @@ static int l_wrap_vertex(lua_State *L) {
   double code = tds_lua_checkfinite(L, 2, "wrap code");
   int32_t w;
   if (tds_torus_wrap_from_code(code, &w) != TDS_OK)
-    return luaL_error(L, "wrap_vertex: %f is not a wrap code (6 bits per period)", code);
+    return tds_lua_error(L, "wrap_vertex: %f is not a wrap code (6 bits per period)", code);
   int rc = tds_torus_wrap_vertex(&st->ctx, &st->s, v, w);
   if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
   tds_surf_update(&st->ctx, &st->s);

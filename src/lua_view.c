@@ -54,7 +54,7 @@ static int l_view_transforms(lua_State *L) {
   }
   luaL_checktype(L, 1, LUA_TTABLE);
   lua_Integer n = luaL_len(L, 1);
-  if (n < 0 || n > TDS_MAX_VIEW) return luaL_error(L, "view_transforms: %d matrices, at most %d", (int)n, TDS_MAX_VIEW);
+  if (n < 0 || n > TDS_MAX_VIEW) return tds_lua_error(L, "view_transforms: %d matrices, at most %d", (int)n, TDS_MAX_VIEW);
   double (*m)[16] = lua_newuserdatauv(L, (size_t)(n ? n : 1) * sizeof *m, 0);
   uint8_t *sw = lua_newuserdatauv(L, (size_t)(n ? n : 1), 0);
   int has_swaps = lua_istable(L, 2);
@@ -67,15 +67,15 @@ static int l_view_transforms(lua_State *L) {
     }
   }
   for (lua_Integer t = 1; t <= n; t++) {
-    if (lua_rawgeti(L, 1, t) != LUA_TTABLE) return luaL_error(L, "view_transforms: matrix %d is not a table", (int)t);
+    if (lua_rawgeti(L, 1, t) != LUA_TTABLE) return tds_lua_error(L, "view_transforms: matrix %d is not a table", (int)t);
     for (int i = 0; i < 4; i++) {
       if (lua_rawgeti(L, -1, i + 1) != LUA_TTABLE)
-        return luaL_error(L, "view_transforms: matrix %d: row %d is not a table", (int)t, i + 1);
+        return tds_lua_error(L, "view_transforms: matrix %d: row %d is not a table", (int)t, i + 1);
       for (int j = 0; j < 4; j++) {
         lua_rawgeti(L, -1, j + 1);
         int ok;
         m[t - 1][4 * i + j] = lua_tonumberx(L, -1, &ok);
-        if (!ok) return luaL_error(L, "view_transforms: matrix %d: entry [%d][%d] is not a number", (int)t, i + 1, j + 1);
+        if (!ok) return tds_lua_error(L, "view_transforms: matrix %d: entry [%d][%d] is not a number", (int)t, i + 1, j + 1);
         lua_pop(L, 1);
       }
       lua_pop(L, 1);
@@ -83,7 +83,7 @@ static int l_view_transforms(lua_State *L) {
     lua_pop(L, 1);
   }
   if (tds_surf_set_view(&st->ctx, s, 0, (int)n, (const double (*)[16])m, sw) != TDS_OK)
-    return luaL_error(L, "view_transforms: %s", st->ctx.errmsg);
+    return tds_lua_error(L, "view_transforms: %s", st->ctx.errmsg);
   return 0;
 }
 
