@@ -218,7 +218,7 @@ void tds_pg_defaults(tds_pg_opts *o) {
   o->newton = 1;
   o->probe = 1;
   o->calm = 1;
-  o->momentum = 0;
+  o->momentum = 0.6;
 }
 
 static double mean_edge(const tds_mesh *m) {

@@ -47,8 +47,8 @@ typedef struct tds_pg_opts {
                              stop (default); 0: no */
   double momentum;        /* the accelerated run's plain (warm) steps after
                              a flip add this times the last move (a heavy-
-                             ball step; 0 by default: none; 0.8 measured
-                             best, doc/method.md) */
+                             ball step; 0.6 by default, 0: none;
+                             doc/method.md, Acceleration) */
 } tds_pg_opts;
 
 typedef struct tds_pg_result {
@@ -97,7 +97,7 @@ enum { TDS_PG_COUNT = 0, TDS_PG_CONVERGED, TDS_PG_STALLED, TDS_PG_CYCLING,
 
 /* Defaults: until converged, N_max 200, s = 2, accelerated (depth 20),
 ** flips on, Newton preconditioning, the stability probe and the calm
-** after flip 2-cycles on, no momentum in the warm steps after a flip. */
+** after flip 2-cycles on, momentum 0.6 in the warm steps after a flip. */
 void tds_pg_defaults(tds_pg_opts *o);
 
 /* Run the method. Allocates its work arrays once; the loop allocates
