@@ -294,10 +294,11 @@ static int probe_perturb(tds_surf *s, pgw *w, double *X, double delta) {
 
 /* Momentum of the warm steps (doc/method.md, Acceleration): after the
 ** plain move from X_k, add beta (X_k - X_{k-1}) (a heavy-ball step), unless
-** that would move a vertex by more than cap (then none, and the next step
-** starts without momentum: *have = 0). mom holds X_k - X_{k-1}; G is
-** scratch. 1 when applied, 0 when not, -1 when a vertex could not be
-** projected. */
+** that would move a vertex by more than cap (measured on the state's
+** triples: a boundary vertex's are its parameters) or a facet is a sliver
+** (then none, and the next step starts without momentum: *have = 0). mom
+** holds X_k - X_{k-1}; G is scratch. 1 when applied, 0 when not, -1 when
+** a vertex could not be projected. */
 static int warm_momentum(tds_surf *s, pgw *w, const double *mom, double beta,
                          double cap, double *G, int *have) {
   double big = 0;
@@ -307,8 +308,8 @@ static int warm_momentum(tds_surf *s, pgw *w, const double *mom, double beta,
     if (q > big) big = q;
   }
   /* no momentum into a degenerating mesh (a facet angle below 3 degrees
-  ** at a movable vertex): on Evolver's collapsing cat.fe it otherwise
-  ** carried the film onto a stationary mesh with a zero angle */
+  ** at a movable vertex): on Evolver's collapsing cat.fe momentum 0.8
+  ** otherwise carried the film onto a stationary mesh with a zero angle */
   if (beta * beta * big > cap * cap || pg_newton_sliver(s, w)) {
     *have = 0;
     return 0;
