@@ -315,6 +315,10 @@ int tds_special_at(tds_ctx *ctx, const tds_surf *s, tds_id v, double an[3]) {
   double vars[TDS_NVARS];
   tds_motion_vars(s, m->x[v], m->vp[v], vars);
   for (int i = 0; i < 3; i++) {
+    if (!s->special_normal[i]) { /* C3 in 2-D space */
+      an[i] = 0;
+      continue;
+    }
     double c = tds_expr_eval(s->special_normal[i], s->parval, vars);
     if (!isfinite(c))
       return tds_seterr(ctx, TDS_ENUM, "HESSIAN_SPECIAL_NORMAL_VECTOR: c%d is not finite at "

@@ -111,18 +111,39 @@ int tds_string_vertex_normal(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o
   if (tds_mesh_adjacency(m) != TDS_OK) return tds_seterr(ctx, TDS_ENOMEM, "vertex_normal: out of memory");
   vnorm w;
   one_vertex(m, v, 1, o->normal_one && s->str->space_dim == 2, &w);
-  if (o->special_normal && w.nf) {
+  if (o->special_normal && (w.nf || w.full)) {
     if (!s->special_normal[0])
       return tds_seterr(ctx, TDS_ERANGE, "hessian_special_normal is on but the datafile has no "
                         "HESSIAN_SPECIAL_NORMAL_VECTOR");
     int rc = tds_special_at(ctx, s, v, w.an);
     if (rc != TDS_OK) return rc;
+    w.nf = 1;
+    w.full = 0;
   }
   w.flat = 0; /* the attribute keeps the special vector's z */
   double W[3][3];
   static const double I[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   tds_normal_columns(&w, I, 3, 0, W);
   for (int i = 0; i < 3; i++) n[i] = W[i][0];
+  return TDS_OK;
+}
+
+/* hessian_special_normal in the string model: every vertex with edges,
+** junctions too (as Evolver: on a 3-D string it leaves one unknown at
+** each, measured), moves along the datafile's vector at its place. */
+static int string_special(tds_ctx *ctx, const tds_surf *s, vnorm *vn) {
+  const tds_mesh *m = &s->m;
+  if (!s->special_normal[0])
+    return tds_seterr(ctx, TDS_ERANGE, "hessian_special_normal is on but the datafile has no "
+                      "HESSIAN_SPECIAL_NORMAL_VECTOR");
+  for (tds_id v = 0; v < m->nv; v++) {
+    vnorm *w = &vn[v];
+    if ((m->vflags[v] & TDS_DEAD) || !(w->nf || w->full)) continue;
+    int rc = tds_special_at(ctx, s, v, w->an);
+    if (rc != TDS_OK) return rc;
+    w->nf = 1;
+    w->nt = w->full = 0;
+  }
   return TDS_OK;
 }
 
@@ -133,7 +154,7 @@ int tds_hess_normals(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, vnorm 
                         "the string model in 2-D space only (as in Evolver): turn it off "
                         "(hessian_normal_one off) for a string in 3-D space");
     int rc = tds_string_normals(ctx, s, o->normal && o->normal_one, vn);
-    if (rc == TDS_OK && o->normal && o->special_normal) rc = tds_special_normals(ctx, s, vn);
+    if (rc == TDS_OK && o->normal && o->special_normal) rc = string_special(ctx, s, vn);
     return rc;
   }
   if (tds_vertex_normals(&ctx->alloc, &s->m, vn) != TDS_OK ||

@@ -67,6 +67,20 @@ printf "K1 %.17g\n", total_energy
 hessian
 printf "K2 %.17g\n", total_energy'
 
+special() { # NAME FROM C1 C2 [C3]: FROM's file with the vector after its header
+  awk -v c1="$3" -v c2="$4" -v c3="$5" '{ print }
+    !done && (/^SPACE_DIMENSION/ || (c3 != "" && /^STRING/)) {
+      print "HESSIAN_SPECIAL_NORMAL_VECTOR"; print "c1: " c1; print "c2: " c2
+      if (c3 != "") print "c3: " c3
+      done = 1 }' "$tmp/$2.fe" > "$tmp/$1.fe"
+}
+SPECIAL='hessian_special_normal
+eigenprobe 0
+ritz(-0.01,4)
+foreach vertex vv where not fixed do printf "KN %.12f %.12f\n", vv.vertex_normal[1], vv.vertex_normal[2]
+hessian
+printf "K1 %.17g\n", total_energy'
+
 # poly14_2 starts at a saddle (index 1, eigenvalue -6.8e-4): the Newton
 # step goes far, and there the two programs' steps part (Evolver's ends
 # with the area 3.30487 for the target 3.30423, tds's with 4.695 after
@@ -184,6 +198,11 @@ run double "$tmp/double.fe" "g 2
 $PROBE
 $OFF
 $STEPS"
+special double-special double "x - 1" "y - 0.5"
+run double-special "$tmp/double-special.fe" "r
+r
+g 3
+$SPECIAL"
 run double-one "$tmp/double.fe" "g 2
 $ONE
 hessian_normal_one
@@ -218,6 +237,19 @@ V
 g 300
 $PROBE
 $OFF"
+
+# hessian_special_normal: every vertex with edges, junctions too, moves
+# along the datafile's vector (C1, C2 in 2-D space; the z part counts in
+# 3-D): on a polygon, on the double bubble (refined twice: two
+# junctions) and on a 3-D string with a junction. (A flower then has no
+# freedom left, and there Evolver's step moves the energy by 2e-10
+# where tds's keeps it: not compared.)
+special poly10_1-special poly10_1 "x + 0.1" "y - 0.2"
+run poly10_1-special "$tmp/poly10_1-special.fe" "g 3
+$SPECIAL"
+special string3_9_4-special string3_9_4 "0" "1" "z + 0.1*x"
+run string3_9_4-special "$tmp/string3_9_4-special.fe" "g 2
+$SPECIAL"
 
 # The 2-D torus (a periodic Voronoi foam, tests/evolver/strtorus/
 # voronoi.lua), against Evolver with augmented_hessian (by default its
