@@ -3,20 +3,25 @@
 ** between it and the soap film's rule (tds_hess_normals).
 **
 ** What evolver-nox-d 2.70 does, measured on small networks (its ritz
-** eigenvalues and Eigencounts, its vertex_normal attribute):
+** eigenvalues and Eigencounts, its vertex_normal attribute; compared in
+** tests/evolver/string_hessian.sh):
 **   2-D space: an edge's normal is its vector (tail to head, as stored)
-**     turned a quarter counterclockwise, (-dy, dx); a vertex with one or
-**     two edges moves along the running sum of its edges' normals, each
-**     signed to agree with the sum so far, in Evolver's order (its lowest
-**     edge first, then the others by decreasing id); a vertex where three
-**     or more edges meet moves in the whole plane. hessian_normal_one:
-**     every vertex with edges moves along the leading eigenvector of the
-**     sum of its edges' unit n n^T (junctions too).
-**   3-D space: a vertex with one or two edges moves in the plane
-**     perpendicular to the running sum of its edges' vectors (signed to
-**     agree: for two edges, the chord between its neighbours when the
-**     string turns by less than 90 degrees); a junction moves freely.
-**     hessian_normal_one is refused there, as Evolver refuses it.
+**     turned a quarter counterclockwise, (-dy, dx). A vertex with two
+**     edges moves along the normal of its chord (the sum of its edges'
+**     normals taken along the string: the second one's negated when both
+**     edges end, or both start, at the vertex), signed by its lowest
+**     edge; a vertex with one edge along that edge's normal; a vertex
+**     where three or more edges meet moves in the whole plane.
+**     hessian_normal_one: every vertex with edges, junctions too, moves
+**     along 19 steps of the power iteration on sum c c^T (c the edges'
+**     normals, not made unit) from its lowest edge's normal: exactly
+**     Evolver's direction at a vertex with two edges, 1e-8 from it at a
+**     junction.
+**   3-D space: a vertex with one or two edges moves in the plane across
+**     its chord (its edge); a junction moves freely. hessian_normal_one
+**     is refused, as Evolver refuses it.
+**   hessian_special_normal: every vertex with edges, junctions too,
+**     moves along the datafile's vector.
 ** In 2-D space nothing moves off the plane, with or without the normal. */
 #include <string.h>
 
