@@ -270,13 +270,16 @@ static int h_boundary(df *d, const hdr_kw *k) {
 }
 
 /* HESSIAN_SPECIAL_NORMAL_VECTOR with C1: C2: C3: (functions of the
-** coordinates and parameters). */
+** coordinates and parameters); C1: C2: only in 2-D space (SPACE_DIMENSION
+** 2 before it), as Evolver. */
 static int h_special_normal(df *d, const hdr_kw *k) {
   (void)k;
   const char *what = "HESSIAN_SPECIAL_NORMAL_VECTOR";
   tds_expr *c[3] = {0};
   int rc = df_components(d, 'c', 0, c, what);
-  if (!rc && (!c[0] || !c[1] || !c[2]))
+  if (!rc && d->space_dim == 2 && (!c[0] || !c[1] || c[2]))
+    rc = df_err(d, d->p, TDS_ESYNTAX, "%s: needs C1 and C2 (and no C3) in 2-D space", what);
+  else if (!rc && d->space_dim != 2 && (!c[0] || !c[1] || !c[2]))
     rc = df_err(d, d->p, TDS_ESYNTAX, "%s: needs C1, C2 and C3", what);
   if (rc) {
     df_free3(c);

@@ -328,7 +328,7 @@ static void header(out *o, const tds_surf *s) {
   }
   if (s->special_normal[0]) {
     fputs("HESSIAN_SPECIAL_NORMAL_VECTOR\n", f);
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < 3 && s->special_normal[k]; k++) { /* C3 absent in 2-D */
       fprintf(f, "C%d: ", k + 1);
       text(o, s->special_normal[k]);
       fputc('\n', f);

@@ -12,7 +12,10 @@
 ** unit length in space; a vertex on one triple
 ** junction line (edges with three or more facets) moves in the plane
 ** perpendicular to the line; a vertex where several such lines meet, or
-** with no facets, keeps its whole motion space. The unknowns w (sys.m of
+** with no facets, keeps its whole motion space. In the string model a
+** vertex moves along its chord's normal (2-D space) or in the plane
+** across its chord (3-D), a junction freely, and in 2-D space nothing
+** moves off the plane (newton_strnorm.c). The unknowns w (sys.m of
 ** them) are the amounts of these unit motions. Volumes and FIXED
 ** quantities are held by a border: K = [H A; A^T 0] with A the
 ** quantities' gradients in the same unknowns.

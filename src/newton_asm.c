@@ -209,10 +209,7 @@ int tds_nsys_assemble(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_n
   D = tds_calloc(al, (size_t)nvm + 1, sizeof *D);
   ustart = tds_malloc(al, ((size_t)nvm + 2) * sizeof *ustart);
   if (!W || !D || !ustart) goto nomem;
-  if (tds_vertex_normals(al, m, vn) != TDS_OK) goto nomem;
-  if (o->normal && o->normal_one && tds_normals_one(al, m, vn) != TDS_OK) goto nomem;
-  if (o->normal && o->special_normal && (rc = tds_special_normals(ctx, s, vn)) != TDS_OK)
-    goto fail;
+  if ((rc = tds_hess_normals(ctx, s, o, vn)) != TDS_OK) goto fail;
   ustart[0] = 0;
   for (int32_t k = 0; k < nvm; k++) {
     static const double zero[3] = {0, 0, 0};
@@ -318,7 +315,7 @@ int tds_nsys_assemble(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_n
   p.colptr = p.rowind = NULL;
   p.val = NULL;
   if (o->linear_metric &&
-      (rc = tds_nsys_build_metric(ctx, m, o->metric_mix, o->normal_perp, vk, ustart, out)) != TDS_OK)
+      (rc = tds_nsys_build_metric(ctx, s, o->metric_mix, o->normal_perp, vk, ustart, out)) != TDS_OK)
     goto fail;
   rc = TDS_OK;
   goto done;

@@ -124,7 +124,7 @@ int tds_newton_ritz(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
   int *ord = NULL;
   int32_t m = n.m, dim = n.m - n.nq;
   int user_shift = !isnan(shift);
-  tds_inertia in;
+  tds_inertia in, first;
   if (!user_shift) { /* below every eigenvalue: step down until none is below */
     shift = -1;
     for (int k = 0;; k++) {
@@ -136,8 +136,9 @@ int tds_newton_ritz(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
       shift *= 4;
     }
   } else {
-    rc = factor_at(ctx, &n, o->epsilon, &shift, &f, &in, NULL);
+    rc = factor_at(ctx, &n, o->epsilon, &shift, &f, &in, &first);
     if (rc != TDS_OK) goto done;
+    in = first; /* the counts at the shift itself, as Evolver prints them */
   }
   *in_out = in;
   int32_t nn = nwant < dim ? nwant : (dim > 0 ? dim : 0);
@@ -266,9 +267,10 @@ int tds_newton_invit(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double
   }
   /* the counts at c itself (the eigenprobe line), then the factor used,
   ** moved off c when c is an eigenvalue */
-  tds_inertia in;
+  tds_inertia in, first;
   double shift = c;
-  if ((rc = factor_at(ctx, &n, o->epsilon, &shift, &f, &in, &in)) != TDS_OK) goto done;
+  if ((rc = factor_at(ctx, &n, o->epsilon, &shift, &f, &in, &first)) != TDS_OK) goto done;
+  in = first;
   *in_out = in;
   tds_printf(ctx, "Eigencounts:    %d <,  %d ==,  %d > \n", (int)in.neg, (int)in.zero,
              (int)in.pos);

@@ -38,10 +38,39 @@ typedef struct vnorm {
   double an[3];
   double td[3];
   int nt, nf, bent;     /* bent: two triple edges not along one line */
+  int full;             /* no normal space: the whole motion space (a
+                           junction of the string model) */
+  int flat;             /* 2-D space (the string model): every direction,
+                           the normal's and the whole space's, lies in
+                           the xy plane */
 } vnorm;
 
 /* vn: m->nv slots. TDS_OK or TDS_ENOMEM (then vn is incomplete). */
 int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn);
+
+/* The string model's normal spaces (newton_strnorm.c has Evolver's rule):
+** vn m->nv slots; normal_one: hessian_normal_one (2-D space only). TDS_OK
+** or TDS_ENOMEM (message in ctx). */
+int tds_string_normals(tds_ctx *ctx, tds_surf *s, int normal_one, vnorm *vn);
+/* tds_vertex_normal_at in the string model: Evolver's vertex_normal
+** attribute, the 2-D rule's normal in the xy plane in 3-D space too (as
+** Evolver prints it); (1, 0, 0) at a junction. */
+int tds_string_vertex_normal(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_id v,
+                             double n[3]);
+
+/* The normal spaces the Newton system uses with options o: the soap
+** film's (tds_vertex_normals, then tds_normals_one, tds_special_normals
+** as o asks) or the string model's. TDS_OK or a failure with its
+** message (out of memory; hessian_normal_one in a 3-D string model;
+** the special normal vector missing or not finite). */
+int tds_hess_normals(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, vnorm *vn);
+
+/* Vector c of facet f's (or edge e's, f TDS_NONE) gathered frame as its
+** corner k sees it: under a symmetry group that rotates, the corner's
+** element's rotation undone (symmetry.h), written to out; c itself
+** otherwise. Returns the pointer to use. */
+const double *tds_norm_seen_from(const tds_mesh *m, tds_id f, tds_id e, int k,
+                                 const double c[3], double out[3]);
 
 /* The pieces of tds_vertex_normals that tds_vertex_normal_at
 ** (newton_vnorm.c) shares. A facet at a vertex with its place in
@@ -81,17 +110,20 @@ int tds_special_normals(tds_ctx *ctx, const tds_surf *s, vnorm *vn);
 ** (3 x d, dx = B u): the normal space's directions pulled back into u
 ** (least squares) and made orthonormal in space (|B w| = 1); with full,
 ** or when the vertex has no normal space, its whole motion space (c = d,
-** each coordinate scaled to unit length in space). Returns c. */
+** each coordinate scaled to unit length in space; for a flat vertex the
+** part of it in the xy plane, made orthonormal, c <= 2, 0 when that is
+** empty). Returns c. */
 int tds_normal_columns(const vnorm *vn, const double B[3][3], int d, int full, double W[3][3]);
 
 /* Build at the current positions (multipliers recomputed first). */
 int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys *out);
 void tds_nsys_free(tds_nsys *n);
 
-/* The linear_metric matrix out->M (out->m, out->dx set): vk maps a vertex
+/* The linear_metric matrix out->M (out->m, out->dx set; over the facets,
+** or the edges in the string model): vk maps a vertex
 ** slot to its movable index (or -1), ustart a movable index to its first
 ** unknown. TDS_OK or TDS_ENOMEM. */
-int tds_nsys_build_metric(tds_ctx *ctx, const tds_mesh *m, double mix, int perp,
+int tds_nsys_build_metric(tds_ctx *ctx, const tds_surf *s, double mix, int perp,
                           const int32_t *vk, const int32_t *ustart, tds_nsys *out);
 
 /* tds_nsys_build's fast path (newton_asm.c): the same system assembled

@@ -23,11 +23,8 @@ static void facet_vec(const tds_mesh *m, tds_id f, double c[3]) {
   v3_scale(c, 0.5);
 }
 
-/* Vector c of facet f's (or edge e's, f TDS_NONE) gathered frame as its
-** corner k sees it: under a symmetry group that rotates, the corner's
-** element's rotation undone (symmetry.h); c itself otherwise. */
-static const double *seen_from(const tds_mesh *m, tds_id f, tds_id e, int k, const double c[3],
-                               double out[3]) {
+const double *tds_norm_seen_from(const tds_mesh *m, tds_id f, tds_id e, int k,
+                                 const double c[3], double out[3]) {
   if (!k || !tds_mesh_rotates(m)) return c;
   int32_t w = f != TDS_NONE ? tds_torus_corner_wrap(m, f, k) : m->ewrap[e];
   if (!w) return c;
@@ -53,7 +50,7 @@ void tds_evolver_sum(const tds_mesh *m, tds_fkey *a, int32_t n, double S[3]) {
   for (int32_t i = 0; i < n; i++) {
     double c0[3], ck[3];
     facet_vec(m, a[i].f, c0);
-    const double *c = seen_from(m, a[i].f, TDS_NONE, a[i].k, c0, ck);
+    const double *c = tds_norm_seen_from(m, a[i].f, TDS_NONE, a[i].k, c0, ck);
     v3_axpy(S, v3_dot(S, c) < 0 ? -1 : 1, c);
   }
 }
@@ -68,7 +65,7 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
     facet_vec(m, f, c);
     for (int k = 0; k < 3; k++) {
       vnorm *w = &vn[m->fv[f][k]];
-      v3_add(w->an, w->an, seen_from(m, f, TDS_NONE, k, c, ck));
+      v3_add(w->an, w->an, tds_norm_seen_from(m, f, TDS_NONE, k, c, ck));
       w->nf++;
     }
   }
@@ -99,7 +96,7 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
     double lim = 0.8660254037844386 * v3_norm(c); /* cos 30 degrees */
     for (int k = 0; k < 3; k++) {
       tds_id v = m->fv[f][k];
-      if (!bad[v] && !(v3_dot(seen_from(m, f, TDS_NONE, k, c, ck), ref[v]) >= lim)) bad[v] = 1;
+      if (!bad[v] && !(v3_dot(tds_norm_seen_from(m, f, TDS_NONE, k, c, ck), ref[v]) >= lim)) bad[v] = 1;
     }
   }
   tds_free(al, ref);
@@ -160,7 +157,7 @@ int tds_vertex_normals(const tds_alloc *al, const tds_mesh *m, vnorm *vn) {
     if (!(len > 0)) continue;
     v3_scale(d0, 1 / len);
     for (int k = 0; k < 2; k++) {
-      const double *d = seen_from(m, TDS_NONE, e, k, d0, dk);
+      const double *d = tds_norm_seen_from(m, TDS_NONE, e, k, d0, dk);
       vnorm *w = &vn[m->ev[e][k]];
       if (w->nt) {
         double dot = v3_dot(d, w->td) / v3_norm(w->td);
@@ -230,11 +227,14 @@ int tds_normal_columns(const vnorm *vn, const double B[3][3], int d, int full,
   memset(W, 0, sizeof(double[3][3]));
   double nx[3][3];
   int cn = 0;
-  if (!full && vn->nf > 0 && vn->nt <= 2 && !vn->bent) {
+  if (!full && !vn->full && vn->nf > 0 && vn->nt <= 2 && !vn->bent) {
     if (vn->nt == 0) {
-      double len = v3_norm(vn->an);
+      double a[3];
+      v3_copy(a, vn->an);
+      if (vn->flat) a[2] = 0;
+      double len = v3_norm(a);
       if (len > 0) {
-        for (int i = 0; i < 3; i++) nx[0][i] = vn->an[i] / len;
+        for (int i = 0; i < 3; i++) nx[0][i] = a[i] / len;
         cn = 1;
       }
     } else { /* the plane perpendicular to the triple line */
@@ -254,7 +254,12 @@ int tds_normal_columns(const vnorm *vn, const double B[3][3], int d, int full,
       }
     }
   }
-  if (cn == 0) {
+  int whole = cn == 0;
+  if (whole && vn->flat) { /* the xy plane's part of the motion space */
+    memset(nx, 0, sizeof nx);
+    nx[0][0] = nx[1][1] = 1;
+    cn = 2;
+  } else if (whole) {
     for (int a = 0; a < d; a++) W[a][a] = 1;
     /* unit length in space for each coordinate direction */
     for (int a = 0; a < d; a++) {
@@ -288,7 +293,7 @@ int tds_normal_columns(const vnorm *vn, const double B[3][3], int d, int full,
     for (int a = 0; a < d; a++) W[a][c] = w[a] / sqrt(nn);
     c++;
   }
-  if (c == 0) return tds_normal_columns(vn, B, d, 1, W);
+  if (c == 0 && !whole) return tds_normal_columns(vn, B, d, 1, W);
   return c;
 }
 
@@ -310,6 +315,10 @@ int tds_special_at(tds_ctx *ctx, const tds_surf *s, tds_id v, double an[3]) {
   double vars[TDS_NVARS];
   tds_motion_vars(s, m->x[v], m->vp[v], vars);
   for (int i = 0; i < 3; i++) {
+    if (!s->special_normal[i]) { /* C3 in 2-D space */
+      an[i] = 0;
+      continue;
+    }
     double c = tds_expr_eval(s->special_normal[i], s->parval, vars);
     if (!isfinite(c))
       return tds_seterr(ctx, TDS_ENUM, "HESSIAN_SPECIAL_NORMAL_VECTOR: c%d is not finite at "

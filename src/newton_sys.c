@@ -48,10 +48,42 @@ static int need_pressures(tds_ctx *ctx, tds_surf *s, int *needp) {
 
 static int nomem(tds_ctx *ctx) { return tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory"); }
 
-int tds_nsys_build_metric(tds_ctx *ctx, const tds_mesh *m, double mix, int perp,
+/* The string model's metric: each edge's L2 product of the linear
+** interpolation of its ends' motions along it, weighted by its length
+** times its tension (as Evolver's; its hessian_normal_perp changes
+** nothing in the string model, measured). */
+static int metric_edges(const tds_mesh *m, double mix, const int32_t *vk,
+                        const int32_t *ustart, const tds_nsys *out, tds_sptrip *t) {
+  for (tds_id e = 0; e < m->ne; e++) {
+    if (m->eflags[e] & TDS_DEAD) continue;
+    const tds_id *ev = m->ev[e];
+    tds_corners C; /* unwrapped (torus) */
+    tds_gather_edge(m, TDS_OREF(e, 0), &C);
+    double d[3];
+    v3_sub(d, C.x[1], C.x[0]);
+    double len = v3_norm(d) * m->eten[e];
+    for (int x = 0; x < 2; x++)
+      for (int y = 0; y < 2; y++) {
+        int32_t kx = vk[ev[x]], ky = vk[ev[y]];
+        if (kx < 0 || ky < 0) continue;
+        double wgt = len * (x == y ? mix / 3 + (1 - mix) / 2 : mix / 6);
+        for (int32_t p = ustart[kx]; p < ustart[kx + 1]; p++)
+          for (int32_t q = ustart[ky]; q < ustart[ky + 1]; q++) {
+            if (p > q || (x != y && p == q)) continue;
+            double v = wgt * v3_dot(out->dx[p], out->dx[q]);
+            if (v != 0 && tds_sptrip_add(t, p, q, v)) return TDS_ENOMEM;
+          }
+      }
+  }
+  return TDS_OK;
+}
+
+int tds_nsys_build_metric(tds_ctx *ctx, const tds_surf *s, double mix, int perp,
                           const int32_t *vk, const int32_t *ustart, tds_nsys *out) {
+  const tds_mesh *m = &s->m;
   int32_t mm = out->m;
   tds_sptrip t = {.nrow = mm, .ncol = mm, .alloc = ctx->alloc};
+  if (s->str && metric_edges(m, mix, vk, ustart, out, &t) != TDS_OK) goto nomem;
   for (tds_id f = 0; f < m->nf; f++) {
     if (m->fflags[f] & TDS_DEAD) continue;
     const tds_id *fv = m->fv[f];
@@ -118,10 +150,7 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
   ustart = tds_malloc(&ctx->alloc, ((size_t)nvm + 1) * sizeof *ustart);
   rk = tds_malloc(&ctx->alloc, ((size_t)r.m + 1) * sizeof *rk);
   if (!vn || !W || !ustart || !rk) goto nomem;
-  if (tds_vertex_normals(&ctx->alloc, m, vn) != TDS_OK) goto nomem;
-  if (o->normal && o->normal_one && tds_normals_one(&ctx->alloc, m, vn) != TDS_OK) goto nomem;
-  if (o->normal && o->special_normal && (rc = tds_special_normals(ctx, s, vn)) != TDS_OK)
-    goto fail;
+  if ((rc = tds_hess_normals(ctx, s, o, vn)) != TDS_OK) goto fail;
   ustart[0] = 0;
   for (int32_t k = 0; k < nvm; k++) {
     int d = r.start[k + 1] - r.start[k];
@@ -200,7 +229,7 @@ int tds_nsys_build(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_nsys
     int32_t *vk = tds_malloc(&ctx->alloc, ((size_t)m->nv + 1) * sizeof *vk);
     if (!vk) goto nomem;
     for (tds_id v = 0; v < m->nv; v++) vk[v] = h.vidx[v] < 0 ? -1 : h.vidx[v] / 3;
-    rc = tds_nsys_build_metric(ctx, m, o->metric_mix, o->normal_perp, vk, ustart, out);
+    rc = tds_nsys_build_metric(ctx, s, o->metric_mix, o->normal_perp, vk, ustart, out);
     tds_free(&ctx->alloc, vk);
     if (rc != TDS_OK) goto fail;
   }

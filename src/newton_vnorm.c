@@ -20,6 +20,7 @@ static void area_vec(const tds_mesh *m, tds_id f, double c[3]) {
 
 int tds_vertex_normal_at(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, tds_id v,
                          double n[3]) {
+  if (s->str) return tds_string_vertex_normal(ctx, s, o, v, n);
   tds_mesh *m = &s->m;
   n[0] = n[1] = n[2] = 0;
   if (tds_mesh_adjacency(m) != TDS_OK) return tds_seterr(ctx, TDS_ENOMEM, "vertex_normal: out of memory");

@@ -629,6 +629,18 @@ static void oom_strings(void) {
     }
 }
 
+/* The Newton commands in the string model (the normals of newton_strnorm.c
+** and the edges' linear metric): a 2-D foam of junctions (Newton step,
+** ritz with linear_metric, inverse iteration with hessian_normal_one;
+** vertex_normal allocates nothing there) and a 3-D string with a
+** junction (step, ritz). */
+static void oom_string_newton(void) {
+  const char *flower = "tests/evolver/data/flower5.fe", *string3 = "tests/evolver/data/string3_junction.fe";
+  const opcase cases[] = {{flower, 1, 4, 'n'}, {flower, 1, 4, 'e'}, {flower, 1, 4, 'i'},
+                          {string3, 0, 2, 'n'}, {string3, 0, 2, 'e'}};
+  for (size_t i = 0; i < sizeof cases / sizeof *cases && !check_failed_; i++) sweep(&cases[i]);
+}
+
 /* 100grain.fe stepped to just before the string autopop's rarer cases
 ** (without failures, once) and dumped: g then merges two junctions at a
 ** midpoint and pops in the moved positions (steps 245-246), or moves a
@@ -821,6 +833,7 @@ int main(void) {
   RUN(oom_load);
   RUN(oom_strings);
   RUN(oom_autopop_string);
+  RUN(oom_string_newton);
   RUN(oom_refine);
   RUN(oom_iterate);
   RUN(oom_equiangulate);
