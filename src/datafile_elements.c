@@ -401,6 +401,10 @@ static int vertex_line(df *d) {
       return df_err(d, NULL, TDS_ESYNTAX, "%s needs %d coordinates, got %d", what, maxc, nval);
     for (int k = 0; k < 3; k++) x[k] = val[k];
   }
+  if (d->s->klein && !d->string_model && !(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] < 1))
+    return df_err(d, NULL, TDS_ERANGE,
+                  "%s: (%g, %g, %g) is not inside the unit ball, the Klein model of "
+                  "KLEIN_METRIC", what, x[0], x[1], x[2]);
   if (d->s->klein && !(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] < 1))
     return df_err(d, NULL, TDS_ERANGE,
                   "%s: (%g, %g) is not inside the unit disk, the Klein model of KLEIN_METRIC",

@@ -1,0 +1,103 @@
+#!/bin/sh
+# klein.sh: KLEIN_METRIC on films, and SYMMETRY_GROUP "genus2" on films, against
+# Surface Evolver 2.70 (doc/torus.md#klein_metric-and-genus2-on-films), on
+# seeded random films made by klein/patch.lua (bent, perturbed grids with
+# a fixed border at random places in the Klein ball; closed bodies).
+# * facets' hyperbolic areas at load and after r (energy, total_area) to
+#   1e-12 (rounding: measured 1e-15);
+# * g with a fixed scale (energies and positions to 1e-10, measured 1e-14)
+#   and with Evolver's line search (1e-8: its parabola's minimum amplifies
+#   rounding, measured 2e-9 on a position after 12 steps) -- before
+#   refining only: Evolver
+#   2.70's r under KLEIN_METRIC puts a few midpoints (one edge in 56 of a
+#   4x4 grid, six in 85 of 5x5, none in 6x6) at 7/16, 3/8 or 9/16 of the
+#   edge instead of 1/2 (measured; tds takes 1/2, as Evolver does without
+#   the metric), which changes nothing at once (the facets stay flat) but
+#   the steps after;
+# * bodies: Euclidean volumes (as Evolver), hyperbolic areas, the volume
+#   constraint's pressure after g, to 1e-9;
+# * genus2: load, r (counts, wraps) and dumps both ways, energies to 1e-9
+#   (Evolver's group maps are products that lose up to 4e-11 near the
+#   disk's edge: tests/evolver/genus2.sh). Evolver's g on a wrapped film
+#   stops with "Points outside unit disk in Klein model" (measured), so
+#   tds's minimum of the wrapped film is checked against the same film
+#   without wraps (the group acts by isometries): Newton's minimum
+#   (hessian_normal off) to 1e-10, and that film's g against Evolver's.
+. "$(dirname "$0")/lib.sh"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+gen() { # NAME SEED N EXTRA...
+  n=$1 seed=$2 N=$3
+  shift 3
+  "$TDS" -q -e "OUT='$tmp/$n.fe' SEED=$seed N=$N $*
+dofile('$ROOT/tests/evolver/klein/patch.lua')" || echo "FAIL klein/$n/generate: tds exited with an error"
+}
+PV='foreach vertex vv where not fixed do printf "K9 %d %.15g %.15g %.15g\n", vv.id, vv.x, vv.y, vv.z;'
+E1='printf "K1 %.15g %.15g %d %d %d\n", total_energy, total_area, vertex_count, edge_count, facet_count;'
+gen p1 1 3
+gen p2 2 4
+gen p3 3 5
+for f in p1 p2 p3; do
+  kcompare "klein/$f/load" "$tmp/$f.fe" 1e-12 "$E1 foreach facet ff do printf \"K2 %d %.15g\\n\", ff.id, ff.area;"
+  kcompare "klein/$f/fixed-scale" "$tmp/$f.fe" 1e-10 "m 0.05; g 5; $E1 $PV"
+  kcompare "klein/$f/g" "$tmp/$f.fe" 1e-8 "g 12; $E1 $PV"
+  kcompare "klein/$f/r" "$tmp/$f.fe" 1e-12 "g 3; r; $E1"
+  "$TDS" -q "$tmp/$f.fe" -e "g(3) dump('$tmp/$f.tds.dmp')" || echo "FAIL klein/$f/dump: tds exited with an error"
+  kcompare "klein/$f/tds-dump-in-evolver" "$tmp/$f.tds.dmp" 1e-12 "$E1 g 3; $E1"
+  evolver_dump "klein/$f" "$f.ev" "$tmp/$f.fe" "g 3"
+  kcompare "klein/$f/evolver-dump-in-tds" "$tmp/$f.ev.dmp" 1e-12 "$E1 g 3; $E1"
+done
+
+# Bodies: the target 2% above the volume at load.
+for spec in "b1 4 2" "b2 5 3"; do
+  set -- $spec
+  gen "$1" "$2" "$3" BODY=true VOL=1
+  v=$("$TDS" -q "$tmp/$1.fe" -e 'print(string.format("%.17g", body[1].volume * 1.02))')
+  gen "$1" "$2" "$3" BODY=true VOL="$v"
+  B='foreach body bb do printf "K3 %.15g %.15g\n", bb.volume, bb.pressure;'
+  kcompare "klein/$1/load" "$tmp/$1.fe" 1e-12 "$E1 $B"
+  kcompare "klein/$1/g" "$tmp/$1.fe" 1e-9 "g 10; $E1 $B $PV"
+done
+
+# genus2: films whose vertices are stored in random copies (wrap codes
+# 0, G_k, G_k^-1 on the edges).
+for spec in "g1 11 3" "g2 12 4" "g3 13 3"; do
+  set -- $spec
+  f=$1
+  gen "$f" "$2" "$3" G2=true
+  gen "$f-nowrap" "$2" "$3" G2=true NOWRAP=true
+  gen "$f-near" "$2" "$3" NEAR=true
+  W='foreach edge ee where ee.wrap != 0 do printf "K4 %d %d %d %d\n", ee.id, ee.vertex[1].id, ee.vertex[2].id, ee.wrap;'
+  kcompare "klein/$f/load" "$tmp/$f.fe" 1e-9 "printf \"K1 %.15g %d\\n\", total_energy, edge_count; $W"
+  kcompare "klein/$f/r" "$tmp/$f.fe" 1e-9 "r; printf \"K1 %.15g %d %d\\n\", total_energy, vertex_count, facet_count; $W"
+  "$TDS" -q "$tmp/$f.fe" -e "r() dump('$tmp/$f.tds.dmp')" || echo "FAIL klein/$f/dump: tds exited with an error"
+  kcompare "klein/$f/tds-dump-in-evolver" "$tmp/$f.tds.dmp" 1e-9 "printf \"K1 %.15g %d\\n\", total_energy, edge_count; $W"
+  evolver_dump "klein/$f" "$f.ev" "$tmp/$f.fe" "r"
+  kcompare "klein/$f/evolver-dump-in-tds" "$tmp/$f.ev.dmp" 1e-9 "printf \"K1 %.15g %d\\n\", total_energy, edge_count; $W"
+  kcompare "klein/$f/near-g" "$tmp/$f-near.fe" 1e-10 "g 40; $E1"
+  for v in "" -nowrap -near; do
+    "$TDS" -q "$tmp/$f$v.fe" -e "tds.hessian_setting('hessian_normal', false) g(40)
+for i = 1, 6 do hessian() end print(string.format('%.17g', total_energy))" > "$tmp/min$v" 2>&1 ||
+      echo "FAIL klein/$f/minimum$v: tds exited with an error"
+  done
+  "$TDS" -q -e "
+dofile('$ROOT/tests/evolver/compare.lua')
+local function e(v) return tonumber(io.open('$tmp/min' .. v):read('a')) end
+local a, b, c = e(''), e('-nowrap'), e('-near')
+report('klein/$f/minimum-wrapped', a and b and math.abs(a - b) <= 1e-10 * b, a, b)
+report('klein/$f/minimum-near', c and b and math.abs(c - b) <= 1e-10 * b, c, b)
+"
+done
+
+# Errors with file:line.
+printf 'KLEIN_METRIC\nvertices\n1 0.5 0.5 0\n2 0.9 0.5 0.1\n' > "$tmp/out.fe"
+got=$("$TDS" -q "$tmp/out.fe" -e '' 2>&1 < /dev/null)
+want="$tmp/out.fe:4: vertex 2: (0.9, 0.5, 0.1) is not inside the unit ball, the Klein model of KLEIN_METRIC"
+if [ "$got" = "$want" ]; then echo "PASS klein/refused/outside-ball"
+else echo "FAIL klein/refused/outside-ball: '$got', want '$want'"; fi
+printf 'KLEIN_METRIC\nTORUS\nvertices\n1 0.5 0.5 0\n' > "$tmp/tor.fe"
+got=$("$TDS" -q "$tmp/tor.fe" -e '' 2>&1 < /dev/null)
+want="$tmp/tor.fe:1: KLEIN_METRIC with the torus model is not supported (its translations do not map the unit ball, the Klein model, to itself)"
+if [ "$got" = "$want" ]; then echo "PASS klein/refused/torus"
+else echo "FAIL klein/refused/torus: '$got', want '$want'"; fi
