@@ -14,8 +14,12 @@
 #   edge instead of 1/2 (measured; tds takes 1/2, as Evolver does without
 #   the metric), which changes nothing at once (the facets stay flat) but
 #   the steps after;
+# * area_normalization: Evolver divides each force by a third of the
+#   vertex's hyperbolic star area (measured), so does tds: 1e-10;
 # * bodies: Euclidean volumes (as Evolver), hyperbolic areas, the volume
 #   constraint's pressure after g, to 1e-9;
+# * rotate: load, g and r to 1e-10 (measured 1e-15; energies only:
+#   Evolver's total_area reads 0 under a group, its named quantities);
 # * genus2: load, r (counts, wraps) and dumps both ways, energies to 1e-9
 #   (Evolver's group maps are products that lose up to 4e-11 near the
 #   disk's edge: tests/evolver/genus2.sh). Evolver's g on a wrapped film
@@ -43,6 +47,7 @@ for f in p1 p2 p3; do
   kcompare "klein/$f/fixed-scale" "$tmp/$f.fe" 1e-10 "m 0.05; g 5; $E1 $PV"
   kcompare "klein/$f/g" "$tmp/$f.fe" 1e-8 "g 12; $E1 $PV"
   kcompare "klein/$f/r" "$tmp/$f.fe" 1e-12 "g 3; r; $E1"
+  kcompare "klein/$f/area-normalization" "$tmp/$f.fe" 1e-10 "area_normalization; m 0.02; g 3; $E1 $PV"
   "$TDS" -q "$tmp/$f.fe" -e "g(3) dump('$tmp/$f.tds.dmp')" || echo "FAIL klein/$f/dump: tds exited with an error"
   kcompare "klein/$f/tds-dump-in-evolver" "$tmp/$f.tds.dmp" 1e-12 "$E1 g 3; $E1"
   evolver_dump "klein/$f" "$f.ev" "$tmp/$f.fe" "g 3"
@@ -58,6 +63,30 @@ for spec in "b1 4 2" "b2 5 3"; do
   B='foreach body bb do printf "K3 %.15g %.15g\n", bb.volume, bb.pressure;'
   kcompare "klein/$1/load" "$tmp/$1.fe" 1e-12 "$E1 $B"
   kcompare "klein/$1/g" "$tmp/$1.fe" 1e-9 "g 10; $E1 $B $PV"
+done
+
+# The string model (KLEIN_METRIC in the disk): area_normalization divides
+# by half the hyperbolic lengths at a vertex, as Evolver (measured). Nets
+# of genus2/net.lua without the group and with tension 1: Evolver 2.70's
+# step ignores an edge's tension under KLEIN_METRIC (measured: an edge of
+# tension 2 has energy twice its length but moves as with tension 1),
+# where tds follows the gradient of the energy.
+for seed in 3 4; do
+  "$TDS" -q -e "OUT='$tmp/n$seed.net' SEED=$seed NV=8 NE=16 KLEIN=true LONG=false FIXED=3
+dofile('$ROOT/tests/evolver/genus2/net.lua')" || echo "FAIL klein/s$seed/generate: tds exited with an error"
+  sed '/SYMMETRY_GROUP/d; s/ wrap [0-9]*//; s/ tension [0-9.e-]*//' "$tmp/n$seed.net" > "$tmp/s$seed.fe"
+  S='printf "K1 %.15g\n", total_energy; foreach vertex vv where not fixed do printf "K2 %.15g %.15g\n", vv.x, vv.y;'
+  kcompare "klein/s$seed/string-g" "$tmp/s$seed.fe" 1e-10 "m 0.01; g 2; $S"
+  kcompare "klein/s$seed/string-area-normalization" "$tmp/s$seed.fe" 1e-10 "area_normalization; m 0.01; g 2; $S"
+done
+
+# rotate (an isometry of the ball, orthogonal: g's steps are the same as
+# without the group): films stored in random quarter-turned copies.
+for spec in "q1 21 3" "q2 22 4"; do
+  set -- $spec
+  gen "$1" "$2" "$3" ROT=true
+  E0='printf "K1 %.15g %d %d %d\n", total_energy, vertex_count, edge_count, facet_count;'
+  kcompare "klein/$1/rotate" "$tmp/$1.fe" 1e-10 "$E0 g 10; $E0 r; $E0"
 done
 
 # genus2: films whose vertices are stored in random copies (wrap codes

@@ -16,9 +16,9 @@
 # * every other group's elements, and sectors of a catenoid-like band,
 #   a tube under quarter_turn, and the sector against the whole band in
 #   tds itself (each block below says what and why);
-# * errors: an unknown group, dodecahedron, and genus2 on films stop at
-#   the keyword with file:line: message (genus2 in the string model:
-#   genus2.sh).
+# * errors: an unknown group and dodecahedron stop at the keyword with
+#   file:line: message; symtest.fe's codes under genus2 at the edge (genus2
+#   in the string model: genus2.sh, on films: klein.sh).
 . "$(dirname "$0")/lib.sh"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -351,4 +351,4 @@ got=$("$TDS" -q "$tmp/bad.fe" -e '' 2>&1 < /dev/null)
 want="$tmp/bad.fe:36: edge 6: wrap 1984 is no element of SYMMETRY_GROUP \"genus2\""
 if [ "$got" = "$want" ]; then echo "PASS symmetry/refused/genus2"
 else echo "FAIL symmetry/refused/genus2: '$got', want '$want'"; fi
-err dodecahedron 'dodecahedron' 'SYMMETRY_GROUP "dodecahedron" is not supported yet (it needs KLEIN_METRIC on films)'
+err dodecahedron 'dodecahedron' 'SYMMETRY_GROUP "dodecahedron" is not supported yet (Evolver'"'"'s manual does not define its elements and its codes could not be pinned down: doc/torus.md)'

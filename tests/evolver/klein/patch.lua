@@ -5,7 +5,9 @@
 -- (false, or true: SYMMETRY_GROUP "genus2" with the vertices stored in
 -- random copies, below), NOWRAP (with G2: every copy the identity, the
 -- same film as with G2 alone), NEAR (the centre as with G2, no group),
--- NOKLEIN (no KLEIN_METRIC), VOL (BODY: the target volume, as a factor of
+-- NOKLEIN (no KLEIN_METRIC), ROT (SYMMETRY_GROUP "rotate", order 4: each
+-- vertex stored turned back by a random power of its element, edge u->v
+-- wrapped by the difference of the powers), VOL (BODY: the target volume, as a factor of
 -- the body's volume at load when below 2, read by the caller).
 -- The grid is bent (z = c (u^2 - v^2)), its points perturbed by up to a
 -- fifth of a cell, rotated at random and put at a random centre, all
@@ -19,6 +21,7 @@ local lines = {}
 if not NOKLEIN then lines[#lines + 1] = "KLEIN_METRIC" end
 local k = math.random(0, 7)
 if G2 then lines[#lines + 1] = 'SYMMETRY_GROUP "genus2"' end
+if ROT then lines[#lines + 1] = 'SYMMETRY_GROUP "rotate"' end
 -- a random rotation (QR of a random matrix, Gram-Schmidt)
 local function unit(v) local n = math.sqrt(v[1]^2 + v[2]^2 + v[3]^2) return {v[1]/n, v[2]/n, v[3]/n} end
 local a = unit({rnd(-1, 1), rnd(-1, 1), rnd(-1, 1)})
@@ -98,9 +101,12 @@ else
 end
 local h = {}
 for v = 1, #V do h[v] = math.random() < 0.4 and G2 and not NOWRAP or false end
+local rot = {} -- ROT: the power of rotate's element (clockwise quarter turns)
+for v = 1, #V do rot[v] = ROT and math.random(0, 3) or 0 end
 lines[#lines + 1] = "vertices"
 for v, p in ipairs(V) do
   if h[v] then p = boost(k, p, -1) end -- G_k^-1 (the boost backwards)
+  for _ = 1, rot[v] do p = {-p[2], p[1], p[3]} end -- undo rot[v] clockwise turns
   lines[#lines + 1] = ("%d %.17g %.17g %.17g%s"):format(v, p[1], p[2], p[3], fixed[v] and " fixed" or "")
 end
 local code = {[false] = {[false] = 0, [true] = k + 16 * ((k + 1) % 8)},
@@ -113,8 +119,8 @@ local function edge(u, v)
   if E[key2] then return -E[key2] end
   ne = ne + 1
   E[key1] = ne
-  local w = code[h[u]][h[v]]
-  lines[#lines + 1] = ("%d %d %d%s"):format(ne, u, v, G2 and " wrap " .. w or "")
+  local w = ROT and (rot[v] - rot[u]) % 4 or code[h[u]][h[v]]
+  lines[#lines + 1] = ("%d %d %d%s"):format(ne, u, v, (G2 or ROT) and " wrap " .. w or "")
   return ne
 end
 local fl = {}
