@@ -69,6 +69,12 @@ enum {
   TDS_M_CIRCLE_KNOT, TDS_M_SQCURVE_STRING, TDS_M_HOOKE, TDS_M_HOOKE2,
   TDS_M_FACET_VOLUME,               /* int z dx dy: body content, and
                                        Evolver's facet_volume method */
+  TDS_M_KLEIN_LENGTH,               /* KLEIN_METRIC: hyperbolic length in the
+                                       Klein model (method_klein.c); also
+                                       Evolver's klein_length method */
+  TDS_M_KLEIN_AREA,                 /* KLEIN_METRIC on films: hyperbolic
+                                       area of the flat (geodesic) triangle;
+                                       also Evolver's klein_area method */
   TDS_M_COUNT,
   TDS_M_FACET_VOLUME_SYM = TDS_M_COUNT, /* symmetric content (x,y,z)/3 . dS */
   TDS_M_EDGE_GAP,                   /* gap energy on a convex constraint */
@@ -82,10 +88,6 @@ enum {
                                        constant (method_torus.c) */
   TDS_M_EDGE_SHIFT,                 /* string torus: x1[k] - x0[k], k the row
                                        constant (method_string.c) */
-  TDS_M_KLEIN_LENGTH,               /* KLEIN_METRIC: hyperbolic length in the
-                                       Klein model (method_klein.c) */
-  TDS_M_KLEIN_AREA,                 /* KLEIN_METRIC on films: hyperbolic
-                                       area of the flat (geodesic) triangle */
   TDS_M_NROWS
 };
 

@@ -119,6 +119,13 @@ report('klein/$f/minimum-near', c and b and math.abs(c - b) <= 1e-10 * b, c, b)
 "
 done
 
+# Evolver's klein_area and klein_length as named quantities on a film
+# without KLEIN_METRIC (its facets then have Euclidean areas too).
+gen m1 31 3 NOKLEIN=true
+sed -i '1i quantity ka energy method klein_area global\nquantity kl info_only method klein_length global' "$tmp/m1.fe"
+Q='printf "K1 %.15g %.15g %.15g\n", total_energy, ka.value, kl.value;'
+kcompare "klein/m1/quantities" "$tmp/m1.fe" 1e-10 "$Q m 0.02; g 3; $Q g 5; $Q $PV"
+
 # Errors with file:line.
 printf 'KLEIN_METRIC\nvertices\n1 0.5 0.5 0\n2 0.9 0.5 0.1\n' > "$tmp/out.fe"
 got=$("$TDS" -q "$tmp/out.fe" -e '' 2>&1 < /dev/null)
