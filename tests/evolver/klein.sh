@@ -7,13 +7,11 @@
 #   1e-12 (rounding: measured 1e-15);
 # * g with a fixed scale (energies and positions to 1e-10, measured 1e-14)
 #   and with Evolver's line search (1e-8: its parabola's minimum amplifies
-#   rounding, measured 2e-9 on a position after 12 steps) -- before
-#   refining only: Evolver
-#   2.70's r under KLEIN_METRIC puts a few midpoints (one edge in 56 of a
-#   4x4 grid, six in 85 of 5x5, none in 6x6) at 7/16, 3/8 or 9/16 of the
-#   edge instead of 1/2 (measured; tds takes 1/2, as Evolver does without
-#   the metric), which changes nothing at once (the facets stay flat) but
-#   the steps after;
+#   rounding, measured 2e-9 on a position after 12 steps);
+# * r: every new vertex's position to 1e-12 (Evolver 2.70 under
+#   KLEIN_METRIC bisects towards the hyperbolic midpoint while the halves'
+#   ratio is outside [0.8, 1.2]: src/topo_refine.c; positions after g to
+#   1e-10), and g after it;
 # * area_normalization: Evolver divides each force by a third of the
 #   vertex's hyperbolic star area (measured), so does tds: 1e-10;
 # * bodies: Euclidean volumes (as Evolver), hyperbolic areas, the volume
@@ -46,7 +44,8 @@ for f in p1 p2 p3; do
   kcompare "klein/$f/load" "$tmp/$f.fe" 1e-12 "$E1 foreach facet ff do printf \"K2 %d %.15g\\n\", ff.id, ff.area;"
   kcompare "klein/$f/fixed-scale" "$tmp/$f.fe" 1e-10 "m 0.05; g 5; $E1 $PV"
   kcompare "klein/$f/g" "$tmp/$f.fe" 1e-8 "g 12; $E1 $PV"
-  kcompare "klein/$f/r" "$tmp/$f.fe" 1e-12 "g 3; r; $E1"
+  kcompare "klein/$f/r" "$tmp/$f.fe" 1e-10 "g 3; r; $E1 $PV"
+  kcompare "klein/$f/r-g" "$tmp/$f.fe" 1e-8 "g 3; r; g 6; $E1"
   kcompare "klein/$f/area-normalization" "$tmp/$f.fe" 1e-10 "area_normalization; m 0.02; g 3; $E1 $PV"
   "$TDS" -q "$tmp/$f.fe" -e "g(3) dump('$tmp/$f.tds.dmp')" || echo "FAIL klein/$f/dump: tds exited with an error"
   kcompare "klein/$f/tds-dump-in-evolver" "$tmp/$f.tds.dmp" 1e-12 "$E1 g 3; $E1"
@@ -78,6 +77,7 @@ dofile('$ROOT/tests/evolver/genus2/net.lua')" || echo "FAIL klein/s$seed/generat
   S='printf "K1 %.15g\n", total_energy; foreach vertex vv where not fixed do printf "K2 %.15g %.15g\n", vv.x, vv.y;'
   kcompare "klein/s$seed/string-g" "$tmp/s$seed.fe" 1e-10 "m 0.01; g 2; $S"
   kcompare "klein/s$seed/string-area-normalization" "$tmp/s$seed.fe" 1e-10 "area_normalization; m 0.01; g 2; $S"
+  kcompare "klein/s$seed/string-r" "$tmp/s$seed.fe" 1e-12 "r; $S"
 done
 
 # rotate (an isometry of the ball, orthogonal: g's steps are the same as
