@@ -143,3 +143,8 @@ got=$("$TDS" -q "$tmp/tor.fe" -e '' 2>&1 < /dev/null)
 want="$tmp/tor.fe:1: KLEIN_METRIC with the torus model is not supported (its translations do not map the unit ball, the Klein model, to itself)"
 if [ "$got" = "$want" ]; then echo "PASS klein/refused/torus"
 else echo "FAIL klein/refused/torus: '$got', want '$want'"; fi
+printf 'quantity ka energy method klein_area global\nvertices\n1 0 0 0\n2 1 0 0\n3 0 1 0\n' > "$tmp/q.fe"
+got=$("$TDS" -q "$tmp/q.fe" -e '' 2>&1 < /dev/null)
+want="$tmp/q.fe:4: vertex 2: (1, 0, 0) is not inside the unit ball, where quantity ka's Klein model method is defined"
+if [ "$got" = "$want" ]; then echo "PASS klein/refused/quantity-outside-ball"
+else echo "FAIL klein/refused/quantity-outside-ball: '$got', want '$want'"; fi
