@@ -154,3 +154,10 @@ got=$("$TDS" -q "$tmp/q.fe" -e '' 2>&1 < /dev/null)
 want="$tmp/q.fe:4: vertex 2: (1, 0, 0) is not inside the unit ball, where quantity ka's Klein model method is defined"
 if [ "$got" = "$want" ]; then echo "PASS klein/refused/quantity-outside-ball"
 else echo "FAIL klein/refused/quantity-outside-ball: '$got', want '$want'"; fi
+# pg's kernels are Euclidean: refused, the surface unchanged
+got=$("$TDS" -q "$tmp/p1.fe" -e "local e, x = total_energy, vertex[7].x
+local ok, err = pcall(pg)
+print(ok, err, total_energy == e and vertex[7].x == x)" 2>&1)
+want="false	(command line):2: pg with KLEIN_METRIC is not supported (use g or hessian)	true"
+if [ "$got" = "$want" ]; then echo "PASS klein/refused/pg"
+else echo "FAIL klein/refused/pg: '$got', want '$want'"; fi
