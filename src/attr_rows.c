@@ -352,6 +352,8 @@ static int f_area(GETTER_ARGS) {
   UNUSED(a);
   tds_corners C;
   tds_gather_facet(&s->m, id, &C);
+  if (s->klein) /* KLEIN_METRIC: the hyperbolic area */
+    return one(v, n, tds_klein_area(C.x[0], C.x[1], C.x[2]));
   return one(v, n, geom_area(C.x[0], C.x[1], C.x[2], NULL));
 }
 static int f_tension_set(SETTER_ARGS) {

@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "attr.h"
+#include "method.h"
 #include "model.h"
 #include "topo.h"
 
@@ -364,6 +365,18 @@ static void warn_at_line(void *ud, const char *text) {
 
 /* ---- the four kinds of lines ---- */
 
+
+/* The name of a quantity with a Klein-model method (klein_length,
+** klein_area: defined inside the unit ball only), or NULL. */
+static const char *klein_quantity(const tds_surf *s) {
+  for (int q = 0; q < s->nquant; q++)
+    for (int j = 0; j < s->quant[q].ninst; j++) {
+      int m = s->quant[q].inst[j].method;
+      if (m == TDS_M_KLEIN_LENGTH || m == TDS_M_KLEIN_AREA) return s->quant[q].name;
+    }
+  return NULL;
+}
+
 static int vertex_line(df *d) {
   tds_id id;
   char what[48];
@@ -401,6 +414,15 @@ static int vertex_line(df *d) {
       return df_err(d, NULL, TDS_ESYNTAX, "%s needs %d coordinates, got %d", what, maxc, nval);
     for (int k = 0; k < 3; k++) x[k] = val[k];
   }
+  const char *kq = klein_quantity(d->s);
+  if (kq && !d->s->klein && !(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] < 1))
+    return df_err(d, NULL, TDS_ERANGE,
+                  "%s: (%g, %g, %g) is not inside the unit ball, where quantity %s's Klein "
+                  "model method is defined", what, x[0], x[1], x[2], kq);
+  if (d->s->klein && !d->string_model && !(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] < 1))
+    return df_err(d, NULL, TDS_ERANGE,
+                  "%s: (%g, %g, %g) is not inside the unit ball, the Klein model of "
+                  "KLEIN_METRIC", what, x[0], x[1], x[2]);
   if (d->s->klein && !(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] < 1))
     return df_err(d, NULL, TDS_ERANGE,
                   "%s: (%g, %g) is not inside the unit disk, the Klein model of KLEIN_METRIC",

@@ -18,16 +18,17 @@ static int by_id(const void *a, const void *b) {
 
 int df_klein_check(df *d) {
   int sym = d->s->m.sym;
-  if (d->klein_line && !d->string_model)
+  /* the Klein ball is mapped to itself by genus2 and the groups that fix
+  ** the origin; lattice translations move it */
+  if (d->klein_line && d->s->m.torus && sym != TDS_SYM_GENUS2 && sym != TDS_SYM_ROTATE &&
+      sym != TDS_SYM_FLIP_ROTATE && sym != TDS_SYM_CUBOCTA && sym != TDS_SYM_XYZ &&
+      sym != TDS_SYM_CENTRAL)
     return df_err_line(d, d->klein_line, TDS_ESYNTAX,
-                       "KLEIN_METRIC on a soapfilm surface is not supported yet (the string "
-                       "model has it: STRING, SPACE_DIMENSION 2)");
+                       "KLEIN_METRIC with %s is not supported (its translations do not map "
+                       "the unit ball, the Klein model, to itself)",
+                       sym ? "this SYMMETRY_GROUP" : "the torus model");
   if (d->klein_line && d->s->metric_on)
     return df_err_line(d, d->klein_line, TDS_ESYNTAX, "KLEIN_METRIC and METRIC both given");
-  if (sym == TDS_SYM_GENUS2 && !d->string_model)
-    return df_err_line(d, d->torus_line, TDS_ESYNTAX,
-                       "SYMMETRY_GROUP \"genus2\" on a soapfilm surface is not supported yet "
-                       "(the string model has it: STRING, SPACE_DIMENSION 2)");
   if (sym && sym != TDS_SYM_GENUS2 && d->string_model)
     return df_err_line(d, d->torus_line, TDS_ESYNTAX,
                        "SYMMETRY_GROUP in the string model is not supported yet");

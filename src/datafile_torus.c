@@ -64,8 +64,9 @@ int df_symmetry_group(df *d) {
                   "central_symmetry, screw_symmetry, quarter_turn)", name);
   if (id < 0)
     return df_err(d, at, TDS_ESYNTAX,
-                  "SYMMETRY_GROUP \"%s\" is not supported yet (it needs KLEIN_METRIC on "
-                  "films)", name);
+                  "SYMMETRY_GROUP \"%s\" is not supported yet (Evolver's manual does not "
+                  "define its elements and its codes could not be pinned down: doc/torus.md)",
+                  name);
   if (d->string_model && id != TDS_SYM_GENUS2) /* genus2: datafile_string.c */
     return df_err(d, at, TDS_ESYNTAX, "SYMMETRY_GROUP in the string model is not supported yet");
   if (tds_mesh_set_torus(&d->s->m, 1)) return df_core(d, df_line_of(d, at), TDS_ENOMEM, NULL);

@@ -214,7 +214,7 @@ static void header(out *o, const tds_surf *s) {
   }
   if (s->str)
     fprintf(f, "STRING\nSPACE_DIMENSION %d\n\n", s->str->space_dim);
-  if (s->str && s->klein) fputs("KLEIN_METRIC\n\n", f);
+  if (s->klein) fputs("KLEIN_METRIC\n\n", f);
   if (s->str && s->metric_on) { /* METRIC: N rows of N components */
     int n = s->str->space_dim;
     fputs("METRIC\n", f);

@@ -434,7 +434,15 @@ static int facet_terms(tds_ctx *ctx, tds_surf *s, tds_eval_out *out) {
     if (bad < 0) return -bad;
   }
   int rc;
-  if (s->m.nb == 0) {
+  if (s->klein) {
+    /* KLEIN_METRIC: hyperbolic facet areas; volumes stay Euclidean, as in
+    ** Evolver (measured: a tetrahedron's body reads its Euclidean volume),
+    ** gathered as under the other groups (no torus here: datafile) */
+    ten = make(s, TDS_M_KLEIN_AREA, s_tension, NULL, 0);
+    if (!out->grad) ten.gq = -2;
+    rc = assemble_k(ctx, s, out, TDS_EL_FACET, &ten, tds_mk_klein_area, s_tension,
+                    s->m.nb ? &vol : NULL, sym ? tds_mk_volume_sym : tds_mk_volume, s_volume, 0);
+  } else if (s->m.nb == 0) {
     rc = assemble_k(ctx, s, out, TDS_EL_FACET, &ten, tds_mk_area, s_tension, NULL, NULL, NULL, 0);
   } else if (sym && s->m.sym == TDS_SYM_TORUS) {
     /* Evolver 2.70's symmetric content under SYMMETRY_GROUP "torus": each

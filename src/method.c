@@ -200,7 +200,9 @@ const tds_method tds_methods[TDS_M_NROWS] = {
                              tds_mk_metric_length},
     [TDS_M_FACET_FLUX] = {"facet_flux", TDS_EL_FACET, 0, tds_mk_facet_flux},
     [TDS_M_EDGE_SHIFT] = {"edge_shift", TDS_EL_EDGE, 0, tds_mk_edge_shift},
-    [TDS_M_KLEIN_LENGTH] = {"klein_length", TDS_EL_EDGE, 0, tds_mk_klein_length},
+    [TDS_M_KLEIN_LENGTH] = {"klein_length", TDS_EL_EDGE, TDS_MF_USER, tds_mk_klein_length},
+    [TDS_M_KLEIN_AREA] = {"klein_area", TDS_EL_FACET, TDS_MF_USER | TDS_MF_HESS_FD,
+                          tds_mk_klein_area},
 };
 
 int tds_method_by_name(const char *name) {

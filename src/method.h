@@ -69,6 +69,12 @@ enum {
   TDS_M_CIRCLE_KNOT, TDS_M_SQCURVE_STRING, TDS_M_HOOKE, TDS_M_HOOKE2,
   TDS_M_FACET_VOLUME,               /* int z dx dy: body content, and
                                        Evolver's facet_volume method */
+  TDS_M_KLEIN_LENGTH,               /* KLEIN_METRIC: hyperbolic length in the
+                                       Klein model (method_klein.c); also
+                                       Evolver's klein_length method */
+  TDS_M_KLEIN_AREA,                 /* KLEIN_METRIC on films: hyperbolic
+                                       area of the flat (geodesic) triangle;
+                                       also Evolver's klein_area method */
   TDS_M_COUNT,
   TDS_M_FACET_VOLUME_SYM = TDS_M_COUNT, /* symmetric content (x,y,z)/3 . dS */
   TDS_M_EDGE_GAP,                   /* gap energy on a convex constraint */
@@ -82,8 +88,6 @@ enum {
                                        constant (method_torus.c) */
   TDS_M_EDGE_SHIFT,                 /* string torus: x1[k] - x0[k], k the row
                                        constant (method_string.c) */
-  TDS_M_KLEIN_LENGTH,               /* KLEIN_METRIC: hyperbolic length in the
-                                       Klein model (method_klein.c) */
   TDS_M_NROWS
 };
 
@@ -143,6 +147,11 @@ double tds_mk_metric_length(const tds_mlocal *L, double g[3][3], double h[9][9])
 ** edge row's kernel (exact gradient and Hessian). */
 double tds_klein_dist(const double a[3], const double b[3]);
 double tds_mk_klein_length(const tds_mlocal *L, double g[3][3], double h[9][9]);
+/* The hyperbolic area of the flat triangle a, b, c of the Klein ball
+** (+infinity unless all are inside), and the facet row's kernel (exact
+** gradient, Hessian by differences of it: TDS_MF_HESS_FD). */
+double tds_klein_area(const double a[3], const double b[3], const double c[3]);
+double tds_mk_klein_area(const tds_mlocal *L, double g[3][3], double h[9][9]);
 /* The torus model's row (method_torus.c). */
 double tds_mk_facet_flux(const tds_mlocal *L, double g[3][3], double h[9][9]);
 double tds_mk_edge_shift(const tds_mlocal *L, double g[3][3], double h[9][9]);

@@ -4,6 +4,7 @@
 #include <math.h>
 
 #include "gather.h"
+#include "method.h"
 #include "vec3.h"
 
 void tds_area_norm_weights(const tds_surf *s, double *r) {
@@ -15,6 +16,12 @@ void tds_area_norm_weights(const tds_surf *s, double *r) {
       double d[3];
       tds_edge_vec(m, TDS_OREF(e, 0), d);
       double L = sqrt(v3_dot(d, d));
+      if (s->klein) { /* KLEIN_METRIC: hyperbolic lengths, as Evolver */
+        tds_corners c;
+        tds_gather_edge(m, TDS_OREF(e, 0), &c);
+        L = tds_klein_dist(c.x[0], c.x[1]);
+      }
+
       r[m->ev[e][0]] += L / 2;
       r[m->ev[e][1]] += L / 2;
     }
@@ -27,7 +34,8 @@ void tds_area_norm_weights(const tds_surf *s, double *r) {
       v3_sub(a, c.x[1], c.x[0]);
       v3_sub(b, c.x[2], c.x[0]);
       v3_cross(n, a, b);
-      double A = 0.5 * sqrt(v3_dot(n, n));
+      double A = s->klein ? tds_klein_area(c.x[0], c.x[1], c.x[2]) /* as Evolver */
+                          : 0.5 * sqrt(v3_dot(n, n));
       for (int k = 0; k < 3; k++) r[m->fv[f][k]] += A / 3;
     }
   }

@@ -4,7 +4,8 @@
 ** velocity by dividing it by the area the vertex stands for, one third of
 ** the area of its facets, or in the string model one half of the length of
 ** its edges (Evolver's model.htm). Edges and facets are measured through
-** the gather point, so wraps of the torus count.
+** the gather point, so wraps of the torus count; under KLEIN_METRIC the
+** areas and lengths are hyperbolic (as Evolver's, measured).
 */
 #ifndef TDS_MOBILITY_H
 #define TDS_MOBILITY_H

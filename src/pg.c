@@ -327,6 +327,9 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   if (s->str) /* the string model (struct tds_strings): no triangles */
     return tds_seterr(ctx, TDS_ERANGE, "pg works on soap films; the string model "
                       "is not supported (use g)");
+  if (s->klein) /* pg's kernels are Euclidean areas */
+    return tds_seterr(ctx, TDS_ERANGE, "pg with KLEIN_METRIC is not supported (use g or "
+                      "hessian)");
   pgw w;
   int accel = o->accel && o->depth > 0;
   tds_snap sn; /* all or nothing: a failed run leaves the surface as it was */

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include "gather.h"
+#include "method.h"
 #include "motion.h"
 #include "recalc.h"
 #include "ring.h"
@@ -175,6 +176,28 @@ static void split_facet(tds_mesh *m, tds_id f, const tds_id *midv,
   }
 }
 
+/* Where Evolver 2.70 puts a new edge vertex under KLEIN_METRIC without a
+** symmetry group (measured on every edge of seeded random films: their
+** 1/16ths are exact): at the middle, unless the hyperbolic lengths of
+** the halves, tail side l1 and head side l2, have l1/l2 outside
+** [0.8, 1.2] (so the head's half may be up to 1.25 times the other);
+** then by bisection towards the hyperbolic midpoint until it is inside.
+** (Under a group Evolver's edge lengths read 0 and its new vertices are
+** at the middle.) */
+static double klein_split(const double *a, const double *b) {
+  double lo = 0, hi = 1, t = 0.5;
+  for (int it = 0; it < 60; it++) {
+    double p[3];
+    for (int i = 0; i < 3; i++) p[i] = a[i] + t * (b[i] - a[i]);
+    double l1 = tds_klein_dist(a, p), l2 = tds_klein_dist(p, b);
+    if (l1 >= 0.8 * l2 && l1 <= 1.2 * l2) break;
+    if (l1 > l2) hi = t;
+    else lo = t;
+    t = (lo + hi) / 2;
+  }
+  return t;
+}
+
 tds_id tds_edge_midpoint(tds_surf *s, tds_id e) {
   tds_mesh *m = &s->m;
   tds_id t = m->ev[e][0], h = m->ev[e][1];
@@ -183,6 +206,10 @@ tds_id tds_edge_midpoint(tds_surf *s, tds_id e) {
   tds_gather_edge(m, TDS_OREF(e, 0), &C);
   v3_add(x, C.x[0], C.x[1]);
   v3_scale(x, 0.5);
+  if (s->klein && !m->torus) {
+    double u = klein_split(C.x[0], C.x[1]);
+    for (int i = 0; i < 3; i++) x[i] = C.x[0][i] + u * (C.x[1][i] - C.x[0][i]);
+  }
   tds_id v = tds_mesh_add_vertex(m, x);
   m->vflags[v] = m->eflags[e] & TDS_FIXED;
   m->vcon[v] = m->econ[e] | tds_surf_global_cons(s);

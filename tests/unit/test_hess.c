@@ -668,6 +668,56 @@ static void genus2_fd(int klein) {
 static void hess_genus2_klein(void) { genus2_fd(1); }
 static void hess_genus2_euclid(void) { genus2_fd(0); }
 
+/* KLEIN_METRIC on a film (hyperbolic facet areas, method_klein.c), with
+** and without genus2 wraps on its edges (three facets whose wraps
+** multiply to the identity, G_0 carrying corners near the ball's edge),
+** refined and jittered (seeded):
+** the gradient against central differences of the energy (as genus2_fd)
+** and the Hessian as every CHECK_FD. */
+static void klein_film_fd(int g2) {
+  char text[1024];
+  snprintf(text, sizeof text,
+           "KLEIN_METRIC\n%s"
+           "vertices\n1 0.1 0.2 0.3\n2 -0.5 -0.1 0.2\n3 -0.4 0.3 -0.3\n4 -0.6 0.1 0.0\n"
+           "5 0.2 -0.3 0.1 fixed\n"
+           "edges\n1 1 2%s\n2 2 3\n3 3 1%s\n4 2 4\n5 4 1%s\n6 1 5\n7 5 3%s\n"
+           "faces\n1 1 2 3\n2 1 4 5\n3 -3 -7 -6\n",
+           g2 ? "SYMMETRY_GROUP \"genus2\"\n" : "", g2 ? " wrap 0x10" : "",
+           g2 ? " wrap 0x54" : "", g2 ? " wrap 0x54" : "", g2 ? " wrap 0x10" : "");
+  tds_ctx ctx;
+  tds_surf s;
+  h_setup(&ctx, &s);
+  REQUIRE_OK(&ctx, tds_datafile_load_buffer(&ctx, &s, "kf.fe", text, strlen(text)));
+  REQUIRE_OK(&ctx, tds_refine(&ctx, &s, NULL, NULL));
+  jitter(&s.m, 0.01, g2 ? 51 : 53);
+  CHECK_FD(&ctx, &s, &ENERGY);
+  double (*grad)[3] = calloc((size_t)s.m.nv, sizeof *grad);
+  tds_eval_out out = {.grad = grad};
+  REQUIRE_OK(&ctx, tds_eval(&ctx, &s, &out));
+  double worst = 0, big = 0;
+  for (tds_id v = 0; v < s.m.nv; v++)
+    for (int i = 0; i < 3; i++) {
+      double keep = s.m.x[v][i], e[2];
+      for (int k = 0; k < 2; k++) {
+        s.m.x[v][i] = keep + (k ? -FDH : FDH);
+        s.m.coord_gen++;
+        tds_eval_out o = {0};
+        REQUIRE_OK(&ctx, tds_eval(&ctx, &s, &o));
+        e[k] = o.energy;
+      }
+      s.m.x[v][i] = keep;
+      s.m.coord_gen++;
+      worst = fmax(worst, fabs((e[0] - e[1]) / (2 * FDH) - grad[v][i]));
+      big = fmax(big, fabs(grad[v][i]));
+    }
+  if (!(worst <= 1e-7 * big)) printf("  klein film gradient: fd error %g of %g\n", worst, big);
+  CHECK(big > 0.1 && worst <= 1e-7 * big);
+  free(grad);
+  tds_surf_free(&s);
+}
+static void hess_klein_film(void) { klein_film_fd(0); }
+static void hess_klein_film_genus2(void) { klein_film_fd(1); }
+
 /* Element attributes in integrands and formulas (xattr.h): a drop on a
 ** curved table whose curvature is a vertex attribute (the formula), with
 ** a contact angle per edge (the constraint's energy integrand), a weight
@@ -749,6 +799,8 @@ int main(void) {
   RUN(hess_knot_fd);
   RUN(hess_genus2_klein);
   RUN(hess_genus2_euclid);
+  RUN(hess_klein_film);
+  RUN(hess_klein_film_genus2);
   RUN(hess_kkt_layout);
   RUN(hess_example_cube);
   RUN(hess_example_mound);

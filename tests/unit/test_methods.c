@@ -180,8 +180,8 @@ static void rows_fd(void) {
                         .param = E.s.parval, .G = 9.8};
         if (row->kind == TDS_EL_EDGE && L.npts > 2) L.npts = 2;
         random_element(&st, row->kind, xs);
-        if (r == TDS_M_KLEIN_LENGTH) /* the Klein model: inside the unit ball */
-          for (int c = 0; c < 2; c++)
+        if (r == TDS_M_KLEIN_LENGTH || r == TDS_M_KLEIN_AREA) /* inside the unit ball */
+          for (int c = 0; c < row->kind; c++)
             for (int i = 0; i < 3; i++) xs[c][i] *= 0.55;
         fd_err e = fd_row(row, &L);
         ok &= e.consistent;
@@ -306,7 +306,7 @@ static void rows_degenerate(void) {
       double kx[3][3]; /* the Klein row: the points halved, inside the unit ball */
       for (int k = 0; k < 3; k++)
         for (int i = 0; i < 3; i++) kx[k][i] = 0.5 * cases[c][k][i];
-      int kl = rr == TDS_M_KLEIN_LENGTH;
+      int kl = rr == TDS_M_KLEIN_LENGTH || rr == TDS_M_KLEIN_AREA;
       tds_mlocal L = {.x = {kl ? kx[0] : cases[c][0], kl ? kx[1] : cases[c][1], kl ? kx[2] : cases[c][2]},
                       .ig = row->flags & TDS_MF_METRIC ? NULL : ig,
                       .npts = row->kind == TDS_EL_EDGE ? 2 : 12, .k = 1,
