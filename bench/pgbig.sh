@@ -13,6 +13,9 @@
 # does not converge to pg's 1e-13 in any reasonable time at this size,
 # so its speed per vertex-iteration is what is compared), processor
 # seconds from its `clock`.
+# The goal is a minute per 100k input; today a 100k input takes an hour or
+# more (doc/paper-results.md, Large inputs): PGBIG_SIZES="1000 4000" or a
+# PGBIG_MAX cap for a quick look.
 # Usage: sh bench/pgbig.sh [TDS_BINARY]
 # Env: PGBIG_SIZES (default "100000"), PGBIG_CASES (default
 # "hemisphere/3 catenoid/1 drop/1": a jittered lattice on the hemisphere,
