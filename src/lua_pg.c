@@ -2,7 +2,8 @@
 **
 ** Raw primitives (lua/pg.lua gives them their user names):
 **   tds.pg{ iterations=, max=, nmax=, s=, plain=, depth=, flips=, every=,
-**           rtol=, threads=, newton=, probe=, calm= }                     -> result table
+**           rtol=, threads=, newton=, probe=, calm=,
+**           momentum= }                     -> result table
 **   tds.quality()                          -> statistics table
 **   tds.curvature(mode [, value [, measure]]) -> statistics table with
 **                                             per-vertex values
@@ -73,7 +74,9 @@ static int l_pg(lua_State *L) {
     o.newton = opt_bool(L, 1, "newton", 1);
     o.probe = opt_bool(L, 1, "probe", 1);
     o.calm = opt_bool(L, 1, "calm", 1);
+    o.momentum = opt_num(L, 1, "momentum", o.momentum);
   }
+  luaL_argcheck(L, o.momentum >= 0 && o.momentum < 1, 1, "momentum must be in [0, 1)");
   luaL_argcheck(L, o.threads >= 1 && o.threads <= 2, 1, "threads must be 1 or 2");
   luaL_argcheck(L, o.iterations >= 0, 1, "iterations must not be negative");
   luaL_argcheck(L, o.nmax >= 1, 1, "nmax must be at least 1");
@@ -97,6 +100,7 @@ static int l_pg(lua_State *L) {
   setint(L, "cycles", r.cycles);
   setint(L, "probes", r.probes);
   setint(L, "saddles", r.saddles);
+  setint(L, "momentum_steps", r.momentum_steps);
   setint(L, "reached", r.reached);
   setnum(L, "lambda", r.lambda);
   setnum(L, "pressure", -r.lambda);

@@ -218,6 +218,7 @@ void tds_pg_defaults(tds_pg_opts *o) {
   o->newton = 1;
   o->probe = 1;
   o->calm = 1;
+  o->momentum = 0.6;
 }
 
 static double mean_edge(const tds_mesh *m) {
@@ -291,6 +292,33 @@ static int probe_perturb(tds_surf *s, pgw *w, double *X, double delta) {
   return pg_set_state(s, w, X);
 }
 
+/* Momentum of the warm steps (doc/method.md, Acceleration): after the
+** plain move from X_k, add beta (X_k - X_{k-1}) (a heavy-ball step), unless
+** that would move a vertex by more than cap (measured on the state's
+** triples: a boundary vertex's are its parameters) or a facet is a sliver
+** (then none, and the next step starts without momentum: *have = 0). mom
+** holds X_k - X_{k-1}; G is scratch. 1 when applied, 0 when not, -1 when
+** a vertex could not be projected. */
+static int warm_momentum(tds_surf *s, pgw *w, const double *mom, double beta,
+                         double cap, double *G, int *have) {
+  double big = 0;
+  for (size_t j = 0; j < (size_t)w->nmov; j++) {
+    const double *u = mom + 3 * j;
+    double q = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+    if (q > big) big = q;
+  }
+  /* no momentum into a degenerating mesh (a facet angle below 3 degrees
+  ** at a movable vertex): on Evolver's collapsing cat.fe momentum 0.8
+  ** otherwise carried the film onto a stationary mesh with a zero angle */
+  if (beta * beta * big > cap * cap || pg_newton_sliver(s, w)) {
+    *have = 0;
+    return 0;
+  }
+  pg_get_state(s, w, G);
+  for (size_t i = 0; i < 3 * (size_t)w->nmov; i++) G[i] += beta * mom[i];
+  return pg_set_state(s, w, G) ? -1 : 1;
+}
+
 int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
                tds_pg_result *res) {
   if (s->m.torus) return tds_torus_unsupported(ctx, "pg");
@@ -327,6 +355,7 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   double rbest = INFINITY, ebest = 0, lbest = 0;
   int64_t best = 0, progress = 0, since_flip = 0;
   const int warm = 5; /* plain iterations after a flip before mixing */
+  const double momentum_cap = 0.2; /* of a mean edge (warm_momentum) */
   const int64_t calm_len = 50; /* flip-free plain steps after a 2-cycle */
   const int64_t calm_max = o->nmax; /* at most this long at a time */
   int64_t calm_until = 0, calm_end = 0, cycles_seen = 0;
@@ -382,9 +411,27 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
     return tds_snap_end(ctx, s, &sn, tds_seterr(ctx, TDS_ENOMEM, "out of memory"));
   }
   nt.free = use_nt && !anchored && !w.nrig;
+  /* Momentum of the warm steps after a flip (warm_momentum): the state
+  ** of the previous iteration and the last move. */
+  double beta = o->momentum;
+  double *xprev = NULL, *mom = NULL;
+  int have_prev = 0;
+  if (accel && beta > 0) {
+    xprev = tds_calloc(&w.al, 3 * (size_t)(w.nmov > 0 ? w.nmov : 1), sizeof *xprev);
+    mom = tds_calloc(&w.al, 3 * (size_t)(w.nmov > 0 ? w.nmov : 1), sizeof *mom);
+    if (!xprev || !mom) {
+      tds_free(&w.al, xprev);
+      tds_free(&w.al, mom);
+      pg_newton_free(&nt);
+      pg_work_free(&w);
+      return tds_snap_end(ctx, s, &sn, tds_seterr(ctx, TDS_ENOMEM, "out of memory"));
+    }
+  }
   if (o->probe && accel && until) {
     probe_x = tds_calloc(&w.al, 3 * (size_t)(w.nmov > 0 ? w.nmov : 1), sizeof *probe_x);
     if (!probe_x) {
+      tds_free(&w.al, xprev);
+      tds_free(&w.al, mom);
       pg_newton_free(&nt);
       pg_work_free(&w);
       return tds_snap_end(ctx, s, &sn, tds_seterr(ctx, TDS_ENOMEM, "out of memory"));
@@ -582,10 +629,26 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
       }
     }
     if (accel) pg_get_state(s, &w, w.aa.X);
+    if (xprev) { /* the last move, for the warm steps' momentum */
+      for (size_t i = 0; i < 3 * (size_t)w.nmov; i++) {
+        mom[i] = have_prev ? w.aa.X[i] - xprev[i] : 0;
+        xprev[i] = w.aa.X[i];
+      }
+      have_prev = accel;
+    }
     if (pg_apply(s, &w)) {
       rc = tds_seterr(ctx, TDS_ENUM, "projected gradient: a vertex could not "
                                      "be projected onto its constraints");
       break;
+    }
+    if (xprev && accel && have_prev && !calm_until && !probing && since_flip < warm) {
+      int mo = warm_momentum(s, &w, mom, beta, momentum_cap * hbar, w.aa.G, &have_prev);
+      if (mo < 0) {
+        rc = tds_seterr(ctx, TDS_ENUM, "projected gradient: a vertex could "
+                                       "not be projected onto its constraints");
+        break;
+      }
+      res->momentum_steps += mo;
     }
     if (nt.lu) { /* the preconditioner's progress */
       if (si.r < 0.5 * nt_ref) {
@@ -666,6 +729,8 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   res->newton_builds = nt.builds;
   res->cycles = w.cycles;
   tds_free(&w.al, probe_x);
+  tds_free(&w.al, xprev);
+  tds_free(&w.al, mom);
   pg_newton_free(&nt);
   pg_work_free(&w);
   int rc2 = rc == TDS_OK || rc == TDS_EINTR ? tds_surf_update(ctx, s) : TDS_OK;

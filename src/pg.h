@@ -45,6 +45,10 @@ typedef struct tds_pg_opts {
                              (a quadrilateral flipped back and forth
                              twice) takes plain steps until the flips
                              stop (default); 0: no */
+  double momentum;        /* the accelerated run's plain (warm) steps after
+                             a flip add this times the last move (a heavy-
+                             ball step; 0.6 by default, 0: none;
+                             doc/method.md, Acceleration) */
 } tds_pg_opts;
 
 typedef struct tds_pg_result {
@@ -72,6 +76,7 @@ typedef struct tds_pg_result {
   int64_t cycles;         /* flips that undid a flip back (2-cycles) */
   int64_t probes;         /* stability probes of a converged mesh */
   int64_t saddles;        /* probes that found it unstable (run went on) */
+  int64_t momentum_steps; /* warm steps that took momentum */
   double hysteresis;      /* flip hysteresis at the end: 1e-3, widened
                              up to 0.1 while flips cycle (doc/method.md) */
   char message[640];      /* STALLED, CYCLING, MAX: what happened and what
@@ -92,7 +97,7 @@ enum { TDS_PG_COUNT = 0, TDS_PG_CONVERGED, TDS_PG_STALLED, TDS_PG_CYCLING,
 
 /* Defaults: until converged, N_max 200, s = 2, accelerated (depth 20),
 ** flips on, Newton preconditioning, the stability probe and the calm
-** after flip 2-cycles on. */
+** after flip 2-cycles on, momentum 0.6 in the warm steps after a flip. */
 void tds_pg_defaults(tds_pg_opts *o);
 
 /* Run the method. Allocates its work arrays once; the loop allocates
