@@ -56,7 +56,7 @@ FUZZ_NAMES := $(patsubst tests/fuzz/fuzz_%.c,%,$(wildcard tests/fuzz/fuzz_*.c))
 FUZZ_REPLAY := $(FUZZ_NAMES:%=$(BUILD)/test_fuzz_%)
 TDS_BIN ?= tds
 
-.PHONY: module all deps deps-test web demo test plan test-asan unit bench bench-paper clean fuzz fuzz-bins fuzz-smoke fuzz-cov \
+.PHONY: module all deps deps-test web demo test plan test-asan unit bench bench-paper bench-pgbig clean fuzz fuzz-bins fuzz-smoke fuzz-cov \
   random-long random-long-asan
 
 all: $(TDS_BIN) web
@@ -214,6 +214,10 @@ bench: $(TDS_BIN) | deps-test
 
 bench-paper: $(TDS_BIN) | deps-test
 	sh bench/paper.sh ./$(TDS_BIN)
+
+# pg on 100k-vertex generated inputs (doc/paper-results.md, Large inputs)
+bench-pgbig: $(TDS_BIN) | deps-test
+	sh bench/pgbig.sh ./$(TDS_BIN)
 
 clean:
 	rm -rf build build-asan build-fuzz tds

@@ -145,6 +145,7 @@ typedef struct pgw {
   int32_t (*copp)[2];     /* per candidate: the two opposite facet sides */
   uint8_t *queued;
   uint64_t cand_gen;
+  uint64_t cot_gen;       /* m->coord_gen of the positions of fcot */
   pg_accel aa;
   /* the pass's plan (pg_pass.c); slots and entries are rebuilt when the
   ** topology changes */

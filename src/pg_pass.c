@@ -773,6 +773,7 @@ int pg_pass(tds_ctx *ctx, tds_surf *s, pgw *w, double *energy_out) {
   tds_eval_out out = {.energy = energy, .area = area_total, .grad = w->grad,
                       .fq = fq->nq ? fq : NULL};
   int rc = tds_eval_terms(ctx, s, &out, 0);
+  w->cot_gen = m->coord_gen;
   s->energy = out.energy;
   s->area = out.area;
   *energy_out = out.energy;

@@ -16,6 +16,7 @@
 --                        printed into `file` and measure it
 --   PAPER_PLAIN=1        run plain pg (no acceleration)
 --   PAPER_S, PAPER_DEPTH pg's s and depth (defaults: pg's)
+--   PAPER_MAX            pg's iteration cap (default: pg's, 100000)
 --   PAPER_NEWTON=0       pg{ newton = false } (no Newton preconditioning)
 --   PAPER_MOMENTUM=b     pg{ momentum = b } (the warm steps' momentum)
 --   PAPER_POLISH=1       pg_polish{} after pg (the curvature polish)
@@ -206,7 +207,7 @@ function C.run(exp)
   else
     print("input:")
     quality()
-    res = pg{ plain = env("PAPER_PLAIN") ~= nil, every = tonumber(env("PAPER_EVERY") or 500), depth = tonumber(env("PAPER_DEPTH") or ""), s = tonumber(env("PAPER_S") or ""), newton = env("PAPER_NEWTON") ~= "0", momentum = tonumber(env("PAPER_MOMENTUM") or "") }
+    res = pg{ plain = env("PAPER_PLAIN") ~= nil, every = tonumber(env("PAPER_EVERY") or 500), depth = tonumber(env("PAPER_DEPTH") or ""), s = tonumber(env("PAPER_S") or ""), newton = env("PAPER_NEWTON") ~= "0", momentum = tonumber(env("PAPER_MOMENTUM") or ""), max = tonumber(env("PAPER_MAX") or "") }
     if env("PAPER_POLISH") == "1" then
       -- the curvature polish (doc/method.md): r and the volumes are the
       -- polished mesh's; its plain s = 0 iterations are counted apart

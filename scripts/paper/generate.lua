@@ -424,9 +424,9 @@ end
 
 -- Schwarz P: each face of the cube [-1,1]^3 with a hole of radius 0.5,
 -- its interior points of this kind, pulled towards the centre.
-local function schwarz_mesh(kind, rng)
-  local rho, h, shrink = 0.5, 0.16, 0.45
-  local nc = kind == "coarse" and 20 or 28
+local function schwarz_mesh(kind, rng, scale)
+  local rho, h, shrink = 0.5, 0.16 * (scale or 1), 0.45
+  local nc = math.floor((kind == "coarse" and 20 or 28) / (scale or 1) + 0.5)
   local ns = math.floor(2 / h + 0.5)
   local faces = {
     { {1,0,0}, {0,1,0}, {0,0,1} }, { {-1,0,0}, {0,0,1}, {0,1,0} },
@@ -515,21 +515,40 @@ local function mean_edge_of(t)
 end
 
 -- The experiment table (for common.lua's C.run) of case 1..10 of family;
--- salt (optional, a positive integer): another seed.
-function G.experiment(family, case, salt)
+-- salt (optional, a positive integer): another seed; size (optional, a
+-- positive integer): the number of interior points instead of the
+-- family's (309 hemisphere, 384 catenoid and CMC, 400 drops; Schwarz P
+-- about 730, its spacing 0.16 scaled), with the border's vertex counts
+-- scaled by the square root of the ratio, so that the border keeps its
+-- spacing relative to the interior's (the name then ends in "_nSIZE").
+-- Not for the hemisphere's coarse case (the 11-gon pyramid).
+function G.experiment(family, case, salt, size)
   local kind = G.kinds[case] or error(("case %s: 1..%d expected"):format(tostring(case), G.cases))
   if salt ~= nil and (math.type(salt) ~= "integer" or salt < 1) then
     error(("salt %s: a positive integer expected"):format(tostring(salt)))
   end
+  if size ~= nil and (math.type(size) ~= "integer" or size < 16) then
+    error(("size %s: an integer of at least 16 expected"):format(tostring(size)))
+  end
+  if size and family == "hemisphere" and kind == "coarse" then
+    error("size: not for the hemisphere's coarse case (the 11-gon pyramid)")
+  end
   local rng = M.rng(seed_of(family, case, salt))
   local name = ("%s_%02d_%s"):format(family, case, kind) .. (salt and "_s" .. salt or "")
+    .. (size and "_n" .. size or "")
+  -- interior points and border vertices, scaled from the family's n0, b0
+  local function sized(n0, b0)
+    if not size then return n0, b0 end
+    return size, math.max(3, math.floor(b0 * sqrt(size / n0) + 0.5))
+  end
   local function finish(t)
     if kind == "perturbed" then perturb(t, 0.25 * mean_edge_of(t), rng) end
     return t
   end
   if family == "hemisphere" then
     return { name = name, target = "lambda", input = function()
-      local t = disk_mesh(kind == "coarse" and "pyramid" or kind, 309, 41, rng,
+      local ni, nb = sized(309, 41)
+      local t = disk_mesh(kind == "coarse" and "pyramid" or kind, ni, nb, rng,
         M.cap_map(1, pi / 2), { 0, 0 })
       for _, f in ipairs(t.facets) do f.body = 1 end
       t.bodies = { { volume = 2 * pi / 3 } }
@@ -537,18 +556,22 @@ function G.experiment(family, case, salt)
     end }
   elseif family == "catenoid" then
     return { name = name, target = 0, input = function()
-      return finish(cylinder_mesh(kind, 48, 384, -0.5, 0.5, rng))
+      local ni, nb = sized(384, 48)
+      return finish(cylinder_mesh(kind, nb, ni, -0.5, 0.5, rng))
     end }
   elseif family == "cmc" then
     local vol = ({ 2.6, pi, 3.8 })[(case - 1) % 3 + 1]
     return { name = name, target = "lambda", input = function()
-      local t = cylinder_mesh(kind, 48, 384, -0.5, 0.5, rng, true)
+      local ni, nb = sized(384, 48)
+      local t = cylinder_mesh(kind, nb, ni, -0.5, 0.5, rng, true)
       for _, f in ipairs(t.facets) do f.body = 1 end
       t.bodies = { { volume = vol } }
       return finish(t)
     end }
   elseif family == "schwarz_p" then
-    return { name = name, target = 0, input = function() return finish(schwarz_mesh(kind, rng)) end }
+    return { name = name, target = 0, input = function()
+      return finish(schwarz_mesh(kind, rng, size and sqrt(730 / size)))
+    end }
   elseif family == "drop" and case % 2 == 1 then -- pendant (pendant.tds)
     local a, R = 2.5, 2.8
     local thmax = pi - math.asin(a / R)
@@ -557,7 +580,8 @@ function G.experiment(family, case, salt)
       input = function()
         local cap = M.cap_map(R, thmax)
         local zr = R * cos(thmax)
-        local t = disk_mesh(kind, 400, 35, rng, function(u, v, rim)
+        local ni, nb = sized(400, 35)
+        local t = disk_mesh(kind, ni, nb, rng, function(u, v, rim)
           local x, y, z = cap(u, v)
           return x, y, rim and 0 or zr - z
         end, { 0.3, 0 })
@@ -585,7 +609,8 @@ e3: 0]],
       input = function()
         local zc = -R * cos(theta)
         local cap = M.cap_map(R, theta, zc)
-        local t = disk_mesh(kind, 400, 37, rng, function(u, v, rim)
+        local ni, nb = sized(400, 37)
+        local t = disk_mesh(kind, ni, nb, rng, function(u, v, rim)
           local x, y, z = cap(u, v)
           return x, y, rim and 0 or z
         end, { 0.3, 0 }, { constraint = 1 })

@@ -54,8 +54,12 @@ end
 
 
 -- Delaunay triangulation of 2-D points (Bowyer-Watson). pts[i] = {u, v}.
--- Returns a list of counter-clockwise triangles {i, j, k}.
+-- Returns a list of counter-clockwise triangles {i, j, k}. Up to 4000
+-- points: the simple version (every triangle tested per point, O(n^2);
+-- the inputs of the paper's experiments and of generate.lua are built by
+-- it, and stay bit for bit as they were); above: M.delaunay_fast.
 function M.delaunay(pts)
+  if #pts > 4000 then return M.delaunay_fast(pts) end
   local n = #pts
   local P = {}
   for i = 1, n do P[i] = pts[i] end
@@ -102,6 +106,139 @@ function M.delaunay(pts)
       local cr = (B[1] - A[1]) * (C[2] - A[2]) - (B[2] - A[2]) * (C[1] - A[1])
       if cr > 0 then out[#out + 1] = { t[1], t[2], t[3] }
       else out[#out + 1] = { t[1], t[3], t[2] } end
+    end
+  end
+  return out
+end
+
+-- The same triangulation in O(n log n)-ish time (for 100k-point inputs):
+-- points inserted in a serpentine order of a grid, the triangle holding
+-- each found by walking from the last one, its cavity (the triangles whose
+-- circumcircle holds the point, same test as M.delaunay) grown through the
+-- neighbours. Same result as M.delaunay but for the order of the list and
+-- for ties among cocircular points.
+function M.delaunay_fast(pts)
+  local n = #pts
+  local X, Y = {}, {}
+  local lo, hi = math.huge, -math.huge
+  for i = 1, n do
+    X[i], Y[i] = pts[i][1], pts[i][2]
+    lo = math.min(lo, X[i], Y[i]); hi = math.max(hi, X[i], Y[i])
+  end
+  local c, d = (lo + hi) / 2, (hi - lo) * 20 + 1
+  X[n + 1], Y[n + 1] = c - d, c - d
+  X[n + 2], Y[n + 2] = c + d, c - d
+  X[n + 3], Y[n + 3] = c, c + d
+  -- triangles: vertices T1, T2, T3 (counter-clockwise); N1, N2, N3 the
+  -- neighbours across the edges (T1, T2), (T2, T3), (T3, T1), or false;
+  -- circumcircle CX, CY, R2
+  local T1, T2, T3, N1, N2, N3, CX, CY, R2, dead = {}, {}, {}, {}, {}, {}, {}, {}, {}, {}
+  local nt = 0
+  local function circ(t)
+    local a, b, cc = T1[t], T2[t], T3[t]
+    local ax, ay, bx, by, cx, cy = X[a], Y[a], X[b], Y[b], X[cc], Y[cc]
+    local D = 2 * (ax * (by - cy) + bx * (cy - ay) + cx * (ay - by))
+    local a2, b2, c2 = ax * ax + ay * ay, bx * bx + by * by, cx * cx + cy * cy
+    local ux = (a2 * (by - cy) + b2 * (cy - ay) + c2 * (ay - by)) / D
+    local uy = (a2 * (cx - bx) + b2 * (ax - cx) + c2 * (bx - ax)) / D
+    CX[t], CY[t], R2[t] = ux, uy, (ax - ux)^2 + (ay - uy)^2
+  end
+  local function new(a, b, cc)
+    nt = nt + 1
+    T1[nt], T2[nt], T3[nt] = a, b, cc
+    N1[nt], N2[nt], N3[nt] = false, false, false
+    circ(nt)
+    return nt
+  end
+  new(n + 1, n + 2, n + 3)
+  -- insertion order: serpentine rows of a grid
+  local m = math.max(1, math.floor(math.sqrt(n / 4)))
+  local x0, x1, y0, y1 = math.huge, -math.huge, math.huge, -math.huge
+  for i = 1, n do
+    x0 = math.min(x0, X[i]); x1 = math.max(x1, X[i]); y0 = math.min(y0, Y[i]); y1 = math.max(y1, Y[i])
+  end
+  local order, key = {}, {}
+  for i = 1, n do
+    local r = math.min(m - 1, math.floor((Y[i] - y0) / (y1 - y0 + 1e-300) * m))
+    local cc = math.min(m - 1, math.floor((X[i] - x0) / (x1 - x0 + 1e-300) * m))
+    if r % 2 == 1 then cc = m - 1 - cc end
+    key[i] = (r * m + cc) * (n + 1) + i
+    order[i] = i
+  end
+  table.sort(order, function(a, b) return key[a] < key[b] end)
+  local last = 1
+  local incav, stack, cav, bnd = {}, {}, {}, {}
+  local gen = 0
+  local function orient(a, b, px, py)
+    return (X[b] - X[a]) * (py - Y[a]) - (Y[b] - Y[a]) * (px - X[a])
+  end
+  for _, p in ipairs(order) do
+    local px, py = X[p], Y[p]
+    -- locate: walk
+    local t = last
+    while dead[t] do t = t - 1 end
+    local steps = 0
+    while true do
+      steps = steps + 1
+      local a, b, cc = T1[t], T2[t], T3[t]
+      if orient(a, b, px, py) < 0 and N1[t] then t = N1[t]
+      elseif orient(b, cc, px, py) < 0 and N2[t] then t = N2[t]
+      elseif orient(cc, a, px, py) < 0 and N3[t] then t = N3[t]
+      else break end
+      assert(steps < 10 * n + 100, "walk")
+    end
+    -- cavity
+    gen = gen + 1
+    local ncav = 1
+    cav[1] = t; incav[t] = gen
+    local head = 1
+    local nb = 0
+    while head <= ncav do
+      local u = cav[head]; head = head + 1
+      for k = 1, 3 do
+        local v
+        if k == 1 then v = N1[u] elseif k == 2 then v = N2[u] else v = N3[u] end
+        local ea = k == 1 and T1[u] or k == 2 and T2[u] or T3[u]
+        local eb = k == 1 and T2[u] or k == 2 and T3[u] or T1[u]
+        if v and incav[v] == gen then
+          -- interior edge
+        elseif v and (px - CX[v])^2 + (py - CY[v])^2 < R2[v] * (1 - 1e-12) then
+          ncav = ncav + 1; cav[ncav] = v; incav[v] = gen
+        else
+          nb = nb + 1
+          bnd[3 * nb - 2], bnd[3 * nb - 1], bnd[3 * nb] = ea, eb, v
+        end
+      end
+    end
+    -- the cavity's border edges (those recorded before their neighbour
+    -- joined the cavity are skipped), each joined to p
+    local startT, endT = {}, {}
+    local newts = {}
+    for i = 1, nb do
+      local ea, eb, v = bnd[3 * i - 2], bnd[3 * i - 1], bnd[3 * i]
+      if not (v and incav[v] == gen) then
+        local tt = new(ea, eb, p)
+        newts[#newts + 1] = tt
+        N1[tt] = v or false
+        if v then
+          if T1[v] == eb then N1[v] = tt elseif T2[v] == eb then N2[v] = tt else N3[v] = tt end
+        end
+        startT[ea] = tt; endT[eb] = tt
+      end
+    end
+    for i = 1, ncav do dead[cav[i]] = true end
+    for _, tt in ipairs(newts) do
+      local ea, eb = T1[tt], T2[tt]
+      N2[tt] = startT[eb] -- edge (eb, p) shared with (eb, x, p)'s edge (p, eb)
+      N3[tt] = endT[ea]   -- edge (p, ea) shared with (y, ea, p)'s edge (ea, p)
+      assert(N2[tt] and N3[tt], "cavity not star-shaped")
+    end
+    last = newts[#newts]
+  end
+  local out = {}
+  for t = 1, nt do
+    if not dead[t] and T1[t] <= n and T2[t] <= n and T3[t] <= n then
+      out[#out + 1] = { T1[t], T2[t], T3[t] }
     end
   end
   return out
