@@ -844,6 +844,12 @@ local FIXED_TOGGLE = {
   ps_colorflag = "any", gridflag = "any", crossingflag = "any", labelflag = "any",
   show_all_edges = "any", rgb_colors = false,
   smooth_graph = "any", view_transforms_use_unique_point = "any", visibility_test = "any",
+  -- tds always puts the volume and quantity gradients in a bordered
+  -- (augmented) sparse system, and prints nothing while it factors
+  augmented_hessian = true, sparse_constraints = true, hessian_quiet = true,
+  -- Evolver's choice of factoring code: tds has one (CHOLMOD), whose
+  -- results these would not change; E.toggle says so
+  ysmp = "solver", bunch_kaufman = "solver", metis_factor = "solver",
 }
 E.FIXED_TOGGLE = FIXED_TOGGLE
 
@@ -851,6 +857,10 @@ function E.toggle(name, on)
   local fixed = FIXED_TOGGLE[name]
   if fixed ~= nil then
     if on == nil then on = true end
+    if fixed == "solver" then
+      E.out(("%s: no effect in tds (every Hessian is factored by CHOLMOD)\n"):format(name))
+      return
+    end
     if fixed == "any" or fixed == on then return end
     fail(("%s %s: not supported yet (tds always has %s %s)"):format(name, on and "on" or "off",
          name, fixed and "on" or "off"))
@@ -1137,12 +1147,11 @@ for w in ([[J e A a b f k p Q W y Z z s P D F H h X
   homothety ribiere
   quietgo quietload verbose approximate_curvature runge_kutta
   post_project volgrads_every effective_area normal_motion
-  ysmp bunch_kaufman sparse_constraints augmented_hessian
   kusner conf_edge normal_curvature boundary_curvature
   show_all_quantities interp_bdry_param break_after_warning break_on_warning
   itdebug memdebug debug estimate extrapolate set_body_target quantity]]):gmatch("%S+") do UNSUPPORTED[w] = true end
 for w in ([[deturck diffusion hessian_special_normal
-  hessian_double_normal sobolev_mode dirichlet_mode metis_factor hessian_quiet pop_disjoin
+  hessian_double_normal sobolev_mode dirichlet_mode pop_disjoin
   septum_flag force_deletion star_finagling
   force_edgeswap k_altitude_mode assume_oriented calculate_in_3d self_similar
   immediate_autopop autopop_quartic longj simplex_to_fe ooglfile geompipe reorder_storage
