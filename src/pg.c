@@ -758,7 +758,9 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
                       "its best before them; stopped early. The triangulation "
                       "keeps changing: the surface may have no stable "
                       "equilibrium near this shape (a neck pinching off, a "
-                      "film collapsing), or the mesh is too coarse for it. "
+                      "film collapsing), the mesh is too coarse for it, or "
+                      "(a large or irregular mesh) its flips are still "
+                      "evening it out and pg() again goes on from here. "
                       "Try g() to see where the surface goes, r() to refine, "
                       "or pg{ flips = false }",
                  (long long)res->window_flips, (long long)(3 * win), glob_min,
