@@ -623,6 +623,32 @@ static void hess_knot_fd(void) {
 
 
 #define FDH 1e-5 /* the energy's rounding (~1e-12) over 1e-5: 1e-7 */
+/* The gradient's first dims coordinates against central differences of
+** the energy, to 1e-7 of its largest entry (which must be above 0.1). */
+static void grad_fd(tds_ctx *ctx, tds_surf *s, int dims, const char *what) {
+  double (*grad)[3] = calloc((size_t)s->m.nv, sizeof *grad);
+  tds_eval_out out = {.grad = grad};
+  REQUIRE_OK(ctx, tds_eval(ctx, s, &out));
+  double worst = 0, big = 0;
+  for (tds_id v = 0; v < s->m.nv; v++)
+    for (int i = 0; i < dims; i++) {
+      double keep = s->m.x[v][i], e[2];
+      for (int k = 0; k < 2; k++) {
+        s->m.x[v][i] = keep + (k ? -FDH : FDH);
+        s->m.coord_gen++;
+        tds_eval_out o = {0};
+        REQUIRE_OK(ctx, tds_eval(ctx, s, &o));
+        e[k] = o.energy;
+      }
+      s->m.x[v][i] = keep;
+      s->m.coord_gen++;
+      worst = fmax(worst, fabs((e[0] - e[1]) / (2 * FDH) - grad[v][i]));
+      big = fmax(big, fabs(grad[v][i]));
+    }
+  if (!(worst <= 1e-7 * big)) printf("  %s gradient: fd error %g of %g\n", what, worst, big);
+  CHECK(big > 0.1 && worst <= 1e-7 * big);
+  free(grad);
+}
 static void genus2_fd(int klein) {
   char text[1024];
   snprintf(text, sizeof text,
@@ -641,28 +667,7 @@ static void genus2_fd(int klein) {
   s.m.coord_gen++;
   CHECK_FD(&ctx, &s, &ENERGY);
   /* the gradient against differences of the energy */
-  double (*grad)[3] = calloc((size_t)s.m.nv, sizeof *grad);
-  tds_eval_out out = {.grad = grad};
-  REQUIRE_OK(&ctx, tds_eval(&ctx, &s, &out));
-  double worst = 0, big = 0;
-  for (tds_id v = 0; v < s.m.nv; v++)
-    for (int i = 0; i < 2; i++) {
-      double keep = s.m.x[v][i], e[2];
-      for (int k = 0; k < 2; k++) {
-        s.m.x[v][i] = keep + (k ? -FDH : FDH);
-        s.m.coord_gen++;
-        tds_eval_out o = {0};
-        REQUIRE_OK(&ctx, tds_eval(&ctx, &s, &o));
-        e[k] = o.energy;
-      }
-      s.m.x[v][i] = keep;
-      s.m.coord_gen++;
-      worst = fmax(worst, fabs((e[0] - e[1]) / (2 * FDH) - grad[v][i]));
-      big = fmax(big, fabs(grad[v][i]));
-    }
-  if (!(worst <= 1e-7 * big)) printf("  genus2 gradient: fd error %g of %g\n", worst, big);
-  CHECK(big > 0.1 && worst <= 1e-7 * big);
-  free(grad);
+  grad_fd(&ctx, &s, 2, "genus2");
   tds_surf_free(&s);
 }
 static void hess_genus2_klein(void) { genus2_fd(1); }
@@ -691,28 +696,7 @@ static void klein_film_fd(int g2) {
   REQUIRE_OK(&ctx, tds_refine(&ctx, &s, NULL, NULL));
   jitter(&s.m, 0.01, g2 ? 51 : 53);
   CHECK_FD(&ctx, &s, &ENERGY);
-  double (*grad)[3] = calloc((size_t)s.m.nv, sizeof *grad);
-  tds_eval_out out = {.grad = grad};
-  REQUIRE_OK(&ctx, tds_eval(&ctx, &s, &out));
-  double worst = 0, big = 0;
-  for (tds_id v = 0; v < s.m.nv; v++)
-    for (int i = 0; i < 3; i++) {
-      double keep = s.m.x[v][i], e[2];
-      for (int k = 0; k < 2; k++) {
-        s.m.x[v][i] = keep + (k ? -FDH : FDH);
-        s.m.coord_gen++;
-        tds_eval_out o = {0};
-        REQUIRE_OK(&ctx, tds_eval(&ctx, &s, &o));
-        e[k] = o.energy;
-      }
-      s.m.x[v][i] = keep;
-      s.m.coord_gen++;
-      worst = fmax(worst, fabs((e[0] - e[1]) / (2 * FDH) - grad[v][i]));
-      big = fmax(big, fabs(grad[v][i]));
-    }
-  if (!(worst <= 1e-7 * big)) printf("  klein film gradient: fd error %g of %g\n", worst, big);
-  CHECK(big > 0.1 && worst <= 1e-7 * big);
-  free(grad);
+  grad_fd(&ctx, &s, 3, "klein film");
   tds_surf_free(&s);
 }
 static void hess_klein_film(void) { klein_film_fd(0); }
