@@ -412,6 +412,9 @@ local INTERNAL = {
   hessian_normal_perp = function() return tds.hessian_setting("hessian_normal_perp") and 1.0 or 0.0 end,
   linear_metric_mix = function() return tds.hessian_setting("linear_metric_mix") end,
   last_eigenvalue = function() return tds.hessian_setting("last_eigenvalue") end,
+  eigenneg = function() return tds.hessian_setting("eigenneg") end,
+  eigenzero = function() return tds.hessian_setting("eigenzero") end,
+  eigenpos = function() return tds.hessian_setting("eigenpos") end,
   hessian_epsilon = function() return tds.hessian_setting("hessian_epsilon") end,
   total_length = function()
     local s = 0.0
@@ -460,8 +463,8 @@ local SETTABLE = {
 local EVOLVER_VARS = {}
 for w in ([[ambient_pressure_value background breakflag body_dissolve_count brightness
   check_count delete_count detorus_epsilon dissolve_count edge_delete_count
-  edge_dissolve_count edge_refine_count edge_pop_count edgeswap_count eigenneg eigenpos
-  eigenvalues eigenzero equi_count estimated_change facet_delete_count
+  edge_dissolve_count edge_refine_count edge_pop_count edgeswap_count
+  eigenvalues equi_count estimated_change facet_delete_count
   facet_dissolve_count fix_count graphics_title hessian_slant_cutoff
   high_boundary high_constraint inverse_periods integral_order integral_order_1d
   integral_order_2d jiggle_temperature last_error last_hessian_scale memory_arena

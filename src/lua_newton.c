@@ -17,6 +17,9 @@ typedef struct nstate {
   uint64_t topo;      /* topo_gen it belongs to */
   double last;        /* the first eigenvalue of the last ritz (Evolver's
                          last_eigenvalue), 0 before any */
+  tds_inertia counts; /* of the last hessian, hessian_seek, eigenprobe or
+                         ritz (Evolver's eigenneg, eigenzero, eigenpos),
+                         0 before any */
 } nstate;
 
 static int ns_gc(lua_State *L) {
@@ -43,10 +46,11 @@ static int check_rc(lua_State *L, tds_state *st, int rc) {
 static int l_hessian(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   nstate *ns = get_ns(L);
-  int32_t index = 0;
-  check_rc(L, st, tds_newton_step(&st->ctx, &st->s, &ns->o, 0, &index, NULL));
+  tds_inertia in = {0};
+  check_rc(L, st, tds_newton_step(&st->ctx, &st->s, &ns->o, 0, &in, NULL));
+  ns->counts = in;
   lua_pushnumber(L, st->s.energy);
-  lua_pushinteger(L, index);
+  lua_pushinteger(L, in.neg);
   return 2;
 }
 
@@ -56,12 +60,13 @@ static int l_hessian_seek(lua_State *L) {
   nstate *ns = get_ns(L);
   double mx = lua_isnoneornil(L, 1) ? 1 : tds_lua_checkfinite(L, 1, "hessian_seek scale");
   if (!(mx > 0)) return tds_lua_error(L, "hessian_seek: the largest scale must be positive, not %f", mx);
-  int32_t index = 0;
+  tds_inertia in = {0};
   double t = 0;
-  check_rc(L, st, tds_newton_step(&st->ctx, &st->s, &ns->o, mx, &index, &t));
+  check_rc(L, st, tds_newton_step(&st->ctx, &st->s, &ns->o, mx, &in, &t));
+  ns->counts = in;
   lua_pushnumber(L, st->s.energy);
   lua_pushnumber(L, t);
-  lua_pushinteger(L, index);
+  lua_pushinteger(L, in.neg);
   return 3;
 }
 
@@ -79,7 +84,8 @@ static int l_saddle(lua_State *L) {
   return 2;
 }
 
-static void print_counts(tds_state *st, tds_inertia in) {
+static void print_counts(tds_state *st, nstate *ns, tds_inertia in) {
+  ns->counts = in;
   tds_printf(&st->ctx, "Eigencounts:    %d <,  %d ==,  %d > \n", (int)in.neg, (int)in.zero,
              (int)in.pos);
 }
@@ -95,7 +101,7 @@ static int l_eigenprobe(lua_State *L) {
   tds_inertia in;
   if (lua_isnoneornil(L, 2)) {
     check_rc(L, st, tds_newton_probe(&st->ctx, &st->s, &ns->o, c, &in));
-    print_counts(st, in);
+    print_counts(st, ns, in);
     lua_pushinteger(L, in.neg);
     lua_pushinteger(L, in.zero);
     lua_pushinteger(L, in.pos);
@@ -114,6 +120,7 @@ static int l_eigenprobe(lua_State *L) {
     free(vec);
     return tds_lua_fail(L, st, rc);
   }
+  ns->counts = in;
   lua_pushinteger(L, in.neg);
   lua_pushinteger(L, in.zero);
   lua_pushinteger(L, in.pos);
@@ -156,7 +163,7 @@ static int l_ritz(lua_State *L) {
     free(vec);
     return tds_lua_fail(L, st, rc);
   }
-  print_counts(st, in);
+  print_counts(st, ns, in);
   lua_createtable(L, got, 0);
   for (int32_t i = 0; i < got; i++) {
     tds_printf(&st->ctx, "%3d.    %.15g\n", (int)i + 1, vals[i]);
@@ -223,12 +230,13 @@ static int l_vertex_normal(lua_State *L) {
 /* tds.hessian_setting(name [, value]) -> value: hessian_normal,
 ** linear_metric, linear_metric_mix, hessian_diff, hessian_epsilon,
 ** hessian_special_normal, hessian_normal_one, hessian_normal_perp;
-** last_eigenvalue (read) */
+** last_eigenvalue, eigenneg, eigenzero, eigenpos (read) */
 static int l_setting(lua_State *L) {
   static const char *const names[] = {"hessian_normal", "linear_metric", "linear_metric_mix",
                                       "hessian_diff", "last_eigenvalue", "hessian_epsilon",
                                       "hessian_special_normal", "hessian_normal_one",
-                                      "hessian_normal_perp", NULL};
+                                      "hessian_normal_perp", "eigenneg", "eigenzero",
+                                      "eigenpos", NULL};
   nstate *ns = get_ns(L);
   int which = luaL_checkoption(L, 1, NULL, names);
   int set = !lua_isnone(L, 2);
@@ -269,6 +277,14 @@ static int l_setting(lua_State *L) {
     if (set) return tds_lua_error(L, "last_eigenvalue is read-only");
     lua_pushnumber(L, ns->last);
     break;
+  case 9:
+  case 10:
+  case 11: {
+    if (set) return tds_lua_error(L, "%s is read-only", names[which]);
+    tds_inertia c = ns->counts;
+    lua_pushinteger(L, which == 9 ? c.neg : which == 10 ? c.zero : c.pos);
+    break;
+  }
   default:
     if (set) {
       double x = tds_lua_checkfinite(L, 2, "linear_metric_mix");

@@ -357,7 +357,7 @@ int tds_newton_probe(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double
 }
 
 int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double seekmax,
-                    int32_t *index, double *scale) {
+                    tds_inertia *inertia, double *scale) {
   if (seekmax < 0 || !isfinite(seekmax))
     return tds_seterr(ctx, TDS_ERANGE, "hessian_seek: the largest scale must be positive and finite");
   tds_snap sn;
@@ -408,7 +408,7 @@ int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
   if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
   s->energy = E;
   s->iterations++;
-  if (index) *index = in.neg;
+  if (inertia) *inertia = in;
   if (scale) *scale = t;
   if (in.neg) tds_printf(ctx, "WARNING 1825: Hessian not positive definite. Index: %d\n", (int)in.neg);
   if (seekmax > 0)

@@ -81,10 +81,12 @@ typedef struct tds_newton_opts {
 ** With seek > 0 (hessian_seek), the step is scaled by the t in (0, seek]
 ** that minimises the energy along it, or in [-seek, 0) when no forward
 ** t down to 1e-6 seek lowers it (Evolver looks both ways; t = 0, no
-** move, when neither does), and the line shows the scale. *index (if not NULL) gets the index, *scale (if
-** not NULL) the step's multiple of the Newton step (1 for hessian). */
+** move, when neither does), and the line shows the scale. *inertia (if not
+** NULL) gets the inertia of H on the constraints at the start (neg is the
+** index), *scale (if not NULL) the step's multiple of the Newton step (1
+** for hessian). */
 int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double seek,
-                    int32_t *index, double *scale);
+                    tds_inertia *inertia, double *scale);
 
 /* Inertia of H - c M on the constraints (eigenprobe c), and the number of
 ** unknowns. Prints nothing. */

@@ -98,3 +98,17 @@ its=$("$TDS" -q "$tmp/cube.dmp" -e "tds.quiet(false) eigenprobe(0.3, 3)" 2>&1 | 
 want=$(sed -n 3p "$tmp/invit" | cut -d' ' -f2)
 if [ "$its" = "$want" ] && [ "$its" = "0,3," ]; then echo "PASS eigen/cube/invit-limit"
 else echo "FAIL eigen/cube/invit-limit: iterations printed $its, Evolver $want"; fi
+
+# eigenneg, eigenzero, eigenpos: the counts of the last hessian,
+# hessian_seek, eigenprobe or ritz (0 before any), the same commands from
+# the tutorial cube's state in both programs; integers, equal exactly
+# (hessian's are at its start, where Evolver counts them; hessian_seek
+# starts where hessian took the surface)
+cmds='print eigenneg; eigenprobe 1; print eigenneg; print eigenzero; print eigenpos;
+ritz(0.5, 3); print eigenneg; print eigenpos; eigenprobe(0.3, 5); print eigenneg;
+hessian; print eigenneg; print eigenzero; print eigenpos; hessian_seek; print eigenpos'
+ints() { grep -E '^ +-?[0-9]+$' | tr -s ' \n' ' ' | sed 's/^ //; s/ $//'; }
+want=$(evolver_run "$tmp/cube.dmp" "$cmds" | ints)
+got=$(printf '%s\n' "$cmds" | "$TDS" -q "$tmp/cube.dmp" -f /dev/stdin 2>&1 | ints)
+if [ -n "$want" ] && [ "$got" = "$want" ]; then echo "PASS eigen/cube/eigencounts"
+else echo "FAIL eigen/cube/eigencounts: tds '$got', Evolver '$want'"; fi
