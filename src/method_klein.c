@@ -16,27 +16,29 @@
 
 #include "method.h"
 
-double tds_klein_dist(const double a[3], const double b[3]) {
-  double p = 1 - (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-  double q = 1 - (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
-  if (!(p > 0 && q > 0)) return INFINITY;
+/* S = sinh of the distance of a and b, with p = 1 - |a|^2, q = 1 - |b|^2;
+** +infinity outside the ball. */
+static double klein_sinh(const double a[3], const double b[3], double *p, double *q) {
+  *p = 1 - (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  *q = 1 - (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+  if (!(*p > 0 && *q > 0)) return INFINITY;
   double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
   double ad = a[0] * d[0] + a[1] * d[1] + a[2] * d[2];
   double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-  return asinh(sqrt((p * dd + ad * ad) / (p * q)));
+  return sqrt((*p * dd + ad * ad) / (*p * *q));
+}
+
+double tds_klein_dist(const double a[3], const double b[3]) {
+  double p, q;
+  return asinh(klein_sinh(a, b, &p, &q));
 }
 
 double tds_mk_klein_length(const tds_mlocal *L, double g[3][3], double h[9][9]) {
   const double *a = L->x[0], *b = L->x[1];
   if (g) memset(g, 0, sizeof(double[3][3]));
   if (h) memset(h, 0, sizeof(double[9][9]));
-  double p = 1 - (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-  double q = 1 - (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+  double p, q, S = klein_sinh(a, b, &p, &q);
   if (!(p > 0 && q > 0)) return INFINITY;
-  double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-  double ad = a[0] * d[0] + a[1] * d[1] + a[2] * d[2];
-  double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-  double S = sqrt((p * dd + ad * ad) / (p * q));
   double len = asinh(S);
   if (!g || !(S > 0)) return len;
   double N = 1 - (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]), u = sqrt(p * q), A = N / u;

@@ -29,6 +29,32 @@ static double evolver_off(const tds_fixq *fq) {
   return off;
 }
 
+/* The constrained quantities' gradients (*fq) and a zeroed restoring
+** motion per vertex slot (*rest, the caller frees both), for the
+** restoring loops below. */
+static int restore_begin(tds_ctx *ctx, tds_surf *s, tds_fixq *fq, double (**rest)[3]) {
+  int rc = tds_fixq_build(ctx, s, fq);
+  if (rc != TDS_OK) return rc;
+  *rest = tds_calloc(&ctx->alloc, (size_t)s->m.nv + 1, sizeof **rest);
+  if (!*rest) {
+    tds_fixq_free(fq);
+    return tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory");
+  }
+  return TDS_OK;
+}
+
+/* Move every free vertex by its restoring motion (onto its constraints). */
+static void apply_rest(tds_surf *s, const double (*rest)[3]) {
+  tds_mesh *m = &s->m;
+  for (tds_id v = 0; v < m->nv; v++) {
+    if (!tds_vertex_free(s, v)) continue;
+    double x[3], p[2] = {m->vp[v][0], m->vp[v][1]};
+    v3_copy(x, m->x[v]);
+    tds_motion_apply(s, v, x, p, rest[v]);
+  }
+  m->coord_gen++;
+}
+
 /* The restoring after a Newton step, as Evolver's (measured on a
 ** perturbed 15-gon whose step moves its vertices by up to 0.2: the area
 ** after it and every position to 5e-13): moves along the quantities'
@@ -44,13 +70,9 @@ static int project_quantities(tds_ctx *ctx, tds_surf *s, int maxit);
 static int restore_evolver(tds_ctx *ctx, tds_surf *s) {
   tds_mesh *m = &s->m;
   tds_fixq fq = {0};
-  int rc = tds_fixq_build(ctx, s, &fq);
+  double (*rest)[3] = NULL;
+  int rc = restore_begin(ctx, s, &fq, &rest);
   if (rc != TDS_OK) return rc;
-  double (*rest)[3] = tds_calloc(&ctx->alloc, (size_t)m->nv + 1, sizeof *rest);
-  if (!rest) {
-    tds_fixq_free(&fq);
-    return tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory");
-  }
   tds_eval_out out = {.fq = fq.nq ? &fq : NULL}; /* the gradients, kept */
   if ((rc = tds_eval(ctx, s, &out)) == TDS_OK) {
     s->energy = out.energy;
@@ -72,13 +94,7 @@ static int restore_evolver(tds_ctx *ctx, tds_surf *s) {
     if (k == 11 || (k > 0 && off <= 1)) break;
     prev = off;
     if ((rc = tds_fixq_restore(ctx, &fq, m->nv, rest)) != TDS_OK) break;
-    for (tds_id v = 0; v < m->nv; v++) {
-      if (!tds_vertex_free(s, v)) continue;
-      double x[3], p[2] = {m->vp[v][0], m->vp[v][1]};
-      v3_copy(x, m->x[v]);
-      tds_motion_apply(s, v, x, p, rest[v]);
-    }
-    m->coord_gen++;
+    apply_rest(s, (const double(*)[3])rest);
     tds_eval_out o2 = {.fq = NULL}; /* the values only */
     if ((rc = tds_eval(ctx, s, &o2)) != TDS_OK) break;
     tds_fixq_values(s, &fq);
@@ -98,13 +114,9 @@ static int restore_evolver(tds_ctx *ctx, tds_surf *s) {
 static int project_quantities(tds_ctx *ctx, tds_surf *s, int maxit) {
   tds_mesh *m = &s->m;
   tds_fixq fq = {0};
-  int rc = tds_fixq_build(ctx, s, &fq);
+  double (*rest)[3] = NULL;
+  int rc = restore_begin(ctx, s, &fq, &rest);
   if (rc != TDS_OK) return rc;
-  double (*rest)[3] = tds_calloc(&ctx->alloc, (size_t)m->nv + 1, sizeof *rest);
-  if (!rest) {
-    tds_fixq_free(&fq);
-    return tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory");
-  }
   double prev = INFINITY;
   for (int it = 0;; it++) {
     tds_eval_out out = {.fq = fq.nq ? &fq : NULL};
@@ -126,13 +138,7 @@ static int project_quantities(tds_ctx *ctx, tds_surf *s, int maxit) {
     for (tds_id v = 0; v < m->nv; v++)
       for (int32_t i = fq.start[v]; i < fq.start[v + 1]; i++) tds_motion_project(s, v, fq.g[i]);
     if ((rc = tds_fixq_restore(ctx, &fq, m->nv, rest)) != TDS_OK) break;
-    for (tds_id v = 0; v < m->nv; v++) {
-      if (!tds_vertex_free(s, v)) continue;
-      double x[3], p[2] = {m->vp[v][0], m->vp[v][1]};
-      v3_copy(x, m->x[v]);
-      tds_motion_apply(s, v, x, p, rest[v]);
-    }
-    m->coord_gen++;
+    apply_rest(s, (const double(*)[3])rest);
     if (it + 1 == maxit) { /* the energy where it stops */
       tds_eval_out o2 = {.fq = NULL};
       if ((rc = tds_eval(ctx, s, &o2)) != TDS_OK) break;

@@ -214,23 +214,14 @@ int tds_pop_neck(tds_surf *s, tds_id v, const tds_id *fl, const int *lab, int nf
     int32_t ar = up ? TDS_OREF(arc[ia], 0) : TDS_OREF(arc[ib], 1); /* pb -> pa */
     int32_t oga = TDS_OREF(ga, m->ev[ga][0] == pa ? 0 : 1);           /* pa -> a */
     int32_t ogb = TDS_OREF(gb, m->ev[gb][0] == pb ? 1 : 0);           /* b -> pb */
-    if (fwd) {
-      tds_id dg = tds_mesh_add_edge(m, b, pa);
-      m->eflags[dg] = m->fflags[f] & TDS_NO_REFINE;
-      int32_t kept[3] = {oga, eab, TDS_OREF(dg, 0)};      /* pa, a, b */
-      int32_t cut[3] = {TDS_OREF(dg, 1), ogb, ar};         /* pa, b, pb */
-      tds_mesh_set_facet(m, f, kept);
-      tds_id g = tds_mesh_add_facet(m, cut);
-      tds_facet_inherit(m, g, f);
-    } else {
-      tds_id dg = tds_mesh_add_edge(m, a, pb);
-      m->eflags[dg] = m->fflags[f] & TDS_NO_REFINE;
-      int32_t kept[3] = {eab, ogb, TDS_OREF(dg, 1)};      /* a, b, pb */
-      int32_t cut[3] = {TDS_OREF(dg, 0), ar, oga};         /* a, pb, pa */
-      tds_mesh_set_facet(m, f, kept);
-      tds_id g = tds_mesh_add_facet(m, cut);
-      tds_facet_inherit(m, g, f);
-    }
+    /* fwd: diagonal b -> pa, kept (pa, a, b), cut (pa, b, pb);
+    ** else: diagonal a -> pb, kept (a, b, pb), cut (a, pb, pa) */
+    tds_id dg = fwd ? tds_mesh_add_edge(m, b, pa) : tds_mesh_add_edge(m, a, pb);
+    m->eflags[dg] = m->fflags[f] & TDS_NO_REFINE;
+    int32_t kept[3] = {fwd ? oga : eab, fwd ? eab : ogb, TDS_OREF(dg, !fwd)};
+    int32_t cut[3] = {TDS_OREF(dg, fwd), fwd ? ogb : ar, fwd ? ar : oga};
+    tds_mesh_set_facet(m, f, kept);
+    tds_facet_inherit(m, tds_mesh_add_facet(m, cut), f);
     if (src == TDS_NONE) src = f;
   }
   /* the film across the ring, between the two cones' insides */
