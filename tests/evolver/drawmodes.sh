@@ -112,3 +112,19 @@ print(bad and ('FAIL drawmodes/$f/$s/clipped-vertices: ' .. bad) or 'PASS drawmo
 "
   done
 done
+
+# The mode and the clip box survive a dump: tds dumps origin.fe in clipped
+# mode; Evolver reads the dump (its read section sets the mode) and
+# detoruses it to what tds makes of the original.
+printf 'clipped\ndump "%s"\n' "$tmp/mode.dmp" > "$tmp/d.cmd"
+(cd "$tmp" && "$TDS" -q origin.fe -f d.cmd) > /dev/null 2>&1
+if [ -s "$tmp/mode.dmp" ]; then
+  evolver_run "$tmp/mode.dmp" "detorus; $CLIP" | grep '^K' > "$tmp/ev.k"
+  printf '%s\n' "clipped; detorus; $CLIP" > "$tmp/c2.cmd"
+  (cd "$tmp" && "$TDS" -q origin.fe -f c2.cmd) 2>&1 | grep '^K' > "$tmp/tds.k"
+  "$TDS" -q -e "
+dofile('$ROOT/tests/evolver/numcmp.lua')
+numcmp('drawmodes/dump-mode', lines_of('$tmp/ev.k', '^K'), lines_of('$tmp/tds.k', '^K'), 1e-12)"
+else
+  echo "FAIL drawmodes/dump-mode: tds did not dump"
+fi
