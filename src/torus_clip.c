@@ -338,14 +338,27 @@ int tds_torus_clip(tds_ctx *ctx, tds_mesh *m, int32_t *src[2]) {
   }
   for (tds_id e = 0; e < ne; e++)
     if (tds_alive(m->eflags, e) && m->eside[e] == TDS_NONE) add_segment(&B, e, (const double(*)[3])L);
-  /* the torus mesh's elements go */
+  /* the torus mesh's elements go, but for vertices on no edge, which are
+  ** moved into the box */
   for (tds_id f = 0; f < nf; f++)
     if (tds_alive(m->fflags, f)) tds_mesh_kill(m, TDS_FACET, f);
-  for (tds_id e = 0; e < ne; e++)
-    if (tds_alive(m->eflags, e)) tds_mesh_kill(m, TDS_EDGE, e);
+  for (tds_id v = 0; v < nv; v++) B.vsrc[v] = -2; /* -2: on no edge so far */
+  for (tds_id e = 0; e < ne; e++) {
+    if (!tds_alive(m->eflags, e)) continue;
+    B.vsrc[m->ev[e][0]] = B.vsrc[m->ev[e][1]] = -1;
+    tds_mesh_kill(m, TDS_EDGE, e);
+  }
   for (tds_id v = 0; v < nv; v++) {
-    B.vsrc[v] = -1;
-    if (tds_alive(m->vflags, v)) tds_mesh_kill(m, TDS_VERTEX, v);
+    if (!tds_alive(m->vflags, v)) continue;
+    if (B.vsrc[v] == -1) {
+      tds_mesh_kill(m, TDS_VERTEX, v);
+      continue;
+    }
+    for (int i = 0; i < 3; i++) {
+      double k = -floor(L[v][i]);
+      for (int j = 0; j < 3; j++) m->x[v][j] += k * m->period[i][j];
+    }
+    B.vsrc[v] = v;
   }
   for (tds_id e = 0; e < m->ne; e++) m->ewrap[e] = 0;
   tds_mesh_set_torus(m, 0);
