@@ -842,7 +842,6 @@ end
 -- have no effect without graphics.
 local FIXED_TOGGLE = {
   metric_conversion = false, autorecalc = true, gv_binary = "any", autodisplay = "any",
-  clipped = "any", connected = "any", raw_cells = "any",
   show_inner = "any", show_outer = "any", thicken = "any", pscolorflag = "any",
   ps_colorflag = "any", gridflag = "any", crossingflag = "any", labelflag = "any",
   show_all_edges = "any", rgb_colors = false,
@@ -856,7 +855,17 @@ local FIXED_TOGGLE = {
 }
 E.FIXED_TOGGLE = FIXED_TOGGLE
 
+-- Evolver's three-way display mode of the torus model: how pictures,
+-- exports and detorus draw the surface (doc/torus.md). `clipped off`
+-- goes back to raw cells.
+local DRAW = {raw_cells = "raw", clipped = "clipped", clipped_cells = "clipped",
+              connected = "connected", connected_cells = "connected"}
+
 function E.toggle(name, on)
+  if DRAW[name] then
+    tds.torus_display(on == false and "raw" or DRAW[name])
+    return
+  end
   local fixed = FIXED_TOGGLE[name]
   if fixed ~= nil then
     if on == nil then on = true end
@@ -1101,6 +1110,7 @@ end
 for name in pairs(TOGGLE_MSG) do B[name] = toggle_on(name) end
 
 for name in pairs(FIXED_TOGGLE) do B[name] = toggle_on(name) end
+for name in pairs(DRAW) do B[name] = toggle_on(name) end
 -- Energies are computed one way in tds: nothing to convert.
 B.convert_to_quantities = function() end
 

@@ -276,6 +276,12 @@ function wrap_vertex(v, w) tds.wrap_vertex(v, w) end
 -- (not `rewrap`: Evolver's rewrap.cmd defines that command itself)
 function torus_rewrap() return tds.rewrap() end
 function detorus() tds.detorus() end
+-- torus_display([mode]): "raw", "connected" or "clipped", how pictures,
+-- exports and detorus draw a torus surface; display_origin({x, y, z})
+-- centres the clip box there (false: the cell at 0). Both return the
+-- previous setting.
+function torus_display(mode) return tds.torus_display(mode) end
+function display_origin(o) return tds.display_origin(o) end
 -- facet_crosscut(f, tail, head): split a string-model cell (doc/string.md)
 function facet_crosscut(f, t, h) return tds.facet_crosscut(f, t, h) end
 vertex_average = V

@@ -15,6 +15,7 @@
 
 #include "model.h"
 #include "symgroup.h"
+#include "torus.h"
 
 /* ---- not supported yet ---- */
 
@@ -656,15 +657,24 @@ static int h_display_periods(df *d, const hdr_kw *k) {
   (void)k;
   return skip_values(d, 9, "DISPLAY_PERIODS");
 }
+/* DISPLAY_ORIGIN x y z: the lower corner of the clip box (torus.h). */
 static int h_display_origin(df *d, const hdr_kw *k) {
   (void)k;
-  return skip_values(d, 3, "DISPLAY_ORIGIN");
+  double o[3] = {0, 0, 0};
+  int rc = TDS_OK;
+  d->split = 1;
+  for (int i = 0; i < 3 && !rc; i++) rc = df_header_value(d, &o[i], "DISPLAY_ORIGIN");
+  d->split = 0;
+  if (rc) return rc;
+  memcpy(d->s->m.origin, o, sizeof o);
+  d->s->m.has_origin = 1;
+  return TDS_OK;
 }
-/* CLIPPED, CONNECTED, RAW_CELLS: how a torus surface is shown (Evolver's
-** toggles; exports write facets unwrapped, see doc/torus.md). */
+/* CLIPPED, CONNECTED, RAW_CELLS: how a torus surface is drawn, exported
+** and detorused (torus.h, doc/torus.md). */
 static int h_display_mode(df *d, const hdr_kw *k) {
-  (void)d;
-  (void)k;
+  d->s->m.draw = k->name[0] == 'r' ? TDS_DRAW_RAW : k->name[1] == 'l' ? TDS_DRAW_CLIPPED
+                                                                       : TDS_DRAW_CONNECTED;
   return TDS_OK;
 }
 

@@ -284,6 +284,11 @@ static void header(out *o, const tds_surf *s) {
   }
   if (s->autopop) fputs("AUTOPOP\n", f);
   if (s->area_normalization) fputs("AREA_NORMALIZATION\n", f);
+  if (s->m.has_origin) {
+    fputs("DISPLAY_ORIGIN", f);
+    for (int i = 0; i < 3; i++) num(o, s->m.origin[i], "display_origin", i + 1);
+    fputc('\n', f);
+  }
   view_matrices(o, s);
   fputc('\n', f);
 
@@ -519,8 +524,14 @@ static int write(tds_ctx *ctx, tds_surf *s, const char *path, int model, const c
     fputc('\n', o.f);
   }
   elements(&o, s);
-  if (read) {
+  /* the display mode is a command, as Evolver writes it (its datafile
+  ** header does not take one) */
+  static const char *const draw[] = {NULL, "connected\n", "clipped\n"};
+  const char *mode = model && m->torus ? draw[m->draw] : NULL;
+  if (read || mode) {
     fputs("\nread\n", o.f);
+    if (mode) fputs(mode, o.f);
+    if (!read) read = "";
     fputs(read, o.f);
     size_t k = strlen(read);
     if (k && read[k - 1] != '\n') fputc('\n', o.f);

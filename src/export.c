@@ -253,7 +253,8 @@ static double tri_min_angle(const xmesh *x, int32_t t) {
   return mn * 180 / TDS_PI;
 }
 
-static int fields(tds_ctx *ctx, const tds_surf *s, const tds_export_opts *o, build *b) {
+static int fields(tds_ctx *ctx, const tds_surf *s, const tds_export_opts *o, build *b,
+                  const tds_surf *orig, const tds_torus_drawn *dv) {
   const tds_mesh *m = &s->m;
   xmesh *x = &b->x;
   for (int fi = 0; fi < TDS_VF_COUNT; fi++) {
@@ -278,15 +279,21 @@ static int fields(tds_ctx *ctx, const tds_surf *s, const tds_export_opts *o, bui
     }
     for (int32_t i = 0; i < x->nv; i++) {
       tds_id sv = b->vid[i];
+      const tds_surf *fs = s; /* the surface and vertex the values are of */
+      if (dv && sv != TDS_NONE) {
+        fs = orig;
+        sv = dv->vsrc[sv] >= 0 ? dv->vsrc[sv] : TDS_NONE;
+      }
+      int none = sv == TDS_NONE;
       switch (fi) {
       case TDS_VF_POSITION:
         for (int c = 0; c < 3; c++) v[3 * i + c] = x->x[i][c];
         break;
-      case TDS_VF_MEAN_CURVATURE: v[i] = tds_vertex_mean_curvature(s, sv); break;
-      case TDS_VF_GAUSS_CURVATURE: v[i] = tds_vertex_gauss_curvature(s, sv); break;
+      case TDS_VF_MEAN_CURVATURE: v[i] = none ? (double)NAN : tds_vertex_mean_curvature(fs, sv); break;
+      case TDS_VF_GAUSS_CURVATURE: v[i] = none ? (double)NAN : tds_vertex_gauss_curvature(fs, sv); break;
       case TDS_VF_DISPLACEMENT:
         for (int c = 0; c < 3; c++)
-          v[3 * i + c] = sv < o->nmark ? m->x[sv][c] - o->mark[sv][c] : (double)NAN;
+          v[3 * i + c] = !none && sv < o->nmark ? fs->m.x[sv][c] - o->mark[sv][c] : (double)NAN;
         break;
       default: v[i] = sv + 1; break;
       }
@@ -323,7 +330,7 @@ static int fields(tds_ctx *ctx, const tds_surf *s, const tds_export_opts *o, bui
       }
       case TDS_FF_FRONTBODY: v[t] = f == TDS_NONE ? b->body + 1 : fb + 1; break;
       case TDS_FF_BACKBODY: v[t] = f == TDS_NONE ? 0 : bb + 1; break;
-      default: v[t] = f == TDS_NONE ? 0 : f + 1; break;
+      default: v[t] = f == TDS_NONE ? 0 : (dv ? dv->fsrc[f] : f) + 1; break;
       }
     }
   }
@@ -353,17 +360,11 @@ static char *body_path(const tds_alloc *a, const char *path, tds_id body) {
   return p;
 }
 
-int tds_export(tds_ctx *ctx, tds_surf *s, const char *path, const tds_export_opts *o) {
-  if (s->str) return tds_export_strings(ctx, s, path, o); /* edges, not triangles */
-  if (s->m.torus) { /* each facet unwrapped, never an edge across the cell */
-    tds_surf view;
-    int vrc = tds_torus_view(ctx, s, &view);
-    if (vrc == TDS_OK) {
-      vrc = tds_export(ctx, &view, path, o);
-      tds_torus_view_free(&view);
-    }
-    return vrc;
-  }
+/* The export of s; for a torus surface s is its drawn mesh (dv), and the
+** vertex fields and ids are those of the vertices and facets it is drawn
+** from in orig. */
+static int export_drawn(tds_ctx *ctx, tds_surf *s, const char *path, const tds_export_opts *o,
+                        const tds_surf *orig, const tds_torus_drawn *dv) {
   int rc = check_opts(ctx, s, o);
   if (rc != TDS_OK) return rc;
   tds_mesh *m = &s->m;
@@ -386,7 +387,7 @@ int tds_export(tds_ctx *ctx, tds_surf *s, const char *path, const tds_export_opt
       rc = body != TDS_NONE
                ? tds_seterr(ctx, TDS_ERANGE, "export: body %d has no facets to export", body + 1)
                : tds_seterr(ctx, TDS_ERANGE, "export: no facets to export");
-    if (rc == TDS_OK) rc = fields(ctx, s, o, &b);
+    if (rc == TDS_OK) rc = fields(ctx, s, o, &b, orig, dv);
     char title[160];
     if (body != TDS_NONE)
       snprintf(title, sizeof title, "tds %s: body %d, %d vertices, %d facets (%d cap)",
@@ -410,5 +411,26 @@ int tds_export(tds_ctx *ctx, tds_surf *s, const char *path, const tds_export_opt
     for (int32_t i = 0; i < opened; i++) o->written(o->ud, af[i].path);
   for (int32_t i = 0; i < opened; i++) tds_wfile_abort(&af[i]);
   tds_free(&ctx->alloc, af);
+  return rc;
+}
+
+int tds_export(tds_ctx *ctx, tds_surf *s, const char *path, const tds_export_opts *o) {
+  if (s->str) return tds_export_strings(ctx, s, path, o); /* edges, not triangles */
+  if (!s->m.torus) return export_drawn(ctx, s, path, o, NULL, NULL);
+  tds_torus_drawn view; /* as drawn: no edge across the cell */
+  int rc = tds_torus_view(ctx, s, &view);
+  if (rc != TDS_OK) return rc;
+  tds_export_opts o2 = *o;
+  uint8_t *sel = NULL;
+  if (o->facets) { /* the selection, carried to the facets drawn from it */
+    sel = tds_calloc(&ctx->alloc, (size_t)view.s.m.nf + 1, 1);
+    if (!sel) rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+    for (tds_id f = 0; sel && f < view.s.m.nf; f++)
+      sel[f] = view.fsrc[f] >= 0 && o->facets[view.fsrc[f]];
+    o2.facets = sel;
+  }
+  if (rc == TDS_OK) rc = export_drawn(ctx, &view.s, path, &o2, s, &view);
+  tds_free(&ctx->alloc, sel);
+  tds_torus_view_free(&view);
   return rc;
 }

@@ -8,7 +8,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gather.h"
 #include "metrics.h"
+#include "torus.h"
 
 const char *const tds_live_fields[TDS_LIVE_NFIELDS] = {
     "mean_curvature", "min_angle", "body", "tension", "color"};
@@ -53,9 +55,17 @@ static double facet_field(const tds_mesh *m, int field, tds_id f) {
   }
 }
 
-int tds_live_snap_build(tds_ctx *ctx, tds_surf *s, uint64_t version,
-                        double energy, int color, unsigned char **buf,
-                        size_t *len) {
+/* Whether edge e of a string surface is drawn to its own copy of its head
+** (it wraps: the head unwrapped from the tail, no edge across the cell). */
+static int own_head(const tds_surf *s, tds_id e) {
+  return s->str && s->m.torus && tds_alive(s->m.eflags, e) && s->m.ewrap[e];
+}
+
+/* The snapshot of s; for a torus film s is its drawn mesh (dv), whose
+** vertices have the curvature of those they are drawn from in orig. */
+static int snap_drawn(tds_ctx *ctx, tds_surf *s, uint64_t version, double energy, int color,
+                      unsigned char **buf, size_t *len, tds_surf *orig,
+                      const tds_torus_drawn *dv) {
   tds_mesh *m = &s->m;
   if (tds_mesh_adjacency(m) != TDS_OK)
     return tds_seterr(ctx, TDS_ENOMEM, "live view: out of memory");
@@ -63,9 +73,11 @@ int tds_live_snap_build(tds_ctx *ctx, tds_surf *s, uint64_t version,
   double *vals = NULL;
   unsigned char *b = NULL;
   if (!vmap) goto nomem;
-  uint32_t nv = 0, nf = 0, ne = 0;
+  uint32_t nv = 0, nf = 0, ne = 0, nhead = 0;
   for (tds_id v = 0; v < m->nv; v++)
     vmap[v] = tds_alive(m->vflags, v) ? (int32_t)nv++ : -1;
+  for (tds_id e = 0; e < m->ne; e++) nhead += (uint32_t)own_head(s, e);
+  nv += nhead;
   for (tds_id f = 0; f < m->nf; f++)
     nf += !(m->fflags[f] & (TDS_DEAD | TDS_NODISPLAY));
   for (tds_id e = 0; e < m->ne; e++) ne += tds_alive(m->eflags, e);
@@ -76,7 +88,7 @@ int tds_live_snap_build(tds_ctx *ctx, tds_surf *s, uint64_t version,
   /* Header, with a placeholder for the fields' ranges filled below. */
   char head[4096], num[3][40];
   json_num(num[0], sizeof num[0], energy);
-  json_num(num[1], sizeof num[1], tds_surf_area(s));
+  json_num(num[1], sizeof num[1], tds_surf_area(orig ? orig : s));
   int hn = snprintf(head, sizeof head,
                     "{\"version\":%llu,\"energy\":%s,\"area\":%s,"
                     "\"iterations\":%lld,\"vertices\":%u,\"edges\":%u,"
@@ -96,17 +108,29 @@ int tds_live_snap_build(tds_ctx *ctx, tds_surf *s, uint64_t version,
   for (tds_id v = 0; v < m->nv; v++)
     if (vmap[v] >= 0)
       for (int k = 0; k < 3; k++, p += 4) put_f32(p, m->x[v][k]);
+  for (tds_id e = 0; e < m->ne; e++) {
+    if (!own_head(s, e)) continue;
+    tds_corners C;
+    tds_gather_edge(m, TDS_OREF(e, 0), &C);
+    for (int k = 0; k < 3; k++, p += 4) put_f32(p, C.x[1][k]);
+  }
   for (tds_id f = 0; f < m->nf; f++)
     if (!(m->fflags[f] & (TDS_DEAD | TDS_NODISPLAY)))
       for (int k = 0; k < 3; k++, p += 4) put_u32(p, (uint32_t)vmap[m->fv[f][k]]);
-  for (tds_id e = 0; e < m->ne; e++)
-    if (tds_alive(m->eflags, e))
-      for (int k = 0; k < 2; k++, p += 4) put_u32(p, (uint32_t)vmap[m->ev[e][k]]);
+  for (tds_id e = 0, k = (tds_id)(nv - nhead); e < m->ne; e++) {
+    if (!tds_alive(m->eflags, e)) continue;
+    put_u32(p, (uint32_t)vmap[m->ev[e][0]]);
+    put_u32(p + 4, (uint32_t)(own_head(s, e) ? k++ : vmap[m->ev[e][1]]));
+    p += 8;
+  }
   for (int field = 0; field < TDS_LIVE_NFIELDS; field++) {
     size_t n = 0;
     if (field == 0) {
       for (tds_id v = 0; v < m->nv; v++)
-        if (vmap[v] >= 0) vals[n++] = tds_vertex_mean_curvature(s, v);
+        if (vmap[v] >= 0)
+          vals[n++] = dv ? tds_torus_drawn_curvature(dv, orig, v) : tds_vertex_mean_curvature(s, v);
+      for (tds_id e = 0; e < m->ne; e++)
+        if (own_head(s, e)) vals[n++] = tds_vertex_mean_curvature(s, m->ev[e][1]);
     } else {
       for (tds_id f = 0; f < m->nf; f++)
         if (!(m->fflags[f] & (TDS_DEAD | TDS_NODISPLAY)))
@@ -142,4 +166,15 @@ nomem:
   tds_free(&ctx->alloc, vals);
   tds_free(&ctx->alloc, b);
   return tds_seterr(ctx, TDS_ENOMEM, "live view: out of memory");
+}
+
+int tds_live_snap_build(tds_ctx *ctx, tds_surf *s, uint64_t version, double energy, int color,
+                        unsigned char **buf, size_t *len) {
+  if (s->str || !s->m.torus) return snap_drawn(ctx, s, version, energy, color, buf, len, NULL, NULL);
+  tds_torus_drawn view; /* as drawn: no edge across the cell */
+  int rc = tds_torus_view(ctx, s, &view);
+  if (rc != TDS_OK) return rc;
+  rc = snap_drawn(ctx, &view.s, version, energy, color, buf, len, s, &view);
+  tds_torus_view_free(&view);
+  return rc;
 }

@@ -6,8 +6,14 @@
 **   tds.periods() -> {{x, y, z}, {x, y, z}, {x, y, z}} or nil
 **   tds.wrap_vertex(v, code)   Evolver's wrap_vertex (code: a wrap code)
 **   tds.rewrap() -> n          vertices moved into the unit cell
-**   tds.detorus()              the surface as drawn, no torus any more */
+**   tds.detorus()              the surface as drawn, no torus any more
+**   tds.torus_display([mode]) -> mode   "raw", "connected" or "clipped"
+**   tds.display_origin([{x, y, z} | false]) -> the previous {x, y, z} or nil */
 #include "lua_tds.h"
+
+#include <math.h>
+#include <string.h>
+
 #include "snap.h"
 #include "gather.h"
 #include "symgroup.h"
@@ -106,10 +112,60 @@ static int l_rewrap(lua_State *L) {
 
 static int l_detorus(lua_State *L) {
   tds_state *st = TDS_STATE(L);
-  int rc = tds_torus_detorus(&st->ctx, &st->s.m);
+  if (st->s.str && st->s.m.torus && st->s.m.draw != TDS_DRAW_RAW)
+    return tds_lua_error(L, "detorus: %s mode is not supported yet in the string model "
+                            "(raw_cells detoruses each cell as drawn from its first vertex)",
+                         st->s.m.draw == TDS_DRAW_CLIPPED ? "clipped" : "connected");
+  int rc = tds_torus_detorus(&st->ctx, &st->s.m, NULL);
   if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
   tds_surf_update(&st->ctx, &st->s);
   return 0;
+}
+
+static const char *const draw_names[] = {"raw", "connected", "clipped", NULL};
+
+static int l_torus_display(lua_State *L) {
+  tds_mesh *m = &TDS_STATE(L)->s.m;
+  int was = m->draw;
+  if (!lua_isnoneornil(L, 1)) {
+    int d = luaL_checkoption(L, 1, NULL, draw_names);
+    if (d == TDS_DRAW_CLIPPED && tds_mesh_rotates(m))
+      return tds_lua_error(L, "clipped: SYMMETRY_GROUP \"%s\" has no unit cell to clip to "
+                              "(use raw_cells or connected)", tds_sym_name(m->sym));
+    m->draw = d;
+  }
+  lua_pushstring(L, draw_names[was]);
+  return 1;
+}
+
+static int l_display_origin(lua_State *L) {
+  tds_mesh *m = &TDS_STATE(L)->s.m;
+  int had = m->has_origin;
+  double was[3];
+  memcpy(was, m->origin, sizeof was);
+  if (lua_istable(L, 1)) {
+    double o[3];
+    for (int i = 0; i < 3; i++) {
+      lua_geti(L, 1, i + 1);
+      if (!lua_isnumber(L, -1)) return tds_lua_error(L, "display_origin: {x, y, z} of numbers");
+      o[i] = lua_tonumber(L, -1);
+      if (!isfinite(o[i])) return tds_lua_error(L, "display_origin: coordinate %d is not finite", i + 1);
+      lua_pop(L, 1);
+    }
+    memcpy(m->origin, o, sizeof o);
+    m->has_origin = 1;
+  } else if (lua_isboolean(L, 1) && !lua_toboolean(L, 1)) {
+    m->has_origin = 0;
+  } else if (!lua_isnoneornil(L, 1)) {
+    return tds_lua_error(L, "display_origin: {x, y, z} or false, not %s", luaL_typename(L, 1));
+  }
+  if (!had) return 0;
+  lua_createtable(L, 3, 0);
+  for (int i = 0; i < 3; i++) {
+    lua_pushnumber(L, was[i]);
+    lua_seti(L, -2, i + 1);
+  }
+  return 1;
 }
 
 void tds_open_torus(lua_State *L, tds_state *st) {
@@ -121,6 +177,8 @@ void tds_open_torus(lua_State *L, tds_state *st) {
                                  {"wrap_vertex", l_wrap_vertex},
                                  {"rewrap", l_rewrap},
                                  {"detorus", l_detorus},
+                                 {"torus_display", l_torus_display},
+                                 {"display_origin", l_display_origin},
                                  {NULL, NULL}};
   tds_lua_register(L, st, fns);
 }

@@ -401,6 +401,9 @@ int tds_mesh_copy(tds_mesh *dst, const tds_mesh *src) {
   memcpy(dst->period, src->period, sizeof dst->period);
   dst->sym = src->sym;
   memcpy(dst->symp, src->symp, sizeof dst->symp);
+  dst->draw = src->draw;
+  dst->has_origin = src->has_origin;
+  memcpy(dst->origin, src->origin, sizeof dst->origin);
   dst->topo_gen = src->topo_gen + 1;
   dst->coord_gen = src->coord_gen;
   dst->adj_gen = 0;

@@ -105,6 +105,13 @@ typedef struct tds_mesh {
   ** (gather.h applies their isometries); symp: the group's parameters */
   int sym;
   double symp[2];
+  /* how the torus surface is drawn, exported and detorused (torus.h:
+  ** TDS_DRAW_RAW, _CONNECTED, _CLIPPED; Evolver's raw_cells, connected,
+  ** clipped); the clip box is the cell with its lower corner at origin
+  ** when has_origin is set (DISPLAY_ORIGIN), else at 0 */
+  int draw;
+  int has_origin;
+  double origin[3];
 
   uint64_t topo_gen;        /* bumped by every topology change */
   uint64_t coord_gen;       /* bumped by every coordinate change */

@@ -61,8 +61,8 @@ static const double novalue[3] = {0.55, 0.55, 0.55};
 
 /* tds_render_field; with mode MEAN_CURVATURE and hout non-NULL, *hout
 ** receives the per-vertex values (from ctx->alloc) (NaN where not measured). */
-static int field_values(tds_ctx *ctx, tds_surf *s, int mode, double *val,
-                        double **hout) {
+static int field_values(tds_ctx *ctx, tds_surf *s, int mode, double *val, double **hout,
+                        tds_surf *orig, const tds_torus_drawn *dv) {
   tds_mesh *m = &s->m;
   if (mode == TDS_RCOL_MEAN_CURVATURE) {
     if (tds_mesh_adjacency(m) != TDS_OK)
@@ -70,7 +70,9 @@ static int field_values(tds_ctx *ctx, tds_surf *s, int mode, double *val,
     double *h = tds_calloc(&ctx->alloc, (size_t)(m->nv > 0 ? m->nv : 1), sizeof *h);
     if (!h) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
     for (tds_id v = 0; v < m->nv; v++)
-      h[v] = (m->vflags[v] & TDS_DEAD) ? (double)NAN : tds_vertex_mean_curvature(s, v);
+      h[v] = (m->vflags[v] & TDS_DEAD) ? (double)NAN
+             : dv                      ? tds_torus_drawn_curvature(dv, orig, v)
+                                       : tds_vertex_mean_curvature(s, v);
     for (tds_id f = 0; f < m->nf; f++) {
       double sum = 0;
       int n = 0;
@@ -96,7 +98,7 @@ static int field_values(tds_ctx *ctx, tds_surf *s, int mode, double *val,
 }
 
 int tds_render_field(tds_ctx *ctx, tds_surf *s, int mode, double *val) {
-  return field_values(ctx, s, mode, val, NULL);
+  return field_values(ctx, s, mode, val, NULL, NULL, NULL);
 }
 
 static int is_field(int mode) {
@@ -272,18 +274,10 @@ static void paint_facets(cairo_t *cr, const rfacet *rf, int32_t n, int smooth,
   }
 }
 
-int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
-                   const char *path, tds_render_info *info) {
-  if (s->str) return tds_render_strings(ctx, s, o, path, info); /* edges, not facets */
-  if (s->m.torus) { /* each facet unwrapped, never an edge across the cell */
-    tds_surf view;
-    int vrc = tds_torus_view(ctx, s, &view);
-    if (vrc == TDS_OK) {
-      vrc = tds_render_png(ctx, &view, o, path, info);
-      tds_torus_view_free(&view);
-    }
-    return vrc;
-  }
+/* The picture of s; for a torus surface s is its drawn mesh (dv), whose
+** vertices have the curvature of those they are drawn from in orig. */
+static int render_drawn(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o, const char *path,
+                        tds_render_info *info, tds_surf *orig, const tds_torus_drawn *dv) {
   tds_mesh *m = &s->m;
   tds_render_info in;
   memset(&in, 0, sizeof in);
@@ -308,7 +302,7 @@ int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
     return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
   }
   double *h = NULL, (*vn)[3] = NULL; /* smooth: vertex k1+k2 and normals */
-  rc = field ? field_values(ctx, s, o->color, val, o->smooth ? &h : NULL) : TDS_OK;
+  rc = field ? field_values(ctx, s, o->color, val, o->smooth ? &h : NULL, orig, dv) : TDS_OK;
   if (rc == TDS_OK && o->smooth) {
     vn = tds_calloc(&ctx->alloc, (size_t)(m->nv > 0 ? m->nv : 1), sizeof *vn);
     if (!vn) rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory");
@@ -438,4 +432,16 @@ int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
   if (o->color == TDS_RCOL_BODY) in.nbody_colors = tds_mesh_count(m, TDS_BODY);
   if (info) *info = in;
   return TDS_OK;
+}
+
+int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
+                   const char *path, tds_render_info *info) {
+  if (s->str) return tds_render_strings(ctx, s, o, path, info); /* edges, not facets */
+  if (!s->m.torus) return render_drawn(ctx, s, o, path, info, NULL, NULL);
+  tds_torus_drawn view; /* as drawn: no edge across the cell */
+  int rc = tds_torus_view(ctx, s, &view);
+  if (rc != TDS_OK) return rc;
+  rc = render_drawn(ctx, &view.s, o, path, info, s, &view);
+  tds_torus_view_free(&view);
+  return rc;
 }

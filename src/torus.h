@@ -105,25 +105,66 @@ int tds_torus_unsupported(tds_ctx *ctx, const char *what);
 ** vertex, a wrap out of range) leaves everything unchanged. */
 int tds_torus_wrap_vertex(tds_ctx *ctx, tds_surf *s, tds_id v, int32_t w);
 
-/* Evolver's detorus on a mesh: the torus model ends, each facet kept
-** where it is drawn from its first corner (raw cells): vertices it reaches
-** across the cell get copies there (attributes inherited), edges likewise;
-** elements no facet uses any more are removed. Bodies keep their facets
-** (their volumes are no longer closed: patch up as in Evolver). TDS_OK or
-** TDS_ENOMEM (nothing changed). */
-int tds_torus_detorus(tds_ctx *ctx, tds_mesh *m);
+/* How a torus surface is drawn (m->draw): each facet from its first
+** corner; each body's facets joined across the cell; or everything cut
+** to the clip box. */
+enum { TDS_DRAW_RAW = 0, TDS_DRAW_CONNECTED = 1, TDS_DRAW_CLIPPED = 2 };
+
+/* Evolver's detorus on a mesh: the torus model ends and the mesh becomes
+** what is drawn in m->draw's mode (Evolver's detorus likewise follows the
+** display mode):
+**   RAW: each facet where it is drawn from its first corner; vertices it
+**     reaches across the cell get copies there, edges likewise.
+**   CONNECTED: each body's facets edge-connected, the body moved by a
+**     lattice vector so the mean of its facets' corners lies in the clip
+**     box (translations only); a facet two bodies place apart is
+**     repeated, each copy keeping one body; facets of no body as RAW.
+**   CLIPPED (translations only): the RAW facets cut by the faces of the
+**     clip box and of its translates, each piece moved into the box;
+**     cut polygons are triangulated as fans.
+** Attributes are inherited; elements no facet uses any more are removed
+** (bare edges stay, unwrapped from their tail). Bodies keep their facets
+** (open, except connected bodies that do not wrap). If src is not NULL,
+** src[0] gets m->nv entries after the call, the vertex of the torus mesh
+** each vertex is (a copy of), or -1 for a point where a cut crossed an
+** edge, and src[1] m->nf entries, the facet each facet is drawn from (-1
+** for dead slots); free both with tds_free(&m->alloc, ...). TDS_OK,
+** TDS_ENOMEM or TDS_ERANGE (clipped under a group that rotates), with
+** nothing changed. */
+int tds_torus_detorus(tds_ctx *ctx, tds_mesh *m, int32_t *src[2]);
+
+/* The CLIPPED case of tds_torus_detorus (torus_clip.c). */
+int tds_torus_clip(tds_ctx *ctx, tds_mesh *m, int32_t *src[2]);
+
+/* Lattice coordinates c of point x (x = sum_i c_i period[i]). */
+void tds_torus_to_lattice(const tds_mesh *m, const double x[3], double c[3]);
+/* The clip box's lower corner in lattice coordinates (the box is lo to
+** lo + 1): at DISPLAY_ORIGIN, else at 0. (Evolver's manual calls the
+** origin the box's centre; Evolver 2.70 puts the corner there.) */
+void tds_torus_box(const tds_mesh *m, double lo[3]);
 
 /* Move every vertex into the unit cell (lattice coordinates in [0, 1))
 ** with tds_torus_wrap_vertex (Evolver's rewrap.cmd); *n gets how many
 ** moved. The volumes do not change (tds needs no volconst adjustment). */
 int tds_torus_rewrap(tds_ctx *ctx, tds_surf *s, int32_t *n);
 
-/* For exports and pictures: *view is a shallow copy of s (sharing its
-** model: parameters, constraints, quantities) whose mesh is a detorused
-** deep copy, so every facet is drawn unwrapped from its first corner and
-** no edge crosses the cell. Release with tds_torus_view_free (never
-** tds_surf_free). TDS_OK or TDS_ENOMEM. */
-int tds_torus_view(tds_ctx *ctx, const tds_surf *s, tds_surf *view);
-void tds_torus_view_free(tds_surf *view);
+/* For exports and pictures: the surface as drawn. s is a shallow copy of
+** the surface (sharing its model: parameters, constraints, quantities)
+** whose mesh is a detorused deep copy (tds_torus_detorus in the mesh's
+** draw mode), so no edge crosses the cell; vsrc and fsrc give, for each
+** vertex and facet slot of s.m, the vertex and facet of the surface it is
+** drawn from (vsrc -1 for a point made by clipping). */
+typedef struct tds_torus_drawn {
+  tds_surf s;
+  int32_t *vsrc, *fsrc;
+} tds_torus_drawn;
+/* TDS_OK, TDS_ENOMEM or TDS_ERANGE; release with tds_torus_view_free
+** (never tds_surf_free). Also brings s's vertex stars up to date (for
+** tds_torus_drawn_curvature). */
+int tds_torus_view(tds_ctx *ctx, tds_surf *s, tds_torus_drawn *view);
+void tds_torus_view_free(tds_torus_drawn *view);
+/* The mean curvature (tds_vertex_mean_curvature) of orig's vertex that
+** drawn vertex v is drawn from; NaN for a point made by clipping. */
+double tds_torus_drawn_curvature(const tds_torus_drawn *view, tds_surf *orig, tds_id v);
 
 #endif

@@ -59,36 +59,77 @@ static tds_id vcopy(tds_mesh *m, copies *c, tds_id v, int32_t w) {
   return n;
 }
 
-int tds_torus_detorus(tds_ctx *ctx, tds_mesh *m) {
-  if (!m->torus) return TDS_OK;
+void tds_torus_to_lattice(const tds_mesh *m, const double x[3], double c[3]) {
+  const double(*p)[3] = m->period;
+  double inv[3][3], det = 0; /* x = sum_i c_i period[i], so c = x P^-1 */
+  for (int i = 0; i < 3; i++) {
+    int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    for (int j = 0; j < 3; j++) {
+      int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      inv[j][i] = p[i1][j1] * p[i2][j2] - p[i1][j2] * p[i2][j1]; /* cofactor, transposed */
+    }
+  }
+  for (int j = 0; j < 3; j++) det += p[0][j] * inv[j][0];
+  for (int i = 0; i < 3; i++) c[i] = (x[0] * inv[0][i] + x[1] * inv[1][i] + x[2] * inv[2][i]) / det;
+}
+
+void tds_torus_box(const tds_mesh *m, double lo[3]) {
+  if (!m->has_origin) {
+    lo[0] = lo[1] = lo[2] = 0;
+    return;
+  }
+  tds_torus_to_lattice(m, m->origin, lo);
+}
+
+/* A facet as drawn: facet f with its first corner moved by wrap w,
+** keeping its bodies on the sides whose bit is set in keep (1 front,
+** 2 back). */
+typedef struct placed {
+  tds_id f;
+  int32_t w;
+  int keep;
+} placed;
+
+/* The mesh becomes the placed facets (each alive facet at least once):
+** the first placement of f is facet f, later ones are new facets; corners
+** are the vertices' copies at their wraps, edges likewise. */
+static int place(tds_ctx *ctx, tds_mesh *m, const placed *pl, int32_t npl, int32_t *src[2]) {
   int32_t nv = m->nv, ne = m->ne, nf = m->nf;
   tds_alloc *a = &m->alloc;
   copies cv = {0}, ce = {0};
-  int32_t *newfe = tds_malloc(a, (size_t)(3 * (nf > 0 ? nf : 1)) * sizeof *newfe);
+  size_t nc = (size_t)(3 * npl + ne);
+  int32_t *newfe = tds_malloc(a, (size_t)(3 * (npl > 0 ? npl : 1)) * sizeof *newfe);
+  tds_id(*ofb)[2] = tds_malloc(a, (size_t)(nf > 0 ? nf : 1) * sizeof *ofb);
   uint8_t *bare = tds_calloc(a, (size_t)(ne > 0 ? ne : 1), 1);
-  uint8_t *used = tds_calloc(a, (size_t)(nv + 3 * nf + ne + 1), 1);
-  int rc = newfe && bare && used ? TDS_OK : TDS_ENOMEM;
-  if (!rc) rc = copies_init(a, &cv, (size_t)(3 * nf + ne));
-  if (!rc) rc = copies_init(a, &ce, (size_t)(3 * nf + ne));
-  if (!rc && (tds_mesh_reserve(m, TDS_VERTEX, nv + 3 * nf + ne) ||
-              tds_mesh_reserve(m, TDS_EDGE, ne + 3 * nf)))
+  uint8_t *taken = tds_calloc(a, (size_t)(nf > 0 ? nf : 1), 1);
+  uint8_t *used = tds_calloc(a, (size_t)nv + nc + 1, 1);
+  int rc = newfe && ofb && bare && taken && used ? TDS_OK : TDS_ENOMEM;
+  if (!rc) rc = copies_init(a, &cv, nc);
+  if (!rc) rc = copies_init(a, &ce, nc);
+  if (!rc && (tds_mesh_reserve(m, TDS_VERTEX, nv + (int32_t)nc) ||
+              tds_mesh_reserve(m, TDS_EDGE, ne + 3 * npl) ||
+              tds_mesh_reserve(m, TDS_FACET, nf + npl)))
     rc = TDS_ENOMEM;
-  if (rc) {
-    tds_free(a, newfe);
-    tds_free(a, bare);
-    tds_free(a, used);
-    copies_free(a, &cv);
-    copies_free(a, &ce);
-    return tds_seterr(ctx, rc, "out of memory");
+  if (!rc && src) {
+    src[0] = src[1] = NULL;
+    if (!(src[0] = tds_malloc(a, ((size_t)nv + nc + 1) * sizeof *src[0])) ||
+        !(src[1] = tds_malloc(a, ((size_t)nf + (size_t)npl + 1) * sizeof *src[1])))
+      rc = TDS_ENOMEM;
   }
-  /* every facet as it is drawn from its first corner (raw cells) */
-  for (tds_id f = 0; f < nf; f++) {
-    if (!tds_alive(m->fflags, f)) continue;
+  if (rc) {
+    if (src) {
+      tds_free(a, src[0]);
+      tds_free(a, src[1]);
+    }
+    goto done;
+  }
+  for (int32_t i = 0; i < npl; i++) {
+    tds_id f = pl[i].f;
     for (int k = 0; k < 3; k++) {
       int32_t oe = m->fe[f][k];
       tds_id e = TDS_OID(oe);
       int ct = TDS_OREV(oe) ? (k + 1) % 3 : k; /* corner of e's stored tail */
-      int32_t wt = tds_torus_corner_wrap(m, f, ct);
+      int32_t wt = tds_wrap_mul(m, pl[i].w, tds_torus_corner_wrap(m, f, ct));
       tds_id ne2 = e;
       if (wt || m->ewrap[e]) {
         uint32_t h = slot(&ce, e, wt);
@@ -104,13 +145,26 @@ int tds_torus_detorus(tds_ctx *ctx, tds_mesh *m) {
           ce.id[h] = ne2;
         }
       }
-      newfe[3 * f + k] = TDS_OREF(ne2, TDS_OREV(oe));
+      newfe[3 * i + k] = TDS_OREF(ne2, TDS_OREV(oe));
     }
   }
   for (tds_id e = 0; e < ne; e++) bare[e] = tds_alive(m->eflags, e) && m->eside[e] == TDS_NONE;
-  for (tds_id f = 0; f < nf; f++)
-    if (tds_alive(m->fflags, f) && memcmp(newfe + 3 * f, m->fe[f], 3 * sizeof *newfe))
-      tds_mesh_set_facet(m, f, newfe + 3 * f);
+  memcpy(ofb, m->fb, (size_t)nf * sizeof *ofb);
+  if (src)
+    for (tds_id f = 0; f < nf + npl; f++) src[1][f] = f < nf && tds_alive(m->fflags, f) ? f : -1;
+  for (int32_t i = 0; i < npl; i++) {
+    tds_id f = pl[i].f, g = f;
+    if (!taken[f]) {
+      taken[f] = 1;
+      if (memcmp(newfe + 3 * i, m->fe[f], 3 * sizeof *newfe)) tds_mesh_set_facet(m, f, newfe + 3 * i);
+    } else {
+      g = tds_mesh_add_facet(m, newfe + 3 * i);
+      tds_facet_inherit(m, g, f);
+      if (src) src[1][g] = f;
+    }
+    for (int side = 0; side < 2; side++)
+      m->fb[g][side] = pl[i].keep >> side & 1 ? ofb[f][side] : TDS_NONE;
+  }
   /* bare edges reach their head's copy; edges no facet uses any more go */
   for (tds_id e = 0; e < ne; e++) {
     if (!tds_alive(m->eflags, e)) continue;
@@ -127,15 +181,216 @@ int tds_torus_detorus(tds_ctx *ctx, tds_mesh *m) {
   for (tds_id v = 0; v < nv; v++)
     if (tds_alive(m->vflags, v) && !used[v] && !(m->vflags[v] & TDS_BARE))
       tds_mesh_kill(m, TDS_VERTEX, v);
-  tds_free(a, used);
-  tds_free(a, newfe);
-  tds_free(a, bare);
-  copies_free(a, &cv);
-  copies_free(a, &ce);
+  if (src) {
+    for (tds_id v = 0; v < m->nv; v++) src[0][v] = v < nv && tds_alive(m->vflags, v) ? v : -1;
+    for (uint32_t h = 0; h <= cv.mask; h++)
+      if (cv.key[h] != -1) src[0][cv.id[h]] = cv.key[h];
+  }
   tds_mesh_set_torus(m, 0);
   m->topo_gen++;
   m->coord_gen++;
-  return TDS_OK;
+done:
+  tds_free(a, used);
+  tds_free(a, taken);
+  tds_free(a, newfe);
+  tds_free(a, ofb);
+  tds_free(a, bare);
+  copies_free(a, &cv);
+  copies_free(a, &ce);
+  return rc ? tds_seterr(ctx, rc, "out of memory") : TDS_OK;
+}
+
+#define TAU 6.283185307179586
+
+/* The wrap of the stored tail of facet f's side k, f placed at wrap w. */
+static int32_t tail_wrap(const tds_mesh *m, tds_id f, int k, int32_t w) {
+  int ct = TDS_OREV(m->fe[f][k]) ? (k + 1) % 3 : k;
+  return tds_wrap_mul(m, w, tds_torus_corner_wrap(m, f, ct));
+}
+
+/* The angle about edge e (from its stored tail, counterclockwise seen
+** from its head) at which the facet of side sd leaves the edge. */
+static double side_angle(const tds_mesh *m, int32_t sd, const double u[3], const double a[3],
+                         const double b[3]) {
+  tds_id g = sd / 3;
+  int k = sd % 3, ct = TDS_OREV(m->fe[g][k]) ? (k + 1) % 3 : k;
+  double c[3][3], d[3];
+  tds_torus_facet_at(m, g, ct, c); /* e's tail at its stored place */
+  int far = 3 - k - (k + 1) % 3;   /* the corner off the edge */
+  for (int j = 0; j < 3; j++) d[j] = c[far][j] - c[ct][j];
+  double t = d[0] * u[0] + d[1] * u[1] + d[2] * u[2];
+  for (int j = 0; j < 3; j++) d[j] -= t * u[j];
+  return atan2(d[0] * b[0] + d[1] * b[1] + d[2] * b[2], d[0] * a[0] + d[1] * a[1] + d[2] * a[2]);
+}
+
+/* The facet side (2 g + t) of body b next to side s of facet f across the
+** edge of f's side k: the facets on the edge in order about it, the one
+** bounding the same wedge. A facet's normal points away from its front
+** body (the body that lists it +), so a facet running along the edge has
+** its front body clockwise of it, seen from the head. -1 if there is
+** none or the wedge's body is not b. */
+static int32_t across(const tds_mesh *m, tds_id f, int s, int k, tds_id b) {
+  tds_id e = TDS_OID(m->fe[f][k]);
+  double u[3], a[3], c[3];
+  tds_corners C;
+  tds_gather_edge(m, TDS_OREF(e, 0), &C);
+  for (int j = 0; j < 3; j++) u[j] = C.x[1][j] - C.x[0][j];
+  double l = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+  if (!(l > 0)) return -1;
+  for (int j = 0; j < 3; j++) u[j] /= l;
+  int i0 = fabs(u[0]) < fabs(u[1]) ? (fabs(u[0]) < fabs(u[2]) ? 0 : 2) : (fabs(u[1]) < fabs(u[2]) ? 1 : 2);
+  double p[3] = {0, 0, 0}; /* a and c: a right-handed frame across u */
+  p[i0] = 1;
+  double t = p[0] * u[0] + p[1] * u[1] + p[2] * u[2];
+  for (int j = 0; j < 3; j++) a[j] = p[j] - t * u[j];
+  l = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  for (int j = 0; j < 3; j++) a[j] /= l;
+  c[0] = u[1] * a[2] - u[2] * a[1];
+  c[1] = u[2] * a[0] - u[0] * a[2];
+  c[2] = u[0] * a[1] - u[1] * a[0];
+  int32_t me = 3 * f + k;
+  double phi = side_angle(m, me, u, a, c);
+  int fwd = !TDS_OREV(m->fe[f][k]);
+  int after = (s == 1) == fwd; /* the wedge is counterclockwise of f */
+  int32_t best = -1;
+  double bestd = 0;
+  int32_t s0 = m->eside[e], sd = s0;
+  do { /* the nearest other facet that way round */
+    if (sd != me) {
+      double d = side_angle(m, sd, u, a, c) - phi;
+      if (!after) d = -d;
+      while (d <= 0) d += TAU;
+      while (d > TAU) d -= TAU;
+      if (best < 0 || d < bestd) {
+        best = sd;
+        bestd = d;
+      }
+    }
+    sd = m->side_next[sd];
+  } while (sd != s0);
+  if (best < 0) return -1;
+  tds_id g = best / 3;
+  int gfwd = !TDS_OREV(m->fe[g][best % 3]);
+  int tg = after ? (gfwd ? 0 : 1) : (gfwd ? 1 : 0);
+  return m->fb[g][tg] == b ? 2 * g + tg : -1;
+}
+
+/* Move the placed facets list[0..n) (facet sides 2 f + s, at wrap[f]) by
+** the lattice vector that brings the mean of their corners into the clip
+** box. */
+static void recentre(const tds_mesh *m, const int32_t *list, int32_t n, int32_t *wrap) {
+  double sum[3] = {0, 0, 0}, lo[3], c[3];
+  for (int32_t i = 0; i < n; i++) {
+    double d[3], x[3];
+    tds_wrap_vec(m->period, wrap[list[i]], d);
+    for (int k = 0; k < 3; k++) {
+      tds_torus_facet_corner(m, list[i] / 2, k, x);
+      for (int j = 0; j < 3; j++) sum[j] += x[j] + d[j];
+    }
+  }
+  for (int j = 0; j < 3; j++) sum[j] /= 3.0 * n;
+  tds_torus_to_lattice(m, sum, c);
+  tds_torus_box(m, lo);
+  int k[3];
+  for (int i = 0; i < 3; i++) {
+    double s = -floor(c[i] - lo[i]);
+    if (!(fabs(s) < TDS_WRAP_MAX / 2)) return; /* far away or not finite: as placed */
+    k[i] = (int)s;
+  }
+  int32_t shift = tds_wrap_pack(k);
+  for (int32_t i = 0; i < n; i++)
+    if (tds_wrap_overflows(shift, wrap[list[i]])) return;
+  for (int32_t i = 0; i < n; i++) wrap[list[i]] = tds_wrap_add(shift, wrap[list[i]]);
+}
+
+/* The placements of CONNECTED (tds_torus_detorus). A body's boundary is
+** made of facet sides (2 f + s: facet f seen from body fb[f][s]); breadth
+** first from its lowest side, across each edge to the side bounding the
+** same wedge, at the wrap that makes the edge coincide. A facet with the
+** same body on both sides is placed twice; a facet whose two sides land
+** at the same wrap once. *out gets at most 2 nf placements. */
+static int connected(tds_ctx *ctx, tds_mesh *m, placed **out, int32_t *nout) {
+  int32_t nf = m->nf;
+  tds_alloc *a = &m->alloc;
+  size_t n2 = 2 * (size_t)(nf > 0 ? nf : 1);
+  placed *pl = tds_malloc(a, n2 * sizeof *pl);
+  int32_t *wrap = tds_malloc(a, n2 * sizeof *wrap);   /* per facet side */
+  int32_t *first = tds_malloc(a, n2 / 2 * sizeof *first); /* f's first placement */
+  uint8_t *seen = tds_calloc(a, n2, 1);
+  int32_t *queue = tds_malloc(a, n2 * sizeof *queue);
+  if (!pl || !wrap || !first || !seen || !queue) {
+    tds_free(a, pl);
+    pl = NULL;
+    goto done;
+  }
+  int32_t npl = 0;
+  for (tds_id f = 0; f < nf; f++) first[f] = -1;
+  for (tds_id b = 0; b < m->nb; b++) {
+    if (!tds_alive(m->bflags, b)) continue;
+    for (int32_t n0 = 0; n0 < 2 * nf; n0++) {
+      tds_id f0 = n0 / 2;
+      if (seen[n0] || !tds_alive(m->fflags, f0) || m->fb[f0][n0 % 2] != b) continue;
+      int32_t head = 0, tail = 0; /* one edge-connected piece of the body */
+      queue[tail++] = n0;
+      seen[n0] = 1;
+      wrap[n0] = 0;
+      while (head < tail) {
+        int32_t n = queue[head++];
+        tds_id f = n / 2;
+        for (int k = 0; k < 3; k++) {
+          int32_t g2 = across(m, f, n % 2, k, b);
+          if (g2 < 0 || seen[g2]) continue;
+          int32_t wt = tail_wrap(m, f, k, wrap[n]);
+          tds_id g = g2 / 2;
+          int kg = 0; /* g's side on the same edge */
+          while (kg < 2 && TDS_OID(m->fe[g][kg]) != TDS_OID(m->fe[f][k])) kg++;
+          seen[g2] = 1;
+          wrap[g2] = tds_wrap_mul(m, wt, tds_wrap_inv(m, tail_wrap(m, g, kg, 0)));
+          queue[tail++] = g2;
+        }
+      }
+      if (!tds_mesh_rotates(m)) recentre(m, queue, tail, wrap);
+      for (int32_t i = 0; i < tail; i++) {
+        int32_t n = queue[i];
+        tds_id f = n / 2;
+        int bits = 1 << (n % 2);
+        if (first[f] >= 0 && pl[first[f]].w == wrap[n]) {
+          pl[first[f]].keep |= bits;
+          continue;
+        }
+        if (first[f] < 0) first[f] = npl;
+        pl[npl++] = (placed){f, wrap[n], bits};
+      }
+    }
+  }
+  for (tds_id f = 0; f < nf; f++) /* on no body: as drawn raw */
+    if (tds_alive(m->fflags, f) && first[f] < 0) pl[npl++] = (placed){f, 0, 3};
+  *nout = npl;
+done:
+  tds_free(a, wrap);
+  tds_free(a, first);
+  tds_free(a, seen);
+  tds_free(a, queue);
+  *out = pl;
+  return pl ? TDS_OK : tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+}
+
+int tds_torus_detorus(tds_ctx *ctx, tds_mesh *m, int32_t *src[2]) {
+  if (!m->torus) return TDS_OK;
+  if (m->draw == TDS_DRAW_CLIPPED) return tds_torus_clip(ctx, m, src);
+  placed *pl = NULL;
+  int32_t npl = 0;
+  int rc = m->draw == TDS_DRAW_CONNECTED ? connected(ctx, m, &pl, &npl) : TDS_OK;
+  if (rc) return rc;
+  if (m->draw != TDS_DRAW_CONNECTED) {
+    pl = tds_malloc(&m->alloc, (size_t)(m->nf > 0 ? m->nf : 1) * sizeof *pl);
+    if (!pl) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
+    for (tds_id f = 0; f < m->nf; f++)
+      if (tds_alive(m->fflags, f)) pl[npl++] = (placed){f, 0, 3};
+  }
+  rc = place(ctx, m, pl, npl, src);
+  tds_free(&m->alloc, pl);
+  return rc;
 }
 
 int tds_torus_rewrap(tds_ctx *ctx, tds_surf *s, int32_t *n) {
@@ -145,26 +400,14 @@ int tds_torus_rewrap(tds_ctx *ctx, tds_surf *s, int32_t *n) {
   if (tds_mesh_rotates(m))
     return tds_seterr(ctx, TDS_ESYNTAX, "rewrap is not supported yet with SYMMETRY_GROUP \"%s\"",
                       tds_sym_name(m->sym));
-  /* lattice coordinates: x = sum_i c_i period[i], c = x P^-1 */
-  const double (*p)[3] = m->period;
-  double inv[3][3], det = 0;
-  for (int i = 0; i < 3; i++) {
-    int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-    for (int j = 0; j < 3; j++) {
-      int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-      inv[j][i] = p[i1][j1] * p[i2][j2] - p[i1][j2] * p[i2][j1]; /* cofactor, transposed */
-    }
-  }
-  for (int j = 0; j < 3; j++) det += p[0][j] * inv[j][0];
   for (tds_id v = 0; v < m->nv; v++) {
     if (!tds_alive(m->vflags, v)) continue;
     int k[3];
     int any = 0;
+    double c[3];
+    tds_torus_to_lattice(m, m->x[v], c);
     for (int i = 0; i < 3; i++) {
-      double c = 0;
-      for (int j = 0; j < 3; j++) c += m->x[v][j] * inv[j][i];
-      c /= det;
-      k[i] = -(int)floor(c);
+      k[i] = -(int)floor(c[i]);
       if (k[i] > 100 || k[i] < -100)
         return tds_seterr(ctx, TDS_ERANGE, "rewrap: vertex %d is %d cells away", (int)v + 1, -k[i]);
       any |= k[i] != 0;
@@ -175,34 +418,4 @@ int tds_torus_rewrap(tds_ctx *ctx, tds_surf *s, int32_t *n) {
     ++*n;
   }
   return TDS_OK;
-}
-
-int tds_torus_view(tds_ctx *ctx, const tds_surf *s, tds_surf *view) {
-  *view = *s;
-  /* derived arrays of s are not shared: the view builds its own */
-  view->tlift = NULL;
-  view->tlift_cap = 0;
-  view->tlift_gen = 0;
-  view->tplan = NULL;
-  view->orig_start = view->orig_facets = NULL;
-  view->orig_gen = 0;
-  view->cg_dir = view->cg_prev = NULL;
-  view->cg_nv = 0;
-  tds_mesh_init(&view->m);
-  view->m.alloc = s->m.alloc;
-  if (tds_mesh_copy(&view->m, &s->m) != TDS_OK) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
-  int rc = tds_torus_detorus(ctx, &view->m);
-  if (rc != TDS_OK) tds_mesh_free(&view->m);
-  return rc;
-}
-
-void tds_torus_view_free(tds_surf *view) {
-  tds_alloc a = view->m.alloc;
-  tds_mesh_free(&view->m);
-  tds_free(&a, view->tlift);
-  tds_free(&a, view->tplan);
-  tds_free(&a, view->orig_start);
-  tds_free(&a, view->orig_facets);
-  tds_free(&a, view->cg_dir);
-  tds_free(&a, view->cg_prev);
 }

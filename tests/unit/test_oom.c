@@ -315,7 +315,8 @@ typedef struct opcase {
                         eigenvalues (ritz: 3 lowest), 'S' saddle, 'i'
                         inverse iteration (eigenprobe(0.5, 20)), 'A'
                         addload of the same file, 'R' replace_load, 'T'
-                        replacing the view transforms, 'D' detorus, 'G'
+                        replacing the view transforms, 'D' detorus ('K'
+                        connected, 'C' clipped), 'G'
                         g with Evolver's line search, 'W' every vertex's
                         vertex_normal (hessian_normal_one), 'P' pg's
                         curvature polish (tds_pg_polish) */
@@ -452,7 +453,9 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
     s->pop_to_face = c->op == 'F';
     return tds_pop(ctx, s, &n, &nv);
   }
-  case 'D': return tds_torus_detorus(ctx, &s->m);
+  case 'C': /* detorus as drawn clipped, or connected */
+  case 'K': s->m.draw = c->op == 'C' ? TDS_DRAW_CLIPPED : TDS_DRAW_CONNECTED; /* fall through */
+  case 'D': return tds_torus_detorus(ctx, &s->m, NULL);
   default: return tds_datafile_dump(ctx, s, dump_path);
   }
 }
@@ -782,9 +785,10 @@ static void oom_addload(void) {
   sweep_all('T', 0, 0);
 }
 /* The torus model: twointor.fe (wraps, lifts of the volumes, TORUS_FILLED)
-** through load, r, g, u, V, dump, the Hessian, export and detorus. */
+** through load, r, g, u, V, dump, the Hessian, export and detorus (raw,
+** clipped, connected). */
 static void oom_torus(void) {
-  const char ops[] = "LrguVdhxD";
+  const char ops[] = "LrguVdhxDCK";
   for (int i = 0; ops[i] && !check_failed_; i++) {
     opcase c = {EX "twointor.fe", ops[i] == 'L' || ops[i] == 'r' ? 0 : 1,
                 ops[i] == 'u' || ops[i] == 'V' ? 2 : 0, ops[i]};

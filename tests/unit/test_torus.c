@@ -169,7 +169,7 @@ static void detorus_keeps_area(void) {
   REQUIRE_OK(&ctx, tds_refine(&ctx, &s, NULL, NULL));
   REQUIRE_OK(&ctx, tds_surf_update(&ctx, &s));
   double a0 = s.area;
-  REQUIRE_OK(&ctx, tds_torus_detorus(&ctx, &s.m));
+  REQUIRE_OK(&ctx, tds_torus_detorus(&ctx, &s.m, NULL));
   CHECK(s.m.torus == 0 && s.m.ewrap == NULL); /* no wraps left */
   CHECK_MESH(&ctx, &s.m);
   REQUIRE_OK(&ctx, tds_surf_update(&ctx, &s));
