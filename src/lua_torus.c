@@ -112,11 +112,15 @@ static int l_rewrap(lua_State *L) {
 
 static int l_detorus(lua_State *L) {
   tds_state *st = TDS_STATE(L);
-  if (st->s.str && st->s.m.torus && st->s.m.draw != TDS_DRAW_RAW)
-    return tds_lua_error(L, "detorus: %s mode is not supported yet in the string model "
-                            "(raw_cells detoruses each cell as drawn from its first vertex)",
-                         st->s.m.draw == TDS_DRAW_CLIPPED ? "clipped" : "connected");
+  int draw = st->s.m.draw;
+  if (st->s.str && st->s.m.torus && draw != TDS_DRAW_RAW) { /* films only, so far */
+    tds_warnf(&st->ctx, "detorus: %s mode is not supported yet in the string model: "
+                        "raw cells (each cell as drawn from its first vertex)\n",
+              draw == TDS_DRAW_CLIPPED ? "clipped" : "connected");
+    st->s.m.draw = TDS_DRAW_RAW;
+  }
   int rc = tds_torus_detorus(&st->ctx, &st->s.m, NULL);
+  st->s.m.draw = draw;
   if (rc != TDS_OK) return tds_lua_fail(L, st, rc);
   tds_surf_update(&st->ctx, &st->s);
   return 0;
