@@ -277,11 +277,26 @@ function wrap_vertex(v, w) tds.wrap_vertex(v, w) end
 function torus_rewrap() return tds.rewrap() end
 function detorus() tds.detorus() end
 -- torus_display([mode]): "raw", "connected" or "clipped", how pictures,
--- exports and detorus draw a torus surface; display_origin({x, y, z})
--- centres the clip box there (false: the cell at 0). Both return the
--- previous setting.
+-- exports and detorus draw a torus surface; returns the previous mode.
 function torus_display(mode) return tds.torus_display(mode) end
-function display_origin(o) return tds.display_origin(o) end
+-- display_origin[i]: Evolver's array, the clip box's lower corner (0 until
+-- set; tds.display_origin(false) unsets it).
+display_origin = setmetatable({}, {
+  __index = function(_, i)
+    local o = tds.display_origin()
+    return math.type(i) and i >= 1 and i <= 3 and (o and o[i] or 0.0) or nil
+  end,
+  __newindex = function(_, i, v)
+    if not (math.type(i) and i >= 1 and i <= 3) then
+      error(("display_origin[%s]: the index is 1, 2 or 3"):format(tostring(i)), 2)
+    end
+    if type(v) ~= "number" then error("display_origin: a coordinate is a number", 2) end
+    local o = tds.display_origin() or {0.0, 0.0, 0.0}
+    o[i] = v
+    tds.display_origin(o)
+  end,
+  __len = function() return 3 end,
+})
 -- facet_crosscut(f, tail, head): split a string-model cell (doc/string.md)
 function facet_crosscut(f, t, h) return tds.facet_crosscut(f, t, h) end
 vertex_average = V
