@@ -132,7 +132,12 @@ static int l_torus_display(lua_State *L) {
   tds_mesh *m = &TDS_STATE(L)->s.m;
   int was = m->draw;
   if (!lua_isnoneornil(L, 1)) {
-    int d = luaL_checkoption(L, 1, NULL, draw_names);
+    const char *want = lua_type(L, 1) == LUA_TSTRING ? lua_tostring(L, 1) : NULL;
+    int d = 0;
+    while (draw_names[d] && (!want || strcmp(draw_names[d], want))) d++;
+    if (!draw_names[d])
+      return tds_lua_error(L, "torus_display: the mode is \"raw\", \"connected\" or \"clipped\", not %s",
+                           want ? want : luaL_typename(L, 1));
     if (d == TDS_DRAW_CLIPPED && tds_mesh_rotates(m))
       return tds_lua_error(L, "clipped: SYMMETRY_GROUP \"%s\" has no unit cell to clip to "
                               "(use raw_cells or connected)", tds_sym_name(m->sym));
