@@ -20,6 +20,7 @@
 --   PAPER_NEWTON=0       pg{ newton = false } (no Newton preconditioning)
 --   PAPER_MOMENTUM=b     pg{ momentum = b } (the warm steps' momentum)
 --   PAPER_POLISH=1       pg_polish{} after pg (the curvature polish)
+--   PAPER_POLISH_LOSS=b  its max_loss (degrees; default pg_polish's, 1)
 --   PAPER_ANALYSE=1      also print where the curvature error sits
 --                        (C.breakdown)
 -- and prints the metrics and one machine-readable line starting RESULT.
@@ -211,7 +212,7 @@ function C.run(exp)
     if env("PAPER_POLISH") == "1" then
       -- the curvature polish (doc/method.md): r and the volumes are the
       -- polished mesh's; its plain s = 0 iterations are counted apart
-      local p = pg_polish{}
+      local p = pg_polish{ max_loss = tonumber(env("PAPER_POLISH_LOSS") or "") }
       res.polish_iterations = p.iterations
       res.polish_cpu = p.cpu_seconds
       res.r = p.r
