@@ -138,13 +138,7 @@ int tds_torus_detorus(tds_ctx *ctx, tds_mesh *m) {
   return TDS_OK;
 }
 
-int tds_torus_rewrap(tds_ctx *ctx, tds_surf *s, int32_t *n) {
-  tds_mesh *m = &s->m;
-  *n = 0;
-  if (!m->torus) return tds_seterr(ctx, TDS_ERANGE, "rewrap needs the torus model (TORUS)");
-  if (tds_mesh_rotates(m))
-    return tds_seterr(ctx, TDS_ESYNTAX, "rewrap is not supported yet with SYMMETRY_GROUP \"%s\"",
-                      tds_sym_name(m->sym));
+void tds_torus_cell_offset(const tds_mesh *m, const double x[3], int k[3]) {
   /* lattice coordinates: x = sum_i c_i period[i], c = x P^-1 */
   const double (*p)[3] = m->period;
   double inv[3][3], det = 0;
@@ -156,15 +150,27 @@ int tds_torus_rewrap(tds_ctx *ctx, tds_surf *s, int32_t *n) {
     }
   }
   for (int j = 0; j < 3; j++) det += p[0][j] * inv[j][0];
+  for (int i = 0; i < 3; i++) {
+    double c = 0;
+    for (int j = 0; j < 3; j++) c += x[j] * inv[j][i];
+    c /= det;
+    k[i] = isfinite(c) && fabs(c) < 1e6 ? -(int)floor(c) : 0;
+  }
+}
+
+int tds_torus_rewrap(tds_ctx *ctx, tds_surf *s, int32_t *n) {
+  tds_mesh *m = &s->m;
+  *n = 0;
+  if (!m->torus) return tds_seterr(ctx, TDS_ERANGE, "rewrap needs the torus model (TORUS)");
+  if (tds_mesh_rotates(m))
+    return tds_seterr(ctx, TDS_ESYNTAX, "rewrap is not supported yet with SYMMETRY_GROUP \"%s\"",
+                      tds_sym_name(m->sym));
   for (tds_id v = 0; v < m->nv; v++) {
     if (!tds_alive(m->vflags, v)) continue;
     int k[3];
+    tds_torus_cell_offset(m, m->x[v], k);
     int any = 0;
     for (int i = 0; i < 3; i++) {
-      double c = 0;
-      for (int j = 0; j < 3; j++) c += m->x[v][j] * inv[j][i];
-      c /= det;
-      k[i] = -(int)floor(c);
       if (k[i] > 100 || k[i] < -100)
         return tds_seterr(ctx, TDS_ERANGE, "rewrap: vertex %d is %d cells away", (int)v + 1, -k[i]);
       any |= k[i] != 0;
