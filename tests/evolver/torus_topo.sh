@@ -23,6 +23,7 @@
 #   vertices where it does without a torus, which differs from Evolver's
 #   (doc/commands.md: up to 3e-4 just after the pop);
 # * dumps after t and o read back by Evolver: counts, energy 1e-12;
+# * t under SYMMETRY_GROUP "rotate" (a sixth of a band): counts, energy;
 # * a neighbourhood that wraps round the torus (the Kelvin cell cut down
 #   to 20 vertices) refuses o with a message and leaves the surface as it
 #   was.
@@ -104,6 +105,20 @@ $P"
 kcompare torus_topo/kelvin/t0.12 "$tmp/kelvin.fe" 1e-12 "$START
 t 0.12
 $P"
+
+# t under a group that rotates (wraps composed in the group's order): a
+# sixth of a band (tests/evolver/torus/band6.fe) refined twice, its free
+# vertices moved; counts, energy 1e-12, and after g 5.
+cp "$ROOT/tests/evolver/torus/band6.fe" "$tmp/band6.fe"
+for c in 0.1 0.13 0.16; do
+  kcompare "torus_topo/band6/t$c" "$tmp/band6.fe" 1e-12 "r
+r
+foreach vertex vv where not vv.fixed do { vv.x := vv.x + 0.02*sin(vv.id*12.9898); vv.y := vv.y + 0.02*sin(vv.id*78.233); vv.z := vv.z + 0.02*sin(vv.id*37.719) }
+t $c
+$P
+g 5
+$P"
+done
 
 # Pops, from Evolver's dump after t 0.18 (at that cutoff the programs'
 # t part: Evolver keeps the other of two merging edges in some collapses,
