@@ -510,8 +510,10 @@ static int pop_one(tds_surf *s, tds_id e, int32_t *npulled);
 int tds_pop_one_edge(tds_surf *s, tds_id e, int32_t *npulled) {
   tds_mesh *m = &s->m;
   *npulled = 0;
-  if (!m->torus || !tds_alive(m->eflags, e) || tds_edge_valence(m, e) <= 3)
-    return pop_one(s, e, npulled);
+  if (!m->torus || !tds_alive(m->eflags, e) || tds_edge_valence(m, e) <= 3 ||
+      (m->eflags[e] & TDS_FIXED) || (m->econ[e] & ~tds_surf_global_cons(s)) ||
+      m->ebdry[e] != TDS_NONE || m->ev[e][0] == m->ev[e][1])
+    return pop_one(s, e, npulled); /* (nothing to unwrap: it does not pop) */
   if (tds_mesh_adjacency(m) != TDS_OK) return TDS_ENOMEM;
   tds_id seed[64];
   int ns = chain_seeds(s, e, seed, 64);
