@@ -931,7 +931,11 @@ B.o = function()
   flush()
   if tds.dimensions() == 1 then tds.string_pop(); return end -- the string model's o
   local ok, err = pcall(tds.pop, nil)
-  if not ok then err = tostring(err); fail("o: " .. (err:match("not supported.*") or err)) end
+  if not ok then
+    -- the message without its location and command (fail adds both)
+    err = tostring(err):gsub("^[^\n]-:%d+: ", ""):gsub("^o: ", "")
+    fail("o: " .. (err:match("not supported.*") or err))
+  end
 end
 B.renumber_all = function() flush(); tds.renumber_all() end
 B.rebody = function() flush(); tds.rebody() end

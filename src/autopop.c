@@ -118,18 +118,6 @@ int tds_autopop(tds_ctx *ctx, tds_surf *s, const double (*vel)[3], int32_t nvel,
   int32_t *mix = NULL, nmix = 0, cap = 0;
   if (!(dt > 0)) return TDS_OK;
   double L = sqrt(2 * dt);
-  /* films in the torus: the edge collapses and facet deletions below are
-  ** t's and delete's, which the torus does not have yet (they left bodies
-  ** whose facets no longer tile the cell); strings have them */
-  if (m->torus && !s->str) {
-    for (tds_id e = 0; e < m->ne; e++)
-      if (tds_alive(m->eflags, e) && short_edge(m, vel, nvel, dt, e, L))
-        return tds_torus_unsupported(ctx, "autopop on a soap film");
-    for (tds_id f = 0; f < m->nf; f++)
-      if (tds_alive(m->fflags, f) && small_facet(m, vel, nvel, dt, f, L))
-        return tds_torus_unsupported(ctx, "autopop on a soap film");
-    return TDS_OK;
-  }
   int32_t ne0 = m->ne, nf0 = m->nf, cnt = 0;
   uint8_t *flag = NULL;
   if (!s->immediate_autopop) { /* find all first */

@@ -101,7 +101,6 @@ static int snap_run(tds_ctx *ctx, tds_surf *s, kind_fn fn, int kind, const uint8
 }
 
 int tds_dissolve(tds_ctx *ctx, tds_surf *s, int kind, const uint8_t *sel, int32_t *n) {
-  if (s->m.torus) return tds_torus_unsupported(ctx, "dissolve");
   return snap_run(ctx, s, dissolve, kind, sel, n);
 }
 

@@ -6,7 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gather.h"
 #include "snap.h"
+#include "symgroup.h"
 
 /* Union-find root with path halving. */
 static int root(int *p, int i) {
@@ -57,6 +59,16 @@ static int star(const tds_mesh *m, tds_id v, tds_id *fl, int *lab, int *ncone,
   return nf;
 }
 
+/* A pop that builds new geometry at v where its neighbourhood cannot be
+** unwrapped into one frame (torus.h). */
+static int local_refused(tds_ctx *ctx, const tds_mesh *m, tds_id v) {
+  if (tds_mesh_rotates(m))
+    return tds_seterr(ctx, TDS_ESYNTAX, "pop: vertex %d: popping a cone is not supported yet "
+                      "with SYMMETRY_GROUP \"%s\"", v + 1, tds_sym_name(m->sym));
+  return tds_seterr(ctx, TDS_ERANGE, "pop: vertex %d: its neighbourhood wraps round the torus "
+                    "(a neighbour at two places); refine first", v + 1);
+}
+
 static int pop(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npop) {
   tds_mesh *m = &s->m;
   if (tds_mesh_adjacency(m) != TDS_OK) return tds_seterr(ctx, TDS_ENOMEM, "out of memory");
@@ -102,15 +114,22 @@ static int pop(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npop) {
     if (nc == 1) {
       if (!minimal) {
         int done = 0;
+        tds_torus_local L;
+        if (tds_torus_local_begin(m, &v, 1, &L)) {
+          rc = local_refused(ctx, m, v);
+          break;
+        }
         { /* the cone over a prism: Evolver's toggles, or its own choice */
           int r = tds_pop_prism(s, v, s->pop_to_face ? 1 : s->pop_to_edge ? 0 : -1);
           if (r < 0) {
+            tds_torus_local_end(m, &L);
             rc = tds_seterr(ctx, -r, "out of memory while popping vertex %d", v + 1);
             break;
           }
           done = r;
         }
         if (!done) rc = tds_pop_cone(s, v, &done);
+        tds_torus_local_end(m, &L);
         if (rc != TDS_OK) {
           rc = tds_seterr(ctx, rc, "out of memory while popping vertex %d", v + 1);
           break;
@@ -131,7 +150,13 @@ static int pop(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npop) {
     }
     if (nc == 2 && s->pop_enjoin) { /* Evolver's pop_enjoin: a neck */
       int done = 0;
+      tds_torus_local L;
+      if (tds_torus_local_begin(m, &v, 1, &L)) {
+        rc = local_refused(ctx, m, v);
+        break;
+      }
       rc = tds_pop_neck(s, v, fl, lab, nf, &done);
+      tds_torus_local_end(m, &L);
       if (rc != TDS_OK) {
         rc = tds_seterr(ctx, rc, "out of memory while popping vertex %d", v + 1);
         break;
@@ -185,12 +210,10 @@ static int pop(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *npop) {
 }
 
 int tds_pop_vertices(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
-  if (s->m.torus) return tds_torus_unsupported(ctx, "pop");
   return tds_snap_run(ctx, s, pop, sel, n);
 }
 
 int tds_pop_raw(tds_ctx *ctx, tds_surf *s, int32_t *nedges, int32_t *nverts) {
-  if (s->m.torus) return tds_torus_unsupported(ctx, "pop");
   *nedges = *nverts = 0;
   int32_t ne0 = s->m.ne, ne = 0, nv = 0;
   int rc = TDS_OK;
@@ -198,6 +221,7 @@ int tds_pop_raw(tds_ctx *ctx, tds_surf *s, int32_t *nedges, int32_t *nverts) {
     int32_t k = 0;
     rc = tds_pop_one_edge(s, e, &k);
     if (rc == TDS_ENOMEM) rc = tds_seterr(ctx, rc, "out of memory while popping edges");
+    else if (rc == TDS_ERANGE) rc = tds_torus_pop_refused(ctx, &s->m, "o", e);
     else if (rc != TDS_OK) rc = tds_seterr(ctx, rc, "o: edge %d: the chain changed while popping", e + 1);
     ne += k;
   }
@@ -210,7 +234,6 @@ int tds_pop_raw(tds_ctx *ctx, tds_surf *s, int32_t *nedges, int32_t *nverts) {
 }
 
 int tds_pop(tds_ctx *ctx, tds_surf *s, int32_t *nedges, int32_t *nverts) {
-  if (s->m.torus) return tds_torus_unsupported(ctx, "o (pop)");
   *nedges = *nverts = 0;
   tds_snap sn;
   int rc = tds_snap_take(ctx, s, &sn);

@@ -475,7 +475,57 @@ static int pull(tds_surf *s, tds_id v, tds_id near, tds_id far, const tds_id *W,
 
 /* Pop edge e if it has more than three facets and may move; *npulled
 ** gets the vertices pulled (Evolver's count), 0 when skipped. */
+/* The ends of the edges of the chain through e (its tail first), for
+** unwrapping them (torus.h); the count, 0 when e does not pop, -1 when the
+** ends of e cannot be unwrapped. The chain is found in the frame of e's
+** tail, where the wedge's angles are measured. */
+static int chain_seeds(tds_surf *s, tds_id e, tds_id *seed, int cap) {
+  tds_mesh *m = &s->m;
+  tds_torus_local L;
+  tds_id two[2] = {m->ev[e][0], m->ev[e][1]};
+  if (two[0] == two[1] || tds_torus_local_begin(m, two, 2, &L)) return -1;
+  tds_id fl[MAXVAL];
+  int bi = 0, n = sorted_ring(m, e, fl, &bi), ns = 0;
+  chain *c = tds_malloc(&m->alloc, sizeof *c);
+  if (c && n == tds_edge_valence(m, e) && trace(s, e, fl[bi], fl[(bi + 1) % n], c)) {
+    seed[ns++] = two[0];
+    seed[ns++] = two[1];
+    for (int i = 0; i <= c->n && ns >= 0; i++)
+      for (int j = 0; j < 2 && ns >= 0; j++) {
+        tds_id x = m->ev[c->e[i]][j];
+        int seen = 0;
+        for (int k = 0; k < ns; k++) seen |= seed[k] == x;
+        if (!seen) ns = ns == cap ? -1 : (seed[ns] = x, ns + 1);
+      }
+  }
+  tds_free(&m->alloc, c);
+  tds_torus_local_end(m, &L);
+  return ns;
+}
+
+static int pop_one(tds_surf *s, tds_id e, int32_t *npulled);
+
+/* In the torus the chain's neighbourhood is first unwrapped into the frame
+** of e's tail (torus.h); TDS_ERANGE when it cannot be. */
 int tds_pop_one_edge(tds_surf *s, tds_id e, int32_t *npulled) {
+  tds_mesh *m = &s->m;
+  *npulled = 0;
+  if (!m->torus || !tds_alive(m->eflags, e) || tds_edge_valence(m, e) <= 3 ||
+      (m->eflags[e] & TDS_FIXED) || (m->econ[e] & ~tds_surf_global_cons(s)) ||
+      m->ebdry[e] != TDS_NONE || m->ev[e][0] == m->ev[e][1])
+    return pop_one(s, e, npulled); /* (nothing to unwrap: it does not pop) */
+  if (tds_mesh_adjacency(m) != TDS_OK) return TDS_ENOMEM;
+  tds_id seed[64];
+  int ns = chain_seeds(s, e, seed, 64);
+  if (ns == 0) return TDS_OK;
+  tds_torus_local L;
+  if (ns < 0 || tds_torus_local_begin(m, seed, ns, &L)) return TDS_ERANGE;
+  int rc = pop_one(s, e, npulled);
+  tds_torus_local_end(m, &L);
+  return rc;
+}
+
+static int pop_one(tds_surf *s, tds_id e, int32_t *npulled) {
   tds_mesh *m = &s->m;
   *npulled = 0;
   if (!tds_alive(m->eflags, e) || (m->eflags[e] & TDS_FIXED) ||
@@ -563,6 +613,7 @@ static int pop_edges(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) 
     int32_t k = 0;
     int rc = tds_pop_one_edge(s, e, &k);
     if (rc == TDS_ENOMEM) return tds_seterr(ctx, rc, "out of memory while popping edges");
+    if (rc == TDS_ERANGE) return tds_torus_pop_refused(ctx, &s->m, "pop", e);
     if (rc != TDS_OK) return tds_seterr(ctx, rc, "pop: edge %d: the chain changed while popping", e + 1);
     cnt += k;
   }
@@ -571,6 +622,5 @@ static int pop_edges(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) 
 }
 
 int tds_pop_edges(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
-  if (s->m.torus) return tds_torus_unsupported(ctx, "O (pop_edges)");
   return tds_snap_run(ctx, s, pop_edges, sel, n);
 }

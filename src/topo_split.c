@@ -211,7 +211,6 @@ static int with_snap(tds_ctx *ctx, tds_surf *s, cut_fn fn, double v, int32_t *n)
 }
 
 int tds_edge_divide(tds_ctx *ctx, tds_surf *s, double len, int32_t *n) {
-  if (s->m.torus) return tds_torus_unsupported(ctx, "l (edge_divide)");
   if (n) *n = 0;
   int rc = check_cut(ctx, len, "the edge length");
   return rc != TDS_OK ? rc : with_snap(ctx, s, divide, len, n);
@@ -225,7 +224,6 @@ int tds_edge_divide_set(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *
 }
 
 int tds_skinny(tds_ctx *ctx, tds_surf *s, double angle, int32_t *n) {
-  if (s->m.torus) return tds_torus_unsupported(ctx, "K (skinny)");
   if (n) *n = 0;
   int rc = check_cut(ctx, angle, "the angle");
   return rc != TDS_OK ? rc : with_snap(ctx, s, skinny, angle, n);
@@ -239,12 +237,18 @@ static void split_centre(tds_surf *s, tds_id f) {
   double x[3] = {0, 0, 0};
   for (int k = 0; k < 3; k++) v3_add(x, x, C.x[k]);
   v3_scale(x, 1.0 / 3);
+  /* torus: c is in the first corner's frame; corner k's spoke gets the
+  ** inverse of the corner's wrap, so all three parts close */
+  int32_t cw[3] = {0, 0, 0};
+  if (m->ewrap)
+    for (int k = 1; k < 3; k++) cw[k] = tds_wrap_inv(m, tds_torus_corner_wrap(m, f, k));
   tds_id c = tds_mesh_add_vertex(m, x);
   m->vflags[c] = m->fflags[f] & TDS_FIXED;
   m->vcon[c] = m->fcon[f] | tds_surf_global_cons(s);
   tds_id sp[3];
   for (int k = 0; k < 3; k++) {
     sp[k] = tds_mesh_add_edge(m, m->fv[f][k], c);
+    if (m->ewrap) m->ewrap[sp[k]] = cw[k];
     m->eflags[sp[k]] = m->fflags[f] & (TDS_FIXED | TDS_NO_REFINE);
     m->econ[sp[k]] = m->fcon[f];
   }
@@ -316,7 +320,6 @@ static int notch(tds_ctx *ctx, tds_surf *s, double angle, int32_t *n) {
 }
 
 int tds_notch(tds_ctx *ctx, tds_surf *s, double angle, int32_t *n) {
-  if (s->m.torus) return tds_torus_unsupported(ctx, "n (notch)");
   if (n) *n = 0;
   int rc = check_cut(ctx, angle, "the angle");
   return rc != TDS_OK ? rc : with_snap(ctx, s, notch, angle, n);
@@ -355,7 +358,6 @@ int tds_edgeswap(tds_ctx *ctx, tds_surf *s, const uint8_t *sel, int32_t *n) {
   if (s->str)
     return tds_seterr(ctx, TDS_ERANGE, "edgeswap works on soap films only, not in the string "
                       "model (its T1 is t1_edgeswap)");
-  if (s->m.torus) return tds_torus_unsupported(ctx, "edgeswap");
   return tds_snap_run(ctx, s, edgeswap, sel, n);
 }
 

@@ -148,6 +148,36 @@ void tds_torus_box(const tds_mesh *m, double lo[3]);
 ** moved. The volumes do not change (tds needs no volconst adjustment). */
 int tds_torus_rewrap(tds_ctx *ctx, tds_surf *s, int32_t *n);
 
+/* The lattice counts k that move point x into the unit cell (lattice
+** coordinates in [0, 1)): x + k . periods is inside. Translations only. */
+void tds_torus_cell_offset(const tds_mesh *m, const double x[3], int k[3]);
+
+/* A neighbourhood unwrapped into one frame, so that a mesh change written
+** for ordinary surfaces (the pops) can run on it unchanged: the vertices
+** joined by an edge to the seeds, and the seeds, are translated (as
+** wrap_vertex does: the surface stays the same) into the frame of seed[0],
+** so every edge at a seed, and every edge of a facet at a seed, has no
+** wrap. New elements the change makes among them then need none either.
+** tds_torus_local_end translates the vertices back (new edges' wraps
+** follow; new vertices stay in seed[0]'s frame; a vertex the change did
+** not move gets its stored coordinates back bitwise). begin returns 0
+** (nothing to do without a torus), or -1, the mesh unchanged, when the
+** neighbourhood wraps round the torus (a vertex seen at two places), a
+** seed is not joined to seed[0] through seeds, it has more than
+** TDS_TORUS_LOCAL_MAX vertices, or the group rotates. */
+#define TDS_TORUS_LOCAL_MAX 256
+typedef struct tds_torus_local {
+  int n, nmoved;
+  tds_id v[TDS_TORUS_LOCAL_MAX];
+  int32_t w[TDS_TORUS_LOCAL_MAX];
+  double x0[TDS_TORUS_LOCAL_MAX][3];
+} tds_torus_local;
+int tds_torus_local_begin(tds_mesh *m, const tds_id *seed, int nseed, tds_torus_local *L);
+void tds_torus_local_end(tds_mesh *m, tds_torus_local *L);
+/* The error of an edge pop whose neighbourhood could not be unwrapped:
+** "CMD: edge N: ..." naming the group when it rotates. */
+int tds_torus_pop_refused(tds_ctx *ctx, const tds_mesh *m, const char *cmd, tds_id e);
+
 /* For exports and pictures: the surface as drawn. s is a shallow copy of
 ** the surface (sharing its model: parameters, constraints, quantities)
 ** whose mesh is a detorused deep copy (tds_torus_detorus in the mesh's

@@ -393,6 +393,12 @@ int tds_torus_detorus(tds_ctx *ctx, tds_mesh *m, int32_t *src[2]) {
   return rc;
 }
 
+void tds_torus_cell_offset(const tds_mesh *m, const double x[3], int k[3]) {
+  double c[3];
+  tds_torus_to_lattice(m, x, c);
+  for (int i = 0; i < 3; i++) k[i] = isfinite(c[i]) && fabs(c[i]) < 1e6 ? -(int)floor(c[i]) : 0;
+}
+
 int tds_torus_rewrap(tds_ctx *ctx, tds_surf *s, int32_t *n) {
   tds_mesh *m = &s->m;
   *n = 0;
@@ -403,11 +409,9 @@ int tds_torus_rewrap(tds_ctx *ctx, tds_surf *s, int32_t *n) {
   for (tds_id v = 0; v < m->nv; v++) {
     if (!tds_alive(m->vflags, v)) continue;
     int k[3];
+    tds_torus_cell_offset(m, m->x[v], k);
     int any = 0;
-    double c[3];
-    tds_torus_to_lattice(m, m->x[v], c);
     for (int i = 0; i < 3; i++) {
-      k[i] = -(int)floor(c[i]);
       if (k[i] > 100 || k[i] < -100)
         return tds_seterr(ctx, TDS_ERANGE, "rewrap: vertex %d is %d cells away", (int)v + 1, -k[i]);
       any |= k[i] != 0;
