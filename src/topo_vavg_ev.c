@@ -37,6 +37,7 @@
 #include <stdint.h>
 
 #include "gather.h"
+#include "method.h"
 #include "torus.h"
 #include "motion.h"
 #include "vec3.h"
@@ -95,7 +96,7 @@ int tds_vavg_target(const tds_surf *s, tds_id v, int mode, double *g,
     v3_cross(N, ab, ac);
     /* the sum in star order, each facet signed to agree with it */
     v3_axpy(nall, ca++ && v3_dot(N, nall) < 0 ? -1 : 1, N);
-    double A = 0.5 * v3_norm(N);
+    double A = s->klein ? tds_klein_area(P.x[0], P.x[1], P.x[2]) : 0.5 * v3_norm(N);
     int a = edge_slot(m, v, m->fe[f][k]), b = edge_slot(m, v, m->fe[f][(k + 2) % 3]);
     if (a >= 0) g[a] += A;
     if (b >= 0) g[b] += A;
