@@ -27,6 +27,8 @@
 **    frame: measured on sectors under rotate, flip_rotate, screw, cubocta). That keeps the volume exactly when the
 **    star is a fan around v.
 **  - rawestv uses every facet and the weighted rule for every vertex.
+**  - Under KLEIN_METRIC the areas in g_e are hyperbolic (the rest stays
+**    Euclidean; measured, tests/evolver/klein.sh, to 1e-13).
 **  - On constraints the move is made tangent to them (before and again
 **    after V's removal of the normal part), then the vertex is projected
 **    back onto them.
