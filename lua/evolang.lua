@@ -1329,6 +1329,60 @@ function M.translate(text, line0)
   error(res, 0)
 end
 
+-- dump_read(text, value) -> the read section a dump writes, as Evolver's
+-- dump has it: the text's top-level definitions (name := { ... },
+-- procedure, function, define of an array) verbatim, and each variable it
+-- assigns at top level (name := expr) once, with its value now
+-- (value(name): a number or a string, else it is left out). Its commands
+-- (r, set, toggles, ...) have acted on the dumped surface already, so they
+-- are left out: loading the dump does not do them twice. nil if the text
+-- does not parse (the dump then keeps it whole).
+function M.dump_read(text, value)
+  local ok, res = pcall(function()
+    local extra = {}
+    if tds and tds.attributes then
+      for _, k in ipairs { tds.vertex, tds.edge, tds.facet, tds.body } do
+        for _, a in ipairs(tds.attributes(k)) do
+          if a.user then extra[a.name] = true end
+          if a.user and a.name:sub(1, 4) == "fe__" then extra[a.name:sub(5)] = true end
+        end
+      end
+    end
+    local p = setmetatable({ text = text, toks = lex(text, 1), i = 1, nsym = 0, depth = 0, scopes = { {} },
+                             elems = {}, loops = {}, extra = extra, names = {} }, P)
+    local out, seen = {}, {}
+    while true do
+      while p:acceptop(";") or p:stray_colon() do end
+      local t, t1, t2 = p:peek(), p:peek(1), p:peek(2)
+      if t.t == "eof" then
+        if t.lexerr then error(t.lexerr, 0) end
+        break
+      end
+      p:statement()
+      local src = text:sub(t.at, p:peek().at - 1):gsub("[%s;]+$", "")
+      local assign = t.t == "name" and t1.t == "op" and (t1.v == ":=" or t1.v == "::=")
+      if assign and t2.t == "op" and t2.v == "{" then
+        out[#out + 1] = src                            -- a procedure
+      elseif t.t == "name" and (t.s == "procedure" or t.s == "function") and not assign then
+        out[#out + 1] = src
+      elseif t.t == "name" and t.s == "define" and not assign and not KINDS[t1.s or ""] then
+        out[#out + 1] = src                            -- an array (attributes are in the header)
+      elseif assign and not seen[t.s] then
+        seen[t.s] = true
+        local v = value(t.raw)
+        if type(v) == "number" then
+          out[#out + 1] = ("%s := %.17g"):format(t.raw, v)
+        elseif type(v) == "string" then
+          out[#out + 1] = ("%s := \"%s\""):format(t.raw, v:gsub('[\\"]', "\\%0"):gsub("\n", "\\n"))
+        end
+      end
+    end
+    return #out > 0 and table.concat(out, "\n") .. "\n" or ""
+  end)
+  if ok then return res end
+  return nil
+end
+
 M.lex = lex
 M.LETTERS = LETTERS
 M.STMT = STMT

@@ -1405,6 +1405,16 @@ function E.exec(text)
   E.run(text, "exec", 1)
 end
 
+-- The read section a dump writes (src/lua_datafile.c, tds.dump): the
+-- loaded one's definitions, and its variables with their values now
+-- (evolang.dump_read).
+function E.dump_read(text)
+  return evolang.dump_read(text, function(name)
+    local ok, v = pcall(E.getv, name)
+    if ok then return v end
+  end)
+end
+
 -- The read section of the datafile just loaded from `path`, run with its
 -- own line numbers.
 function E.run_read(path)

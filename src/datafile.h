@@ -97,6 +97,8 @@ int tds_datafile_define(tds_ctx *ctx, tds_surf *s, const char *name, int line,
 ** section. Writes path.tmp and renames it to path, so a failed dump never
 ** destroys an existing file. TDS_OK, or TDS_EIO with a message. */
 int tds_datafile_dump(tds_ctx *ctx, tds_surf *s, const char *path);
+/* As tds_datafile_dump with `read` (NULL: none) as the read section. */
+int tds_datafile_dump_read(tds_ctx *ctx, tds_surf *s, const char *path, const char *read);
 
 /* The plain element lists of s as a datafile (write_fe): `header` (the
 ** caller's top section: parameters, constraints in Evolver syntax; NULL

@@ -548,6 +548,10 @@ int tds_datafile_dump(tds_ctx *ctx, tds_surf *s, const char *path) {
   return write(ctx, s, path, 1, NULL, s->read_text);
 }
 
+int tds_datafile_dump_read(tds_ctx *ctx, tds_surf *s, const char *path, const char *read) {
+  return write(ctx, s, path, 1, NULL, read);
+}
+
 int tds_datafile_write_fe(tds_ctx *ctx, tds_surf *s, const char *path, const char *header,
                           const char *read) {
   return write(ctx, s, path, 0, header, read);

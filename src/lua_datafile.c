@@ -212,6 +212,37 @@ static const char *default_dump_name(lua_State *L, tds_state *st) {
   return lua_tostring(L, -1);
 }
 
+/* The read section a dump writes, pushed: tds.E.dump_read(the loaded
+** text) when the command language is there (its definitions and
+** variables, not its commands, as Evolver's dump: lua/evolang.lua), else
+** the loaded text; nil when there is none. */
+static const char *push_dump_read(lua_State *L, const tds_surf *s) {
+  if (!s->read_text) {
+    lua_pushnil(L);
+    return NULL;
+  }
+  lua_getglobal(L, "tds");
+  if (lua_istable(L, -1)) {
+    lua_getfield(L, -1, "E");
+    if (lua_istable(L, -1)) {
+      lua_getfield(L, -1, "dump_read");
+      if (lua_isfunction(L, -1)) {
+        lua_pushstring(L, s->read_text);
+        if (lua_pcall(L, 1, 1, 0) == LUA_OK && lua_isstring(L, -1)) {
+          lua_replace(L, -3);
+          lua_pop(L, 1);
+          return lua_tostring(L, -1);
+        }
+      }
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  lua_pushstring(L, s->read_text);
+  return lua_tostring(L, -1);
+}
+
 /* tds.dump([path]) -> true | nil, msg */
 static int l_dump(lua_State *L) {
   tds_state *st = TDS_STATE(L);
@@ -219,7 +250,8 @@ static int l_dump(lua_State *L) {
   if (!path) path = default_dump_name(L, st);
   if (!path) return tds_lua_nilmsg(L, "dump: give a file name (no datafile was loaded)");
   if (!tds_lua_may_write(L, st, path)) return 2;
-  if (tds_datafile_dump(&st->ctx, &st->s, path) != TDS_OK) {
+  const char *read = push_dump_read(L, &st->s);
+  if (tds_datafile_dump_read(&st->ctx, &st->s, path, read) != TDS_OK) {
     lua_pushnil(L);
     lua_pushstring(L, st->ctx.errmsg);
     return 2;

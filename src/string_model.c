@@ -1,5 +1,6 @@
 /* string_model.c: the cells of the string model (contracts in string_model.h). */
 #include "string_model.h"
+#include "vec3.h"
 
 #include <string.h>
 
@@ -367,6 +368,22 @@ int tds_strings_check(tds_ctx *ctx, const tds_surf *s) {
     }
   }
   return TDS_OK;
+}
+
+int tds_strings_rawv(const tds_surf *s, tds_id v, double out[3]) {
+  const tds_mesh *m = &s->m;
+  if (m->vcon[v] || m->vbdry[v] != TDS_NONE) return 0;
+  double sum[3] = {0, 0, 0};
+  int n = 0;
+  for (int32_t i = m->ve_start[v]; i < m->ve_start[v + 1]; i++) {
+    tds_corners E;
+    tds_gather_edge(m, m->ve[i], &E);
+    v3_add(sum, sum, E.x[1]);
+    n++;
+  }
+  if (n < 2) return 0;
+  for (int k = 0; k < 3; k++) out[k] = m->x[v][k] + 0.25 * (sum[k] / n - m->x[v][k]);
+  return 1;
 }
 
 int tds_strings_vavg(const tds_surf *s, tds_id v, double out[3]) {

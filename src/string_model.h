@@ -109,6 +109,12 @@ int tds_strings_check(tds_ctx *ctx, const tds_surf *s);
 ** adjacency. (Measured on evolver-nox-d; vertices on constraints, at
 ** junctions or ends stay.) */
 int tds_strings_vavg(const tds_surf *s, tds_id v, double out[3]);
+/* Evolver's rawv and rawestv for strings (measured on evolver-nox-d
+** 2.70): a vertex on no constraint or boundary with two or more edges
+** (junctions too) moves a quarter of the way to the mean of its edges'
+** far ends, each edge counted once (wraps followed). New position in
+** out; 0 if v does not move. Needs current adjacency. */
+int tds_strings_rawv(const tds_surf *s, tds_id v, double out[3]);
 
 /* Evolver's o (pop) for strings (string_topo.c): every vertex (sel NULL) or
 ** selected vertex (sel[v] != 0) with four or

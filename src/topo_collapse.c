@@ -8,6 +8,7 @@
 
 #include "gather.h"
 #include "geom.h"
+#include "method.h"
 #include "motion.h"
 #include "snap.h"
 #include "string_model.h"
@@ -279,17 +280,21 @@ static int collapse(tds_surf *s, tds_id e, int end, int autopop) {
   return 1;
 }
 
-static double edge_len(const tds_mesh *m, tds_id e) {
+static double edge_len(const tds_surf *s, tds_id e) {
+  const tds_mesh *m = &s->m;
   tds_corners C;
   tds_gather_edge(m, TDS_OREF(e, 0), &C);
+  if (s->klein) return tds_klein_dist(C.x[0], C.x[1]);
   double d[3];
   v3_sub(d, C.x[1], C.x[0]);
   return v3_norm(d);
 }
 
-static double facet_area(const tds_mesh *m, tds_id f) {
+static double facet_area(const tds_surf *s, tds_id f) {
+  const tds_mesh *m = &s->m;
   tds_corners C;
   tds_gather_facet(m, f, &C);
+  if (s->klein) return tds_klein_area(C.x[0], C.x[1], C.x[2]);
   return geom_area(C.x[0], C.x[1], C.x[2], NULL);
 }
 
@@ -301,7 +306,7 @@ static int delete_facet(tds_surf *s, tds_id f) {
   double len[3];
   for (int k = 0; k < 3; k++) {
     ed[k] = TDS_OID(m->fe[f][k]);
-    len[k] = edge_len(m, ed[k]);
+    len[k] = edge_len(s, ed[k]);
   }
   for (int i = 0; i < 3; i++) /* sort three */
     for (int j = i + 1; j < 3; j++)
@@ -331,8 +336,8 @@ static int weed(tds_ctx *ctx, tds_surf *s, int facets, int how,
   for (tds_id i = 0; i < nslot; i++) {
     if (!tds_alive(facets ? m->fflags : m->eflags, i)) continue;
     if (how == BY_SEL && sel && !sel[i]) continue;
-    if (how == BY_LEN && !(edge_len(m, i) < cut)) continue;
-    if (how == BY_AREA && !(facet_area(m, i) < cut)) continue;
+    if (how == BY_LEN && !(edge_len(s, i) < cut)) continue;
+    if (how == BY_AREA && !(facet_area(s, i) < cut)) continue;
     int r = facets ? delete_facet(s, i) : tds_collapse_edge(s, i);
     if (r < 0) {
       rc = tds_seterr(ctx, TDS_ENOMEM, "out of memory while deleting");

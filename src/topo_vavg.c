@@ -64,7 +64,9 @@ static int over_facets(const tds_mesh *m, tds_id v, double out[3]) {
 static int target(const tds_surf *s, tds_id v, int mode, double *g,
                   int32_t *ord, double out[3]) {
   const tds_mesh *m = &s->m;
-  if (s->str) return tds_strings_vavg(s, v, out); /* the string model's rule */
+  if (s->str) /* the string model's rules */
+    return mode == TDS_VAVG_RAW || mode == TDS_VAVG_RAWEST ? tds_strings_rawv(s, v, out)
+                                                           : tds_strings_vavg(s, v, out);
   if (mode != TDS_VAVG_CENTROID) return tds_vavg_target(s, v, mode, g, ord, out);
   int triple = 0, border = 0;
   for (int32_t i = m->ve_start[v]; i < m->ve_start[v + 1]; i++) {

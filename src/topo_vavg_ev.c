@@ -27,6 +27,8 @@
 **    frame: measured on sectors under rotate, flip_rotate, screw, cubocta). That keeps the volume exactly when the
 **    star is a fan around v.
 **  - rawestv uses every facet and the weighted rule for every vertex.
+**  - Under KLEIN_METRIC the areas in g_e are hyperbolic (the rest stays
+**    Euclidean; measured, tests/evolver/klein.sh, to 1e-13).
 **  - On constraints the move is made tangent to them (before and again
 **    after V's removal of the normal part), then the vertex is projected
 **    back onto them.
@@ -37,6 +39,7 @@
 #include <stdint.h>
 
 #include "gather.h"
+#include "method.h"
 #include "torus.h"
 #include "motion.h"
 #include "vec3.h"
@@ -95,7 +98,7 @@ int tds_vavg_target(const tds_surf *s, tds_id v, int mode, double *g,
     v3_cross(N, ab, ac);
     /* the sum in star order, each facet signed to agree with it */
     v3_axpy(nall, ca++ && v3_dot(N, nall) < 0 ? -1 : 1, N);
-    double A = 0.5 * v3_norm(N);
+    double A = s->klein ? tds_klein_area(P.x[0], P.x[1], P.x[2]) : 0.5 * v3_norm(N);
     int a = edge_slot(m, v, m->fe[f][k]), b = edge_slot(m, v, m->fe[f][(k + 2) % 3]);
     if (a >= 0) g[a] += A;
     if (b >= 0) g[b] += A;

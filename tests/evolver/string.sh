@@ -190,3 +190,31 @@ evolver_run "$ROOT/tests/evolver/string/pop4.fe" "$(cat "$tmp/cc.cmd")" > "$tmp/
 "$TDS" -q -e "
 dofile('$ROOT/tests/evolver/numcmp.lua')
 numcmp('string/pop4/crosscut', lines_of('$tmp/ev.out', '^[NLEB] '), lines_of('$tmp/tds.out', '^[NLEB] '), 1e-12)"
+
+# rawv and rawestv in the string model, as Evolver 2.70 does them
+# (measured): every vertex with two or more edges, junctions too, on no
+# constraint or boundary, moves a quarter of the way to the mean of its
+# edges' far ends (each edge counted, two edges to one neighbour twice,
+# wraps followed); ends and constrained vertices stay. (V keeps its chord
+# rule above.) Every position to 1e-12 (measured 2e-14): seeded random
+# networks (tests/evolver/genus2/net.lua without the group, Euclidean and
+# KLEIN_METRIC: the rule is Euclidean), refined and relaxed; drops on a
+# tilted line (constrained ends); slidestr; popstr (3-D space); 100grain
+# (the 2-D torus) after g 10; a genus2 net (wrapped edges).
+P2='foreach vertex vv do printf "K %d %.17g %.17g\n", vv.id, vv.x, vv.y;'
+for seed in 3 4; do
+  "$TDS" -q -e "OUT='$tmp/net$seed.fe' SEED=$seed NV=8 NE=16 KLEIN=true LONG=false FIXED=3
+dofile('$ROOT/tests/evolver/genus2/net.lua')" || echo "FAIL string/rawv/net$seed: the generator failed"
+  cp "$tmp/net$seed.fe" "$tmp/g2net$seed.fe"
+  sed -i '/SYMMETRY_GROUP/d; s/ wrap [0-9]*//; s/ tension [0-9.e-]*//' "$tmp/net$seed.fe"
+  sed '/KLEIN_METRIC/d' "$tmp/net$seed.fe" > "$tmp/enet$seed.fe"
+done
+"$TDS" -q -e "io.write((dofile('$ROOT/tests/evolver/string/hessgen.lua').drop_fe(1)))" > "$tmp/drop1.fe"
+for spec in "net3:$tmp/net3.fe" "net4:$tmp/net4.fe" "enet3:$tmp/enet3.fe" "enet4:$tmp/enet4.fe" \
+            "drop1:$tmp/drop1.fe" "slidestr:$EXAMPLES/slidestr.fe" "g2net3:$tmp/g2net3.fe"; do
+  n=${spec%%:*} f=${spec#*:}
+  kcompare "string/rawv/$n" "$f" 1e-12 "rawv; $P2"
+  kcompare "string/rawv/$n-r-rawestv" "$f" 1e-12 "r; rawestv; rawv; $P2"
+done
+kcompare string/rawv/popstr "$EXAMPLES/popstr.fe" 1e-12 "r; rawv; foreach vertex vv do printf \"K %d %.17g %.17g %.17g\n\", vv.id, vv.x, vv.y, vv.z;"
+kcompare string/rawv/100grain "$EXAMPLES/100grain.fe" 1e-12 "g 10; rawestv; rawv; $P2"

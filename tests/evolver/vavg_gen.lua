@@ -11,10 +11,25 @@
 --     with their facets on it or not (a contact line), or some on it (a
 --     film standing on a triangulated floor).
 
+local origin, centre = {0, 0}, {0, 0, 0}
+-- the patch about to be written starts at (ox, oy): with KLEIN, pick its
+-- place in the ball
+local function patch(ox, oy)
+  origin = {ox, oy or 0}
+  if not KLEIN then return end
+  repeat
+    centre = {1.2 * math.random() - .6, 1.2 * math.random() - .6, 1.2 * math.random() - .6}
+  until centre[1]^2 + centre[2]^2 + centre[3]^2 < .6^2
+end
+
 local function writer(path, top)
   local V, E, F = {}, {}, {}
   local index = {}
+  if KLEIN then top = "KLEIN_METRIC\n" .. (top or "") end
   local function vertex(x, y, z, extra)
+    if KLEIN then
+      x, y, z = centre[1] + .15 * (x - origin[1]), centre[2] + .15 * (y - origin[2]), centre[3] + .15 * z
+    end
     V[#V + 1] = ("%d %.17g %.17g %.17g %s"):format(#V + 1, x, y, z, extra or "")
     return #V
   end
@@ -49,6 +64,7 @@ function stars(path, seed, zs)
   for k = 1, 40 do
     local n = math.random(3, 8)
     local ox, oy = 4 * (k % 8), 4 * (k // 8)
+    patch(ox, oy)
     local c = vertex(ox + uniform(-.3, .3), oy + uniform(-.3, .3), uniform(-zs, zs))
     local rim = {}
     for i = 0, n - 1 do
@@ -66,6 +82,7 @@ function fans(path, seed)
   for k = 1, 30 do
     local n = (k - 1) % 5 + 1
     local ox = 4 * k
+    patch(ox)
     local c = vertex(ox + uniform(-.2, .2), uniform(-.2, .2), uniform(-.2, .2))
     local nb = {}
     for j = 0, n do
@@ -82,6 +99,7 @@ function triples(path, seed)
   local vertex, _, facet, close = writer(path)
   for k = 1, 20 do
     local ox = 5 * k
+    patch(ox)
     local c = vertex(ox + uniform(-.2, .2), uniform(-.2, .2), uniform(-.2, .2))
     local t1 = vertex(ox - 1 + uniform(-.4, .4), uniform(-.4, .4), uniform(-.4, .4), "fixed")
     local t2 = vertex(ox + 1.5 + uniform(-.4, .4), uniform(-.4, .4), uniform(-.4, .4), "fixed")

@@ -271,6 +271,25 @@ static void hess_example_column(void) { example_fd(EX "column.fe", 2, 10); }
 ** (TORUS_FILLED: one body's constraint dropped) */
 static void hess_example_twointor(void) { example_fd(EX "twointor.fe", 1, 10); }
 static void hess_example_phelanc(void) { example_fd(EX "phelanc.fe", 0, 10); }
+/* a symmetry group's wraps (symtest.fe: two Kelvin cells under the group
+** "torus", no constraints), refined once */
+static void hess_example_symtest(void) { example_fd(EX "symtest.fe", 1, 10); }
+
+/* the string model in the 2-D torus (100grain.fe: 100 cells, wrapped
+** edges, AUTOPOP and AUTOCHOP): the energy and the Lagrangian of its 100
+** area constraints (each constraint alone as example_fd does would be
+** 100 more finite-difference runs; the Lagrangian sums them all). */
+static void hess_example_100grain(void) {
+  tds_ctx ctx;
+  tds_surf s;
+  h_setup(&ctx, &s);
+  REQUIRE_OK(&ctx, tds_datafile_load(&ctx, &s, EX "100grain.fe"));
+  REQUIRE_OK(&ctx, tds_iterate(&ctx, &s, 5));
+  REQUIRE_OK(&ctx, tds_pressures(&ctx, &s));
+  CHECK_FD(&ctx, &s, &ENERGY);
+  CHECK_FD(&ctx, &s, &LAGR);
+  tds_surf_free(&s);
+}
 
 /* (d) Exact: a flat unit square (two right triangles, diagonal 1-3) in
 ** z = 0, tension 1. To second order A = 1 + (1/2) int |grad z|^2, so the
@@ -794,6 +813,8 @@ int main(void) {
   RUN(hess_example_column);
   RUN(hess_example_twointor);
   RUN(hess_example_phelanc);
+  RUN(hess_example_symtest);
+  RUN(hess_example_100grain);
   RUN(hess_reduced_levelset);
   RUN(hess_reduced_catbody);
   RUN(hess_reduced_column);
