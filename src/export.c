@@ -415,11 +415,17 @@ static int export_drawn(tds_ctx *ctx, tds_surf *s, const char *path, const tds_e
 }
 
 int tds_export(tds_ctx *ctx, tds_surf *s, const char *path, const tds_export_opts *o) {
-  if (s->str) return tds_export_strings(ctx, s, path, o); /* edges, not triangles */
+  int strings_clipped = s->str && s->m.torus && s->m.draw == TDS_DRAW_CLIPPED;
+  if (s->str && !strings_clipped) return tds_export_strings(ctx, s, path, o); /* edges */
   if (!s->m.torus) return export_drawn(ctx, s, path, o, NULL, NULL);
   tds_torus_drawn view; /* as drawn: no edge across the cell */
   int rc = tds_torus_view(ctx, s, &view);
   if (rc != TDS_OK) return rc;
+  if (strings_clipped) {
+    rc = tds_export_strings(ctx, &view.s, path, o);
+    tds_torus_view_free(&view);
+    return rc;
+  }
   tds_export_opts o2 = *o;
   uint8_t *sel = NULL;
   if (o->facets) { /* the selection, carried to the facets drawn from it */

@@ -170,7 +170,8 @@ nomem:
 
 int tds_live_snap_build(tds_ctx *ctx, tds_surf *s, uint64_t version, double energy, int color,
                         unsigned char **buf, size_t *len) {
-  if (s->str || !s->m.torus) return snap_drawn(ctx, s, version, energy, color, buf, len, NULL, NULL);
+  if (!s->m.torus || (s->str && s->m.draw != TDS_DRAW_CLIPPED))
+    return snap_drawn(ctx, s, version, energy, color, buf, len, NULL, NULL);
   tds_torus_drawn view; /* as drawn: no edge across the cell */
   int rc = tds_torus_view(ctx, s, &view);
   if (rc != TDS_OK) return rc;

@@ -436,12 +436,14 @@ static int render_drawn(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o, con
 
 int tds_render_png(tds_ctx *ctx, tds_surf *s, const tds_render_opts *o,
                    const char *path, tds_render_info *info) {
-  if (s->str) return tds_render_strings(ctx, s, o, path, info); /* edges, not facets */
+  int strings_clipped = s->str && s->m.torus && s->m.draw == TDS_DRAW_CLIPPED;
+  if (s->str && !strings_clipped) return tds_render_strings(ctx, s, o, path, info); /* edges */
   if (!s->m.torus) return render_drawn(ctx, s, o, path, info, NULL, NULL);
   tds_torus_drawn view; /* as drawn: no edge across the cell */
   int rc = tds_torus_view(ctx, s, &view);
   if (rc != TDS_OK) return rc;
-  rc = render_drawn(ctx, &view.s, o, path, info, s, &view);
+  rc = strings_clipped ? tds_render_strings(ctx, &view.s, o, path, info)
+                       : render_drawn(ctx, &view.s, o, path, info, s, &view);
   tds_torus_view_free(&view);
   return rc;
 }

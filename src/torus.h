@@ -28,6 +28,7 @@
 #ifndef TDS_TORUS_H
 #define TDS_TORUS_H
 
+#include "string_model.h"
 #include "surf.h"
 #include "wrap.h"
 
@@ -183,10 +184,14 @@ int tds_torus_pop_refused(tds_ctx *ctx, const tds_mesh *m, const char *cmd, tds_
 ** whose mesh is a detorused deep copy (tds_torus_detorus in the mesh's
 ** draw mode), so no edge crosses the cell; vsrc and fsrc give, for each
 ** vertex and facet slot of s.m, the vertex and facet of the surface it is
-** drawn from (vsrc -1 for a point made by clipping). */
+** drawn from (vsrc -1 for a point made by clipping). In the string
+** model only the clipped mode has a view (the others are drawn edge by
+** edge from the surface itself): its edges cut into the box, and no cells
+** (str, a copy of the surface's with none). */
 typedef struct tds_torus_drawn {
   tds_surf s;
   int32_t *vsrc, *fsrc;
+  struct tds_strings str;
 } tds_torus_drawn;
 /* TDS_OK, TDS_ENOMEM or TDS_ERANGE; release with tds_torus_view_free
 ** (never tds_surf_free). Also brings s's vertex stars up to date (for

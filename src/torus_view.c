@@ -32,6 +32,11 @@ int tds_torus_view(tds_ctx *ctx, tds_surf *s, tds_torus_drawn *view) {
   }
   view->vsrc = src[0];
   view->fsrc = src[1];
+  if (s->str) { /* the cells are not cut: edges only */
+    view->str = *s->str;
+    view->str.nf = 0;
+    v->str = &view->str;
+  }
   return TDS_OK;
 }
 
