@@ -138,3 +138,12 @@ case "$td" in
   *"detorus: clipped mode is not supported yet in the string model"*"$ev"*) echo "PASS drawmodes/string-raw" ;;
   *) echo "FAIL drawmodes/string-raw: Evolver '$ev', tds '$td'" ;;
 esac
+
+# The string model's clipped pictures and exports: 100grain.fe's edges cut
+# into the cell, the points and segments of Evolver's clipped detorus.
+ev=$(evolver_run "$EXAMPLES/100grain.fe" 'detorus; printf "K %d %d\n", vertex_count, edge_count;' | grep '^K ')
+"$TDS" -q "$EXAMPLES/100grain.fe" -e "export('$tmp/g.obj')" > /dev/null 2>&1
+td=$(awk '/^v / { n++; for (i = 2; i <= 3; i++) if ($i < -1e-12 || $i > 1 + 1e-12) out++ }
+          /^l / { l++ } END { printf "K %d %d%s", n, l, out ? " outside" : "" }' "$tmp/g.obj")
+if [ -n "$ev" ] && [ "$ev" = "$td" ]; then echo "PASS drawmodes/string-clipped-export"
+else echo "FAIL drawmodes/string-clipped-export: Evolver '$ev', tds '$td'"; fi
