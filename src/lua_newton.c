@@ -20,8 +20,9 @@ typedef struct nstate {
   tds_inertia counts; /* of the last hessian, hessian_seek, eigenprobe or
                          ritz (Evolver's eigenneg, eigenzero, eigenpos),
                          0 before any */
-  double scale;       /* the step of the last hessian_seek or saddle
-                         (Evolver's last_hessian_scale), 0 before any */
+  double scale;       /* the step of the last hessian_seek or saddle, 1
+                         after hessian (Evolver's last_hessian_scale), 0
+                         before any */
 } nstate;
 
 static int ns_gc(lua_State *L) {
@@ -51,6 +52,7 @@ static int l_hessian(lua_State *L) {
   tds_inertia in = {0};
   check_rc(L, st, tds_newton_step(&st->ctx, &st->s, &ns->o, 0, &in, NULL));
   ns->counts = in;
+  ns->scale = 1; /* Evolver's last_hessian_scale after hessian (measured) */
   lua_pushnumber(L, st->s.energy);
   lua_pushinteger(L, in.neg);
   return 2;
@@ -58,7 +60,7 @@ static int l_hessian(lua_State *L) {
 
 /* tds.hessian_seek([maxscale = 10]) -> energy, scale, index (Evolver's
 ** manual says the default is 1; evolver-nox-d 2.70 seeks up to 10 without
-** one: the cube's g; r; hessian_seek takes 1.6 as its third trial) */
+** one: on the cube's g; r; hessian_seek it tries 1.6; newton.c's seek) */
 static int l_hessian_seek(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   nstate *ns = get_ns(L);
@@ -84,6 +86,7 @@ static int l_saddle(lua_State *L) {
   double low = 0, step = 0;
   check_rc(L, st, tds_newton_saddle(&st->ctx, &st->s, &ns->o, mx, &low, &step));
   ns->scale = step;
+  ns->last = low; /* Evolver's last_eigenvalue after saddle too */
   lua_pushnumber(L, low);
   lua_pushboolean(L, step != 0);
   lua_pushnumber(L, step);
