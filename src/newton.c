@@ -483,6 +483,32 @@ int tds_newton_move(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, const d
   return TDS_OK;
 }
 
+/* Evolver's length of saddle's eigenvector (measured: the displacement
+** of its saddle 0.01 against tds's unit eigenvector): the largest
+** unknown is 0.1 of the largest distance of a vertex (fixed ones too)
+** from the origin; with hessian_normal on an unknown is a vertex's move
+** along its unit normal (its length), off a coordinate of its move. On
+** the flat square of side pi refined twice, 0.1 pi sqrt 2 at its centre
+** (to 1e-15); catman's saddle (normal off) and cat.fe's (on) to 1e-11,
+** a drop on slidestr.fe's constraint to 7e-5. Scales w (amounts of the
+** unit vector vec) accordingly. */
+static void evolver_length(const tds_surf *s, const tds_newton_opts *o, const tds_nsys *n,
+                           const double (*vec)[3], double *w) {
+  const tds_mesh *m = &s->m;
+  double R = 0, big = 0;
+  for (tds_id v = 0; v < m->nv; v++) {
+    if (!tds_alive(m->vflags, v)) continue;
+    R = fmax(R, v3_norm(m->x[v]));
+    if (!tds_vertex_free(s, v)) continue;
+    if (o->normal) big = fmax(big, v3_norm(vec[v]));
+    else
+      for (int i = 0; i < 3; i++) big = fmax(big, fabs(vec[v][i]));
+  }
+  if (!(R > 0 && big > 0)) return;
+  double k = 0.1 * R / big;
+  for (int32_t j = 0; j < n->m; j++) w[j] *= k;
+}
+
 int tds_newton_saddle(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double maxscale,
                       double *lowest, double *step) {
   *step = 0;
@@ -521,6 +547,7 @@ int tds_newton_saddle(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, doubl
       rc = tds_seterr(ctx, TDS_ENOMEM, "saddle: out of memory");
     if (rc == TDS_OK) {
       amounts(&n, (const double(*)[3])vec, w);
+      evolver_length(s, o, &n, (const double(*)[3])vec, w);
       /* downhill to first order forwards (Evolver's eigenvector has its
       ** own sign; it tries forwards first as hessian_seek does) */
       double D = 0;

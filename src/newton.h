@@ -129,10 +129,12 @@ int tds_newton_invit(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double
 int tds_newton_move(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, const double (*vec)[3],
                     int32_t nv, double t);
 
-/* saddle: if the lowest eigenvalue is negative, move along its unit
-** eigenvector (signed downhill to first order) by hessian_seek's line
-** search with the largest step maxscale (maxscale <= 0: Evolver's
-** default, 100, whose first trial is 1); prints what Evolver prints.
+/* saddle: if the lowest eigenvalue is negative, move along its
+** eigenvector (signed downhill to first order, of Evolver's length: its
+** largest unknown 0.1 of the largest distance of a vertex from the
+** origin) by hessian_seek's line search with the largest step maxscale
+** (maxscale <= 0: Evolver's default, 100, whose first trial is 1);
+** prints what Evolver prints.
 ** *lowest gets the lowest eigenvalue; *step the step taken (0: no move;
 ** negative: backwards). */
 int tds_newton_saddle(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double maxscale,
