@@ -412,6 +412,7 @@ local INTERNAL = {
   hessian_normal_perp = function() return tds.hessian_setting("hessian_normal_perp") and 1.0 or 0.0 end,
   linear_metric_mix = function() return tds.hessian_setting("linear_metric_mix") end,
   last_eigenvalue = function() return tds.hessian_setting("last_eigenvalue") end,
+  last_hessian_scale = function() return tds.hessian_setting("last_hessian_scale") end,
   eigenneg = function() return tds.hessian_setting("eigenneg") end,
   eigenzero = function() return tds.hessian_setting("eigenzero") end,
   eigenpos = function() return tds.hessian_setting("eigenpos") end,
@@ -467,7 +468,7 @@ for w in ([[ambient_pressure_value background breakflag body_dissolve_count brig
   eigenvalues equi_count estimated_change facet_delete_count
   facet_dissolve_count fix_count graphics_title hessian_slant_cutoff
   high_boundary high_constraint inverse_periods integral_order integral_order_1d
-  integral_order_2d jiggle_temperature last_error last_hessian_scale memory_arena
+  integral_order_2d jiggle_temperature last_error memory_arena
   memory_used notch_count pickvnum pickenum pickfnum pop_count pop_edge_to_tri_count
   pop_quad_to_quad_count pop_tri_to_edge_count quadratic_metric_mix refine_count
   rotation_order scale_scale scrollbuffersize self_sim_coeff string_curve_tolerance

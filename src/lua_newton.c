@@ -20,6 +20,9 @@ typedef struct nstate {
   tds_inertia counts; /* of the last hessian, hessian_seek, eigenprobe or
                          ritz (Evolver's eigenneg, eigenzero, eigenpos),
                          0 before any */
+  double scale;       /* the step of the last hessian_seek or saddle, 1
+                         after hessian (Evolver's last_hessian_scale), 0
+                         before any */
 } nstate;
 
 static int ns_gc(lua_State *L) {
@@ -49,39 +52,45 @@ static int l_hessian(lua_State *L) {
   tds_inertia in = {0};
   check_rc(L, st, tds_newton_step(&st->ctx, &st->s, &ns->o, 0, &in, NULL));
   ns->counts = in;
+  ns->scale = 1; /* Evolver's last_hessian_scale after hessian (measured) */
   lua_pushnumber(L, st->s.energy);
   lua_pushinteger(L, in.neg);
   return 2;
 }
 
-/* tds.hessian_seek([maxscale = 1]) -> energy, scale, index */
+/* tds.hessian_seek([maxscale = 10]) -> energy, scale, index (Evolver's
+** manual says the default is 1; evolver-nox-d 2.70 seeks up to 10 without
+** one: on the cube's g; r; hessian_seek it tries 1.6; newton.c's seek) */
 static int l_hessian_seek(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   nstate *ns = get_ns(L);
-  double mx = lua_isnoneornil(L, 1) ? 1 : tds_lua_checkfinite(L, 1, "hessian_seek scale");
+  double mx = lua_isnoneornil(L, 1) ? 10 : tds_lua_checkfinite(L, 1, "hessian_seek scale");
   if (!(mx > 0)) return tds_lua_error(L, "hessian_seek: the largest scale must be positive, not %f", mx);
   tds_inertia in = {0};
   double t = 0;
   check_rc(L, st, tds_newton_step(&st->ctx, &st->s, &ns->o, mx, &in, &t));
   ns->counts = in;
+  ns->scale = t;
   lua_pushnumber(L, st->s.energy);
   lua_pushnumber(L, t);
   lua_pushinteger(L, in.neg);
   return 3;
 }
 
-/* tds.saddle([maxscale]) -> lowest eigenvalue, moved */
+/* tds.saddle([maxscale]) -> lowest eigenvalue, moved, step */
 static int l_saddle(lua_State *L) {
   tds_state *st = TDS_STATE(L);
   nstate *ns = get_ns(L);
   double mx = lua_isnoneornil(L, 1) ? 0 : tds_lua_checkfinite(L, 1, "saddle scale");
   if (mx < 0) return tds_lua_error(L, "saddle: the largest scale must not be negative, not %f", mx);
-  double low = 0;
-  int moved = 0;
-  check_rc(L, st, tds_newton_saddle(&st->ctx, &st->s, &ns->o, mx, &low, &moved));
+  double low = 0, step = 0;
+  check_rc(L, st, tds_newton_saddle(&st->ctx, &st->s, &ns->o, mx, &low, &step));
+  ns->scale = step;
+  ns->last = low; /* Evolver's last_eigenvalue after saddle too */
   lua_pushnumber(L, low);
-  lua_pushboolean(L, moved);
-  return 2;
+  lua_pushboolean(L, step != 0);
+  lua_pushnumber(L, step);
+  return 3;
 }
 
 static void print_counts(tds_state *st, nstate *ns, tds_inertia in) {
@@ -230,13 +239,13 @@ static int l_vertex_normal(lua_State *L) {
 /* tds.hessian_setting(name [, value]) -> value: hessian_normal,
 ** linear_metric, linear_metric_mix, hessian_diff, hessian_epsilon,
 ** hessian_special_normal, hessian_normal_one, hessian_normal_perp;
-** last_eigenvalue, eigenneg, eigenzero, eigenpos (read) */
+** last_eigenvalue, eigenneg, eigenzero, eigenpos, last_hessian_scale (read) */
 static int l_setting(lua_State *L) {
   static const char *const names[] = {"hessian_normal", "linear_metric", "linear_metric_mix",
                                       "hessian_diff", "last_eigenvalue", "hessian_epsilon",
                                       "hessian_special_normal", "hessian_normal_one",
                                       "hessian_normal_perp", "eigenneg", "eigenzero",
-                                      "eigenpos", NULL};
+                                      "eigenpos", "last_hessian_scale", NULL};
   nstate *ns = get_ns(L);
   int which = luaL_checkoption(L, 1, NULL, names);
   int set = !lua_isnone(L, 2);
@@ -276,6 +285,10 @@ static int l_setting(lua_State *L) {
   case 4: /* read-only */
     if (set) return tds_lua_error(L, "last_eigenvalue is read-only");
     lua_pushnumber(L, ns->last);
+    break;
+  case 12:
+    if (set) return tds_lua_error(L, "last_hessian_scale is read-only");
+    lua_pushnumber(L, ns->scale);
     break;
   case 9:
   case 10:

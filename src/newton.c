@@ -220,60 +220,80 @@ static double place(tds_ctx *ctx, tds_surf *s, start *st, const tds_nsys *n,
   return isfinite(s->energy) ? s->energy : (double)NAN;
 }
 
-/* Least energy along t in (0, tmax]: the energy at tmax, then halving
-** (down to 1e-6 tmax, as Evolver) while that lowers it (or the energy is
-** not below the start), then the
-** parabola through the best sample and its neighbours (t = 0 among them)
-** when its vertex is inside and lower. Leaves the surface at the t
-** returned, *E its energy. */
+/* The vertex of the parabola through (t0, e0), (t1, e1), (t2, e2), e1
+** below both (so it lies between t0 and t2). */
+static double parabola_vertex(double t0, double e0, double t1, double e1, double t2, double e2) {
+  double num = (t1 - t0) * (t1 - t0) * (e1 - e2) - (t1 - t2) * (t1 - t2) * (e1 - e0);
+  double den = (t1 - t0) * (e1 - e2) - (t1 - t2) * (e1 - e0);
+  return den != 0 ? t1 - 0.5 * num / den : t1;
+}
+
+/* Evolver's line search of hessian_seek and saddle along t w, t in
+** (0, tmax] (measured on evolver-nox-d 2.70; its manual says only that
+** it looks both ways and tests down to 1e-6 of the largest scale; the
+** scales it reports are this rule's to 1e-13 on the cube, catenoids and
+** drops). The first trial is 0.01 tmax; while it does not lower the
+** energy below E0 it is divided by 10, down to 1e-6 tmax (then 0 is
+** returned: nothing lowers it this way). From the first lower trial the
+** scale doubles (the last trial capped at tmax) while the energy keeps
+** falling; where it rises again the scale is the vertex of the parabola
+** through the last three trials (t = 0 the first of them when only one
+** trial lowered the energy); at tmax and still falling, tmax. Leaves the
+** surface at the t returned, *E its energy; a vertex whose energy is not
+** below E0 (a strongly skewed line, never measured in Evolver) gives way
+** to the best trial, so the command never raises the energy. */
 static double seek(tds_ctx *ctx, tds_surf *s, start *st, const tds_nsys *n,
                    const double *w, double E0, double tmax, double *E) {
-  double ts[48], es[48];
-  int k = 0;
-  ts[k] = 0;
-  es[k++] = E0;
-  double t = tmax, e = place(ctx, s, st, n, w, t);
-  ts[k] = t;
-  es[k++] = e;
-  while (k < 44 && t > 1e-6 * tmax) { /* Evolver gives up at 1e-6 of it */
-    double t2 = t / 2, e2 = place(ctx, s, st, n, w, t2);
-    ts[k] = t2;
-    es[k++] = e2;
-    if (isfinite(e) && e < E0 && !(e2 < e)) break;
-    t = t2;
-    e = e2;
-  }
-  /* sort by t (insertion: few points) */
-  for (int a = 1; a < k; a++)
-    for (int b = a; b > 0 && ts[b] < ts[b - 1]; b--) {
-      double x = ts[b], y = es[b];
-      ts[b] = ts[b - 1], es[b] = es[b - 1];
-      ts[b - 1] = x, es[b - 1] = y;
+  double t = 0.01 * tmax, e = place(ctx, s, st, n, w, t);
+  for (int k = 0; !(e < E0); k++) {
+    if (k == 4 || st->nomem) { /* 1e-6 tmax tried */
+      *E = E0;
+      return 0;
     }
-  int best = 0;
-  for (int i = 1; i < k; i++)
-    if (es[i] < es[best]) best = i;
-  double tb = ts[best], eb = es[best];
-  int c = best == 0 ? 1 : best == k - 1 ? k - 2 : best; /* middle of three */
-  if (k >= 3 && isfinite(es[c - 1]) && isfinite(es[c]) && isfinite(es[c + 1])) {
-    double t0 = ts[c - 1], t1 = ts[c], t2 = ts[c + 1];
-    double e0 = es[c - 1], e1 = es[c], e2 = es[c + 1];
-    double num = (t1 - t0) * (t1 - t0) * (e1 - e2) - (t1 - t2) * (t1 - t2) * (e1 - e0);
-    double den = (t1 - t0) * (e1 - e2) - (t1 - t2) * (e1 - e0);
-    double d1 = (e1 - e0) / (t1 - t0), d2 = (e2 - e1) / (t2 - t1);
-    if (den != 0 && d2 > d1) { /* convex: a minimum */
-      double tp = t1 - 0.5 * num / den;
-      if (tp > 0 && tp <= tmax && tp != tb) {
-        double ep = place(ctx, s, st, n, w, tp);
-        if (ep < eb) {
-          *E = ep;
-          return tp;
-        }
+    t /= 10;
+    e = place(ctx, s, st, n, w, t);
+  }
+  double tp = 0, ep = E0; /* the trial before (t, e) */
+  for (;;) {
+    if (!(t < tmax)) { /* at the largest scale, still falling */
+      *E = e;
+      return t;
+    }
+    double t2 = fmin(2 * t, tmax), e2 = place(ctx, s, st, n, w, t2);
+    if (!(e2 < e)) {
+      double tv = parabola_vertex(tp, ep, t, e, t2, e2);
+      double ev = isfinite(e2) && tv > tp && tv < t2 ? place(ctx, s, st, n, w, tv) : (double)NAN;
+      if (ev < E0) {
+        *E = ev;
+        return tv;
       }
+      *E = place(ctx, s, st, n, w, t);
+      return t;
     }
+    tp = t, ep = e, t = t2, e = e2;
   }
-  *E = tb > 0 ? place(ctx, s, st, n, w, tb) : place(ctx, s, st, n, w, 0);
-  return tb;
+}
+
+/* seek forwards along w, else backwards; 0 (the surface at t = 0) when
+** neither lowers the energy. The energies are compared with the energy
+** at t = 0 after the restoring moves, not the one before them (as
+** Evolver's: on the cube after g; r, whose volume g left 1e-5 off, the
+** parabola through 0, 1 and 2 gives Evolver's scale to 1e-15 with that
+** energy, and 6e-5 off with the one before). */
+static double seek_both(tds_ctx *ctx, tds_surf *s, start *st, const tds_nsys *n, double *w,
+                        double tmax, double *E) {
+  double E0 = place(ctx, s, st, n, w, 0);
+  if (!isfinite(E0)) {
+    *E = E0;
+    return 0;
+  }
+  double t = seek(ctx, s, st, n, w, E0, tmax, E);
+  if (t != 0 || st->nomem) return t;
+  for (int32_t j = 0; j < n->m; j++) w[j] = -w[j];
+  t = -seek(ctx, s, st, n, w, E0, tmax, E);
+  for (int32_t j = 0; j < n->m; j++) w[j] = -w[j];
+  if (t == 0) *E = place(ctx, s, st, n, w, 0);
+  return t;
 }
 
 /* Factor the bordered system at shift c; *index: negative eigenvalues of
@@ -390,23 +410,20 @@ int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
   if (rc == TDS_OK) rc = start_take(ctx, s, &st);
   double E = NAN, t = 1;
   if (rc == TDS_OK) {
-    if (seekmax > 0) {
-      t = seek(ctx, s, &st, &n, w, n.energy, seekmax, &E);
-      if (t == 0) { /* no decrease forward: look the other way */
-        for (int32_t j = 0; j < n.m; j++) w[j] = -w[j];
-        t = -seek(ctx, s, &st, &n, w, n.energy, seekmax, &E);
-        for (int32_t j = 0; j < n.m; j++) w[j] = -w[j];
-        if (t == 0) E = place(ctx, s, &st, &n, w, 0);
-      }
-    }
+    if (seekmax > 0)
+      t = seek_both(ctx, s, &st, &n, w, seekmax, &E);
     else E = place(ctx, s, &st, &n, w, 1);
     if (st.nomem)
       rc = tds_seterr(ctx, TDS_ENOMEM, "hessian: out of memory");
     else if (!isfinite(E))
       rc = tds_seterr(ctx, TDS_ENUM, "hessian: the step gives a non-finite energy");
   }
-  if (rc == TDS_OK) /* the new multipliers: H w + A y = -(grad E - A mult) */
-    for (int32_t q = 0; q < n.nq; q++) set_mult(s, q, n.mult[q] - t * w[n.m + q]);
+  /* the new multipliers: H w + A y = -(grad E - A mult); after
+  ** hessian_seek the whole y too, whatever the scale (Evolver's: the cube's
+  ** pressure after g; r; hessian_seek is 3.2404807614 at scale 0.758, the
+  ** full step's, and its next hessian_seek agrees only so) */
+  if (rc == TDS_OK)
+    for (int32_t q = 0; q < n.nq; q++) set_mult(s, q, n.mult[q] - (seekmax > 0 ? 1 : t) * w[n.m + q]);
   start_free(&st);
   tds_free(&ctx->alloc, w);
   tds_la_free(f);
@@ -431,38 +448,6 @@ int tds_newton_step(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double 
 ** (a vertex's unknowns move it along directions orthonormal in space). */
 static void amounts(const tds_nsys *n, const double (*vec)[3], double *w) {
   for (int32_t j = 0; j < n->m; j++) w[j] = v3_dot(n->dx[j], vec[n->vert[j]]);
-}
-
-/* Least energy along t w, t of either sign: from t0, doubling while the
-** energy falls (up to tmax), then a parabola through the last three.
-** Leaves the surface at the best t found (0: where it started) and
-** returns that t. */
-static double expand(tds_ctx *ctx, tds_surf *s, start *st, const tds_nsys *n,
-                     const double *w, double E0, double t0, double tmax, double *E) {
-  double bt = 0, bE = E0;
-  for (int sign = -1; sign <= 1; sign += 2) {
-    double tp = 0, ep = E0, t = t0, e;
-    double t1 = 0, e1 = E0; /* the point before tp */
-    for (;;) {
-      e = place(ctx, s, st, n, w, sign * t);
-      if (!(e < ep)) break;
-      t1 = tp, e1 = ep, tp = t, ep = e;
-      if (t >= tmax) break;
-      t = fmin(2 * t, tmax);
-    }
-    if (tp > 0 && isfinite(e) && e > ep) { /* parabola through (t1, tp, t) */
-      double num = (tp - t1) * (tp - t1) * (ep - e) - (tp - t) * (tp - t) * (ep - e1);
-      double den = (tp - t1) * (ep - e) - (tp - t) * (ep - e1);
-      double tq = den != 0 ? tp - 0.5 * num / den : tp;
-      if (tq > t1 && tq < t) {
-        double eq = place(ctx, s, st, n, w, sign * tq);
-        if (eq < ep) tp = tq, ep = eq;
-      }
-    }
-    if (tp > 0 && ep < bE) bE = ep, bt = sign * tp;
-  }
-  *E = place(ctx, s, st, n, w, bt);
-  return bt;
 }
 
 int tds_newton_move(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, const double (*vec)[3],
@@ -498,9 +483,35 @@ int tds_newton_move(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, const d
   return TDS_OK;
 }
 
+/* Evolver's length of saddle's eigenvector (measured: the displacement
+** of its saddle 0.01 against tds's unit eigenvector): the largest
+** unknown is 0.1 of the largest distance of a vertex (fixed ones too)
+** from the origin; with hessian_normal on an unknown is a vertex's move
+** along its unit normal (its length), off a coordinate of its move. On
+** the flat square of side pi refined twice, 0.1 pi sqrt 2 at its centre
+** (to 1e-15); catman's saddle (normal off) and cat.fe's (on) to 1e-11,
+** a drop on slidestr.fe's constraint to 7e-5. Scales w (amounts of the
+** unit vector vec) accordingly. */
+static void evolver_length(const tds_surf *s, const tds_newton_opts *o, const tds_nsys *n,
+                           const double (*vec)[3], double *w) {
+  const tds_mesh *m = &s->m;
+  double R = 0, big = 0;
+  for (tds_id v = 0; v < m->nv; v++) {
+    if (!tds_alive(m->vflags, v)) continue;
+    R = fmax(R, v3_norm(m->x[v]));
+    if (!tds_vertex_free(s, v)) continue;
+    if (o->normal) big = fmax(big, v3_norm(vec[v]));
+    else
+      for (int i = 0; i < 3; i++) big = fmax(big, fabs(vec[v][i]));
+  }
+  if (!(R > 0 && big > 0)) return;
+  double k = 0.1 * R / big;
+  for (int32_t j = 0; j < n->m; j++) w[j] *= k;
+}
+
 int tds_newton_saddle(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double maxscale,
-                      double *lowest, int *moved) {
-  *moved = 0;
+                      double *lowest, double *step) {
+  *step = 0;
   if (!isfinite(maxscale)) return tds_seterr(ctx, TDS_ERANGE, "saddle: the scale is not finite");
   tds_snap sn;
   int rc = tds_snap_take(ctx, s, &sn);
@@ -536,11 +547,14 @@ int tds_newton_saddle(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, doubl
       rc = tds_seterr(ctx, TDS_ENOMEM, "saddle: out of memory");
     if (rc == TDS_OK) {
       amounts(&n, (const double(*)[3])vec, w);
-      /* the largest displacement of a vertex at t = 1 sets the scales */
-      double big = 0;
-      for (int32_t j = 0; j < n.m; j++) big = fmax(big, fabs(w[j]));
-      double t0 = big > 0 ? 1e-4 / big : 1e-4, tmax = maxscale > 0 ? maxscale : 1e3 * t0;
-      t = expand(ctx, s, &st, &n, w, n.energy, fmin(t0, tmax), tmax, &E);
+      evolver_length(s, o, &n, (const double(*)[3])vec, w);
+      /* downhill to first order forwards (Evolver's eigenvector has its
+      ** own sign; it tries forwards first as hessian_seek does) */
+      double D = 0;
+      for (int32_t j = 0; j < n.m; j++) D += n.grad[j] * w[j];
+      if (D > 0)
+        for (int32_t j = 0; j < n.m; j++) w[j] = -w[j];
+      t = seek_both(ctx, s, &st, &n, w, maxscale > 0 ? maxscale : 100, &E);
       if (st.nomem)
         rc = tds_seterr(ctx, TDS_ENOMEM, "saddle: out of memory");
       else if (!isfinite(E))
@@ -552,7 +566,7 @@ int tds_newton_saddle(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, doubl
   start_free(&st);
   tds_free(&ctx->alloc, vec);
   if (rc != TDS_OK) return tds_snap_end(ctx, s, &sn, rc);
-  *moved = t != 0;
+  *step = t;
   s->energy = E;
   tds_printf(ctx, "stepsize %g\n1. %s: %#17.15g energy: %#17.15g \n", t, s->str ? "length" : "area",
              tds_surf_area(s), s->energy);

@@ -79,9 +79,10 @@ typedef struct tds_newton_opts {
 ** positive definite, "WARNING 1825: Hessian not positive definite.
 ** Index: n" (Evolver's words and number).
 ** With seek > 0 (hessian_seek), the step is scaled by the t in (0, seek]
-** that minimises the energy along it, or in [-seek, 0) when no forward
-** t down to 1e-6 seek lowers it (Evolver looks both ways; t = 0, no
-** move, when neither does), and the line shows the scale. *inertia (if not
+** that Evolver's line search finds along it (newton.c's seek: trials
+** from 0.01 seek, doubling, then a parabola), or in [-seek, 0) when no
+** forward t down to 1e-6 seek lowers the energy (Evolver looks both
+** ways; t = 0, no move, when neither does), and the line shows the scale. *inertia (if not
 ** NULL) gets the inertia of H on the constraints at the start (neg is the
 ** index), *scale (if not NULL) the step's multiple of the Newton step (1
 ** for hessian). */
@@ -129,11 +130,15 @@ int tds_newton_move(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, const d
                     int32_t nv, double t);
 
 /* saddle: if the lowest eigenvalue is negative, move along its
-** eigenvector to the least energy within maxscale (maxscale <= 0: no
-** limit but the search's own); prints what Evolver prints. *lowest gets
-** the lowest eigenvalue; *moved 1 if the surface moved. */
+** eigenvector (signed downhill to first order, of Evolver's length: its
+** largest unknown 0.1 of the largest distance of a vertex from the
+** origin) by hessian_seek's line search with the largest step maxscale
+** (maxscale <= 0: Evolver's default, 100, whose first trial is 1);
+** prints what Evolver prints.
+** *lowest gets the lowest eigenvalue; *step the step taken (0: no move;
+** negative: backwards). */
 int tds_newton_saddle(tds_ctx *ctx, tds_surf *s, const tds_newton_opts *o, double maxscale,
-                      double *lowest, int *moved);
+                      double *lowest, double *step);
 
 /* Evolver's vertex_normal of live vertex v: the unit direction
 ** hessian_normal moves it along (newton_int.h's rule, with o's

@@ -403,9 +403,8 @@ static int run_op(tds_ctx *ctx, tds_surf *s, const opcase *c) {
   }
   case 'S': {
     tds_newton_opts no = {.normal = 1, .metric_mix = 0.5};
-    double lowest;
-    int moved;
-    return tds_newton_saddle(ctx, s, &no, 0, &lowest, &moved);
+    double lowest, step;
+    return tds_newton_saddle(ctx, s, &no, 0, &lowest, &step);
   }
   case 'q': {
     static const char q[] = "quantity qq energy modulus 2 method facet_vector_integral global\n"
