@@ -80,7 +80,7 @@ local function near(p, set)
 end
 -- lattice coordinates from the clip box's corner
 tds.load_datafile('$tmp/$f.fe')
-local per, org = tds.periods(), display_origin() or {0, 0, 0}
+local per, org = tds.periods(), tds.display_origin() or {0, 0, 0}
 local function lattice(p)
   -- solve p = sum c_i per[i] by Cramer's rule
   local a = per
