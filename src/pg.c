@@ -619,14 +619,10 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
         /* A cycle returns to earlier edges: at least half the window's
         ** flips re-create an edge that a flip of this window removed.
         ** Dislocations gliding through a large mesh mostly create new
-        ** edges (the 100k hemisphere: ...); those windows are progress,
-        ** not a cycle, even when r does not halve. */
+        ** edges (the 100k hemisphere: 552 flips, no return, in its
+        ** second window); those windows are progress, not a cycle, even
+        ** when r does not halve (doc/method.md, Termination). */
         int64_t win_ret = w.returns - win_ret0;
-#ifdef PG_WINDOW_TRACE
-        fprintf(stderr, "WIN k=%lld flips=%lld returns=%lld winmin=%.3e globmin=%.3e e=%.12g tol=%g\n",
-                (long long)k, (long long)win_flips, (long long)win_ret, win_min / hbar,
-                glob_min / hbar, si.energy, w.flip_tol);
-#endif
         if (win_flips > 0 && !(win_min < 0.5 * glob_min) && 2 * win_ret >= win_flips) {
           /* flips cycling: first widen the flip hysteresis tenfold per
           ** stuck window (1e-3 to 1e-1: a pair of opposite angles may
