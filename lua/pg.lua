@@ -18,12 +18,12 @@ end
 
 -- pg(n): n iterations. pg(): until the termination criterion. pg{...}:
 -- options iterations, max, nmax, s, plain, depth, flips, every, rtol,
--- threads, newton, probe, calm, momentum.
+-- threads, newton, probe, calm, momentum, momentum_size.
 -- Returns { iterations, r, flips, lambda, energy, converged, ... }.
 local PG_KEYS = { iterations = "number", n = "number", max = "number", nmax = "number",
   s = "number", plain = "boolean", depth = "number", flips = "boolean", every = "number",
   rtol = "number", threads = "number", newton = "boolean", probe = "boolean",
-  calm = "boolean", momentum = "number" }
+  calm = "boolean", momentum = "number", momentum_size = "number" }
 function pg(arg)
   local o = opts_of(arg, "pg")
   tds.check_options(o, "pg", PG_KEYS, 2)

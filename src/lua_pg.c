@@ -3,7 +3,7 @@
 ** Raw primitives (lua/pg.lua gives them their user names):
 **   tds.pg{ iterations=, max=, nmax=, s=, plain=, depth=, flips=, every=,
 **           rtol=, threads=, newton=, probe=, calm=,
-**           momentum= }                     -> result table
+**           momentum=, momentum_size= }                     -> result table
 **   tds.quality()                          -> statistics table
 **   tds.curvature(mode [, value [, measure]]) -> statistics table with
 **                                             per-vertex values
@@ -76,6 +76,9 @@ static int l_pg(lua_State *L) {
     o.probe = opt_bool(L, 1, "probe", 1);
     o.calm = opt_bool(L, 1, "calm", 1);
     o.momentum = opt_num(L, 1, "momentum", o.momentum);
+    lua_Integer ms = opt_int(L, 1, "momentum_size", o.momentum_size);
+    luaL_argcheck(L, ms >= 0 && ms <= INT32_MAX, 1, "momentum_size must be in [0, 2^31)");
+    o.momentum_size = (int32_t)ms;
   }
   luaL_argcheck(L, o.momentum >= 0 && o.momentum < 1, 1, "momentum must be in [0, 1)");
   luaL_argcheck(L, o.threads >= 1 && o.threads <= 2, 1, "threads must be 1 or 2");
@@ -108,6 +111,7 @@ static int l_pg(lua_State *L) {
   setint(L, "probes", r.probes);
   setint(L, "saddles", r.saddles);
   setint(L, "momentum_steps", r.momentum_steps);
+  setnum(L, "momentum", r.momentum);
   setint(L, "reached", r.reached);
   setnum(L, "lambda", r.lambda);
   setnum(L, "pressure", -r.lambda);
@@ -127,6 +131,7 @@ static int l_pg(lua_State *L) {
   lua_pushstring(L, status[r.status]);
   lua_setfield(L, -2, "status");
   setnum(L, "hysteresis", r.hysteresis);
+  setint(L, "returns", r.returns);
   if (r.status == TDS_PG_CYCLING) setint(L, "window_flips", r.window_flips);
   if (r.message[0]) {
     lua_pushstring(L, r.message);

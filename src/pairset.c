@@ -2,6 +2,7 @@
 #include "pairset.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 static uint64_t pkey(tds_id a, tds_id b) {
   uint64_t lo = (uint32_t)(a < b ? a : b), hi = (uint32_t)(a < b ? b : a);
@@ -63,4 +64,8 @@ void tds_pairset_remove(tds_pairset *ps, tds_id a, tds_id b) {
     ps->key[i] = ps->key[j];
     i = j;
   }
+}
+
+void tds_pairset_clear(tds_pairset *ps) {
+  if (ps->key) memset(ps->key, 0, ps->cap * sizeof *ps->key);
 }

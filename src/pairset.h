@@ -24,5 +24,7 @@ int tds_pairset_has(const tds_pairset *ps, tds_id a, tds_id b);
 /* Insert {a, b}; the set must have room (fewer than n pairs held). */
 void tds_pairset_add(tds_pairset *ps, tds_id a, tds_id b);
 void tds_pairset_remove(tds_pairset *ps, tds_id a, tds_id b);
+/* Remove every pair. */
+void tds_pairset_clear(tds_pairset *ps);
 
 #endif

@@ -219,6 +219,7 @@ void tds_pg_defaults(tds_pg_opts *o) {
   o->probe = 1;
   o->calm = 1;
   o->momentum = 0.6;
+  o->momentum_size = 0;
 }
 
 static double mean_edge(const tds_mesh *m) {
@@ -370,7 +371,7 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   ** paper's criterion, so without this a run whose flips never stop
   ** (a surface with no stable equilibrium near it) ran to the cap. */
   const int64_t win = 5 * (int64_t)o->nmax;
-  int64_t win_start = 0, win_flips = 0, stuck_flips = 0;
+  int64_t win_start = 0, win_flips = 0, stuck_flips = 0, win_ret0 = 0;
   double win_min = INFINITY, glob_min = INFINITY;
   int stuck = 0, resumes = 0;
   int64_t plain_until = 0; /* > 0: resume the mixing at this iteration */
@@ -417,6 +418,18 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   /* Momentum of the warm steps after a flip (warm_momentum): the state
   ** of the previous iteration and the last move. */
   double beta = o->momentum;
+  /* Heavy-ball momentum's best value is about 1 - 2/sqrt(kappa), kappa
+  ** the condition number; the plain iteration's smooth modes contract
+  ** like 1 - c/n on n vertices, so kappa grows like n and 1 - beta should
+  ** shrink like 1/sqrt(n). On a large mesh flips come every iteration and
+  ** nearly every step is a warm step, so this is the run's acceleration
+  ** (doc/method.md, Acceleration; doc/paper-results.md, Large inputs). */
+  if (beta > 0 && o->momentum_size > 0 && w.nmov > o->momentum_size) {
+    double b = 1 - (1 - beta) * sqrt((double)o->momentum_size / (double)w.nmov);
+    if (b > 0.95) b = 0.95;
+    if (b > beta) beta = b;
+  }
+  res->momentum = beta;
   double *xprev = NULL, *mom = NULL;
   int have_prev = 0;
   if (accel && beta > 0) {
@@ -528,6 +541,8 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
         win_start = k;
         win_min = glob_min = INFINITY;
         win_flips = 0;
+        win_ret0 = w.returns;
+        pg_flip_forget(&w);
         stuck = 0;
         stuck_flips = 0;
       } else if (k >= probe_k0 + probe_len) { /* stable: keep the mesh */
@@ -601,7 +616,14 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
       if (si.r < win_min) win_min = si.r;
       win_flips += nf;
       if (k - win_start >= win) {
-        if (win_flips > 0 && !(win_min < 0.5 * glob_min)) {
+        /* A cycle returns to earlier edges: at least half the window's
+        ** flips re-create an edge that a flip of this window removed.
+        ** Dislocations gliding through a large mesh mostly create new
+        ** edges (the 100k hemisphere: 552 flips, no return, in its
+        ** second window); those windows are progress, not a cycle, even
+        ** when r does not halve (doc/method.md, Termination). */
+        int64_t win_ret = w.returns - win_ret0;
+        if (win_flips > 0 && !(win_min < 0.5 * glob_min) && 2 * win_ret >= win_flips) {
           /* flips cycling: first widen the flip hysteresis tenfold per
           ** stuck window (1e-3 to 1e-1: a pair of opposite angles may
           ** then exceed pi by up to 0.1 radian before the edge flips),
@@ -624,6 +646,8 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
         win_start = k;
         win_min = INFINITY;
         win_flips = 0;
+        win_ret0 = w.returns;
+        pg_flip_forget(&w);
         if (stuck >= 3) {
           res->status = TDS_PG_CYCLING;
           res->window_flips = stuck_flips;
@@ -731,6 +755,7 @@ int tds_pg_run(tds_ctx *ctx, tds_surf *s, const tds_pg_opts *o,
   res->cpu_seconds = cpu_now() - c0;
   res->newton_builds = nt.builds;
   res->cycles = w.cycles;
+  res->returns = w.returns;
   tds_free(&w.al, probe_x);
   tds_free(&w.al, xprev);
   tds_free(&w.al, mom);

@@ -49,6 +49,10 @@ typedef struct tds_pg_opts {
                              a flip add this times the last move (a heavy-
                              ball step; 0.6 by default, 0: none;
                              doc/method.md, Acceleration) */
+  int32_t momentum_size;  /* > 0: on more movable vertices n than this the
+                             warm steps take 1 - (1 - momentum) sqrt(size / n),
+                             at most 0.95, when that is larger (0 by
+                             default: momentum as given; doc/method.md) */
 } tds_pg_opts;
 
 typedef struct tds_pg_result {
@@ -74,9 +78,13 @@ typedef struct tds_pg_result {
   int64_t newton_builds;  /* Jacobians measured (Newton preconditioning) */
   int64_t calms;          /* flip 2-cycles met with plain steps */
   int64_t cycles;         /* flips that undid a flip back (2-cycles) */
+  int64_t returns;        /* flips that re-created an edge removed by a
+                             flip of the same watch window (doc/method.md,
+                             Termination) */
   int64_t probes;         /* stability probes of a converged mesh */
   int64_t saddles;        /* probes that found it unstable (run went on) */
   int64_t momentum_steps; /* warm steps that took momentum */
+  double momentum;        /* the warm steps' momentum used (momentum_size) */
   double hysteresis;      /* flip hysteresis at the end: 1e-3, widened
                              up to 0.1 while flips cycle (doc/method.md) */
   char message[640];      /* STALLED, CYCLING, MAX: what happened and what
@@ -86,8 +94,9 @@ typedef struct tds_pg_result {
 /* How a run ended. CONVERGED: the paper's criterion with r at most 1e-6 x
 ** the mean edge. STALLED: the same criterion (no new best r for 5 N_max
 ** iterations, no flips) with r above that: not converged. CYCLING: a
-** window of 5 N_max iterations is stuck when it flipped edges and r never
-** went below its best before the window; each stuck window widens the
+** window of 5 N_max iterations is stuck when it flipped edges, at least
+** half of them re-created an edge removed in the window (returns), and r
+** never went below half its best before the window; each stuck window widens the
 ** flip hysteresis tenfold up to 0.1, and three stuck windows running at
 ** 0.1 stop the run (the triangulation keeps changing without progress;
 ** not converged). MAX:

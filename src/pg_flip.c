@@ -22,8 +22,11 @@ int pg_flip_init(tds_surf *s, pgw *w) {
   w->copp = tds_calloc(&w->al, ne, sizeof *w->copp);
   w->queued = tds_calloc(&w->al, ne, 1);
   if (!w->stack || !w->cand || !w->copp || !w->queued ||
-      tds_pairset_init(&w->ps, &w->al, ne) != TDS_OK)
+      tds_pairset_init(&w->ps, &w->al, ne) != TDS_OK ||
+      tds_pairset_init(&w->gone, &w->al, ne) != TDS_OK)
     return TDS_ENOMEM;
+  w->gone_max = (int32_t)ne;
+  w->ngone = 0;
   for (tds_id e = 0; e < m->ne; e++)
     if (tds_alive(m->eflags, e)) tds_pairset_add(&w->ps, m->ev[e][0], m->ev[e][1]);
   w->cand_gen = (uint64_t)-1;
@@ -33,6 +36,8 @@ int pg_flip_init(tds_surf *s, pgw *w) {
 
 void pg_flip_free(pgw *w) {
   tds_pairset_free(&w->ps);
+  tds_pairset_free(&w->gone);
+  w->gone.key = NULL;
   tds_free(&w->al, w->stack);
   tds_free(&w->al, w->cand);
   tds_free(&w->al, w->copp);
@@ -159,6 +164,15 @@ int32_t pg_flip_pass(tds_surf *s, pgw *w) {
     tds_flip(s, e, f1, f2);
     tds_pairset_add(&w->ps, c, d);
     remember(w, a, b, c, d);
+    if (tds_pairset_has(&w->gone, c, d)) { /* back to an earlier edge */
+      w->returns++;
+      tds_pairset_remove(&w->gone, c, d);
+      w->ngone--;
+    }
+    if (w->ngone < w->gone_max) { /* full: later removals go unrecorded */
+      tds_pairset_add(&w->gone, a, b);
+      w->ngone++;
+    }
     flips++;
     for (int k = 0; k < 3; k++) {
       tds_id q1 = TDS_OID(m->fe[f1][k]), q2 = TDS_OID(m->fe[f2][k]);
@@ -175,4 +189,9 @@ int32_t pg_flip_pass(tds_surf *s, pgw *w) {
   while (top > 0) w->queued[w->stack[--top]] = 0;
   if (flips) m->coord_gen++;
   return flips;
+}
+
+void pg_flip_forget(pgw *w) {
+  tds_pairset_clear(&w->gone);
+  w->ngone = 0;
 }

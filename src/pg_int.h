@@ -142,6 +142,11 @@ typedef struct pgw {
                              quadrilateral back and forth led to it */
   int recent_head;
   int64_t cycles;         /* flips that undid a flip back (2-cycles) */
+  tds_pairset gone;       /* edges removed by flips since the driver last
+                             cleared it (pg_flip_forget), at most gone_max */
+  int32_t ngone, gone_max;
+  int64_t returns;        /* flips that created an edge of gone (a return
+                             to an earlier connectivity) */
   int32_t (*copp)[2];     /* per candidate: the two opposite facet sides */
   uint8_t *queued;
   uint64_t cand_gen;
@@ -220,6 +225,9 @@ int pg_flip_needed(tds_surf *s, pgw *w);
 /* Flip every non-Delaunay edge at the current positions (work set,
 ** Algorithm 1). Returns the number of flips. */
 int32_t pg_flip_pass(tds_surf *s, pgw *w);
+/* Forget the edges removed so far (w->gone): later flips that create one
+** of them again count in w->returns only from here on. */
+void pg_flip_forget(pgw *w);
 
 /* pg_accel.c */
 int pg_accel_init(pg_accel *a, const tds_alloc *al, int32_t nstate, int depth); /* TDS_OK/ENOMEM */

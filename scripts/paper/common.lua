@@ -19,6 +19,7 @@
 --   PAPER_MAX            pg's iteration cap (default: pg's, 100000)
 --   PAPER_NEWTON=0       pg{ newton = false } (no Newton preconditioning)
 --   PAPER_MOMENTUM=b     pg{ momentum = b } (the warm steps' momentum)
+--   PAPER_MOMENTUM_SIZE=n pg{ momentum_size = n } (0: momentum as given)
 --   PAPER_POLISH=1       pg_polish{} after pg (the curvature polish)
 --   PAPER_POLISH_LOSS=b  its max_loss (degrees; default pg_polish's, 1)
 --   PAPER_ANALYSE=1      also print where the curvature error sits
@@ -208,7 +209,7 @@ function C.run(exp)
   else
     print("input:")
     quality()
-    res = pg{ plain = env("PAPER_PLAIN") ~= nil, every = tonumber(env("PAPER_EVERY") or 500), depth = tonumber(env("PAPER_DEPTH") or ""), s = tonumber(env("PAPER_S") or ""), newton = env("PAPER_NEWTON") ~= "0", momentum = tonumber(env("PAPER_MOMENTUM") or ""), max = tonumber(env("PAPER_MAX") or "") }
+    res = pg{ plain = env("PAPER_PLAIN") ~= nil, every = tonumber(env("PAPER_EVERY") or 500), depth = tonumber(env("PAPER_DEPTH") or ""), s = tonumber(env("PAPER_S") or ""), newton = env("PAPER_NEWTON") ~= "0", momentum = tonumber(env("PAPER_MOMENTUM") or ""), momentum_size = tonumber(env("PAPER_MOMENTUM_SIZE") or ""), max = tonumber(env("PAPER_MAX") or "") }
     if env("PAPER_POLISH") == "1" then
       -- the curvature polish (doc/method.md): r and the volumes are the
       -- polished mesh's; its plain s = 0 iterations are counted apart
