@@ -103,6 +103,80 @@ static int ring_order(const tds_mesh *m, tds_id e, ring_side *rs, int cap) {
 
 #define RING_CAP 64
 
+/* The facet side (2 g + jg) that bounds the same wedge about the edge of
+** facet f's side k as side j of f, g's side on that edge in *kg: the next
+** facet round the edge in angular order (angular), or in the edge's ring
+** (Evolver's facet-edge order, right-handed about the stored edge: the
+** ring's order is the one to follow where flips have folded the surface
+** so that the angles mislead). -1 if there is none. */
+static int32_t across(const tds_mesh *m, tds_id f, int j, int k, int angular, int *kg) {
+  if (!angular) {
+    int32_t me = 3 * f + k, prev = me;
+    while (m->side_next[prev] != me) prev = m->side_next[prev];
+    /* a facet along the edge has its front body clockwise of it */
+    int ccw = (j == 1) == !TDS_OREV(m->fe[f][k]);
+    int32_t sg = ccw ? m->side_next[me] : prev;
+    int gfwd = !TDS_OREV(m->fe[sg / 3][sg % 3]);
+    *kg = sg % 3;
+    return 2 * (sg / 3) + (ccw ? !gfwd : gfwd);
+  }
+  ring_side rs[RING_CAP];
+  int n = ring_order(m, TDS_OID(m->fe[f][k]), rs, RING_CAP);
+  int i = 0;
+  while (i < n && !(rs[i].f == f && rs[i].k == k)) i++;
+  if (i == n) return -1;
+  int fwd = (j == 0) == rs[i].up; /* faces increasing angle */
+  const ring_side *g = &rs[fwd ? (i + 1) % n : (i + n - 1) % n];
+  *kg = g->k;
+  return 2 * g->f + (fwd ? (g->up ? 1 : 0) : (g->up ? 0 : 1));
+}
+
+/* One walk (tds_torus_walk) in the given order. */
+static int walk(const tds_mesh *m, int32_t *lift, uint8_t *seen, int32_t *queue, int32_t root,
+                int angular, int32_t *nq) {
+  tds_id b = m->fb[root / 2][root & 1];
+  int closed = 1;
+  int32_t qh = 0, qt = 0;
+  queue[qt++] = root;
+  seen[root] = 1;
+  lift[root] = 0;
+  while (qh < qt) {
+    int32_t sd = queue[qh++];
+    tds_id f = sd / 2;
+    for (int k = 0; k < 3; k++) {
+      int kg;
+      int32_t sg = across(m, f, sd & 1, k, angular, &kg);
+      if (sg < 0) continue;
+      if (m->fb[sg / 2][sg & 1] != b) {
+        closed = 0; /* the bodies are not consistent round the edge */
+        continue;
+      }
+      /* where the edge's tail is in f's lifted frame, then g's lift */
+      int32_t at = tds_wrap_mul(m, lift[sd], tds_torus_corner_wrap(m, f, tail_corner(m, f, k)));
+      int32_t want = tds_wrap_mul(m, at, tds_wrap_inv(m, tds_torus_corner_wrap(m, sg / 2, tail_corner(m, sg / 2, kg))));
+      if (!seen[sg]) {
+        seen[sg] = 1;
+        lift[sg] = want;
+        queue[qt++] = sg;
+      } else if (lift[sg] != want) {
+        closed = 0;
+      }
+    }
+  }
+  *nq = qt;
+  return closed;
+}
+
+int tds_torus_walk(const tds_mesh *m, int32_t *lift, uint8_t *seen, int32_t *queue, int32_t root,
+                   int32_t *nq) {
+  if (walk(m, lift, seen, queue, root, 1, nq)) return 1;
+  for (int32_t i = 0; i < *nq; i++) seen[queue[i]] = 0; /* the ring's order */
+  if (walk(m, lift, seen, queue, root, 0, nq)) return 1;
+  for (int32_t i = 0; i < *nq; i++) seen[queue[i]] = 0; /* neither: the angles' */
+  walk(m, lift, seen, queue, root, 1, nq);
+  return 0;
+}
+
 int tds_torus_lifts(tds_ctx *ctx, tds_surf *s) {
   tds_mesh *m = &s->m;
   if (s->tlift_gen == m->topo_gen && s->tlift_gen != 0) return 0;
@@ -128,48 +202,13 @@ int tds_torus_lifts(tds_ctx *ctx, tds_surf *s) {
     return -TDS_ENOMEM;
   }
   int bad = 0;
-  ring_side rs[RING_CAP];
   for (int32_t i = 0; i < 2 * m->nf; i++) s->tlift[i] = 0;
   for (int32_t root = 0; root < 2 * m->nf; root++) {
     tds_id f0 = root / 2;
     if (seen[root] || !tds_alive(m->fflags, f0) || m->fb[f0][root & 1] == TDS_NONE) continue;
     tds_id b = m->fb[f0][root & 1];
-    int closed = 1;
-    int32_t qh = 0, qt = 0;
-    queue[qt++] = root;
-    seen[root] = 1;
-    while (qh < qt) {
-      int32_t sd = queue[qh++];
-      tds_id f = sd / 2;
-      int j = sd & 1;
-      for (int k = 0; k < 3; k++) {
-        tds_id e = TDS_OID(m->fe[f][k]);
-        /* the body continues across e into the next facet round the edge
-        ** on the side this member faces */
-        int n = ring_order(m, e, rs, RING_CAP);
-        int i = 0;
-        while (i < n && !(rs[i].f == f && rs[i].k == k)) i++;
-        if (i == n) continue;
-        int fwd = (j == 0) == rs[i].up; /* faces increasing angle */
-        const ring_side *g = &rs[fwd ? (i + 1) % n : (i + n - 1) % n];
-        int jg = fwd ? (g->up ? 1 : 0) : (g->up ? 0 : 1);
-        if (m->fb[g->f][jg] != b) {
-          closed = 0; /* the bodies are not consistent round e */
-          continue;
-        }
-        int32_t sg = 2 * g->f + jg;
-        /* where e's tail is in f's lifted frame, then g's lift */
-        int32_t at = tds_wrap_add(s->tlift[sd], tds_torus_corner_wrap(m, f, tail_corner(m, f, k)));
-        int32_t want = tds_wrap_add(at, tds_wrap_neg(tds_torus_corner_wrap(m, g->f, tail_corner(m, g->f, g->k))));
-        if (!seen[sg]) {
-          seen[sg] = 1;
-          s->tlift[sg] = want;
-          queue[qt++] = sg;
-        } else if (s->tlift[sg] != want) {
-          closed = 0;
-        }
-      }
-    }
+    int32_t nq;
+    int closed = tds_torus_walk(m, s->tlift, seen, queue, root, &nq);
     if (!closed && !open[b]) {
       open[b] = 1;
       bad++;

@@ -40,6 +40,17 @@ double tds_torus_cell_volume(const tds_mesh *m);
 ** or a negative status (-TDS_ENOMEM) after setting ctx's message. */
 int tds_torus_lifts(tds_ctx *ctx, tds_surf *s);
 
+/* One walk over the facet sides (2 f + j: facet f seen from its body
+** fb[f][j]) of the body of side root, lifting each side (lift[side], a
+** wrap) so that the body's facets join edge to edge; seen marks the sides
+** reached and queue[0..*nq) lists them. Across each edge the walk goes to
+** the facet bounding the same wedge about it: in angular order, or, if
+** that does not close up, in the edge's ring (Evolver's facet-edge order,
+** which it follows where flips have folded the surface so that the angles
+** mislead). Returns whether the sides close up consistently. */
+int tds_torus_walk(const tds_mesh *m, int32_t *lift, uint8_t *seen, int32_t *queue, int32_t root,
+                   int32_t *nq);
+
 /* Re-evaluate the PERIODS expressions (recalc). TDS_OK or TDS_ENUM (a
 ** period not finite, or a degenerate cell), the periods unchanged. */
 int tds_torus_periods(tds_ctx *ctx, tds_surf *s);

@@ -200,81 +200,6 @@ done:
   return rc ? tds_seterr(ctx, rc, "out of memory") : TDS_OK;
 }
 
-#define TAU 6.283185307179586
-
-/* The wrap of the stored tail of facet f's side k, f placed at wrap w. */
-static int32_t tail_wrap(const tds_mesh *m, tds_id f, int k, int32_t w) {
-  int ct = TDS_OREV(m->fe[f][k]) ? (k + 1) % 3 : k;
-  return tds_wrap_mul(m, w, tds_torus_corner_wrap(m, f, ct));
-}
-
-/* The angle about edge e (from its stored tail, counterclockwise seen
-** from its head) at which the facet of side sd leaves the edge. */
-static double side_angle(const tds_mesh *m, int32_t sd, const double u[3], const double a[3],
-                         const double b[3]) {
-  tds_id g = sd / 3;
-  int k = sd % 3, ct = TDS_OREV(m->fe[g][k]) ? (k + 1) % 3 : k;
-  double c[3][3], d[3];
-  tds_torus_facet_at(m, g, ct, c); /* e's tail at its stored place */
-  int far = 3 - k - (k + 1) % 3;   /* the corner off the edge */
-  for (int j = 0; j < 3; j++) d[j] = c[far][j] - c[ct][j];
-  double t = d[0] * u[0] + d[1] * u[1] + d[2] * u[2];
-  for (int j = 0; j < 3; j++) d[j] -= t * u[j];
-  return atan2(d[0] * b[0] + d[1] * b[1] + d[2] * b[2], d[0] * a[0] + d[1] * a[1] + d[2] * a[2]);
-}
-
-/* The facet side (2 g + t) of body b next to side s of facet f across the
-** edge of f's side k: the facets on the edge in order about it, the one
-** bounding the same wedge. A facet's normal points away from its front
-** body (the body that lists it +), so a facet running along the edge has
-** its front body clockwise of it, seen from the head. -1 if there is
-** none or the wedge's body is not b. */
-static int32_t across(const tds_mesh *m, tds_id f, int s, int k, tds_id b) {
-  tds_id e = TDS_OID(m->fe[f][k]);
-  double u[3], a[3], c[3];
-  tds_corners C;
-  tds_gather_edge(m, TDS_OREF(e, 0), &C);
-  for (int j = 0; j < 3; j++) u[j] = C.x[1][j] - C.x[0][j];
-  double l = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-  if (!(l > 0)) return -1;
-  for (int j = 0; j < 3; j++) u[j] /= l;
-  int i0 = fabs(u[0]) < fabs(u[1]) ? (fabs(u[0]) < fabs(u[2]) ? 0 : 2) : (fabs(u[1]) < fabs(u[2]) ? 1 : 2);
-  double p[3] = {0, 0, 0}; /* a and c: a right-handed frame across u */
-  p[i0] = 1;
-  double t = p[0] * u[0] + p[1] * u[1] + p[2] * u[2];
-  for (int j = 0; j < 3; j++) a[j] = p[j] - t * u[j];
-  l = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-  for (int j = 0; j < 3; j++) a[j] /= l;
-  c[0] = u[1] * a[2] - u[2] * a[1];
-  c[1] = u[2] * a[0] - u[0] * a[2];
-  c[2] = u[0] * a[1] - u[1] * a[0];
-  int32_t me = 3 * f + k;
-  double phi = side_angle(m, me, u, a, c);
-  int fwd = !TDS_OREV(m->fe[f][k]);
-  int after = (s == 1) == fwd; /* the wedge is counterclockwise of f */
-  int32_t best = -1;
-  double bestd = 0;
-  int32_t s0 = m->eside[e], sd = s0;
-  do { /* the nearest other facet that way round */
-    if (sd != me) {
-      double d = side_angle(m, sd, u, a, c) - phi;
-      if (!after) d = -d;
-      while (d <= 0) d += TAU;
-      while (d > TAU) d -= TAU;
-      if (best < 0 || d < bestd) {
-        best = sd;
-        bestd = d;
-      }
-    }
-    sd = m->side_next[sd];
-  } while (sd != s0);
-  if (best < 0) return -1;
-  tds_id g = best / 3;
-  int gfwd = !TDS_OREV(m->fe[g][best % 3]);
-  int tg = after ? (gfwd ? 0 : 1) : (gfwd ? 1 : 0);
-  return m->fb[g][tg] == b ? 2 * g + tg : -1;
-}
-
 /* Move the placed facets list[0..n) (facet sides 2 f + s, at wrap[f]) by
 ** the lattice vector that brings the mean of their corners into the clip
 ** box. */
@@ -304,11 +229,11 @@ static void recentre(const tds_mesh *m, const int32_t *list, int32_t n, int32_t 
 }
 
 /* The placements of CONNECTED (tds_torus_detorus). A body's boundary is
-** made of facet sides (2 f + s: facet f seen from body fb[f][s]); breadth
-** first from its lowest side, across each edge to the side bounding the
-** same wedge, at the wrap that makes the edge coincide. A facet with the
-** same body on both sides is placed twice; a facet whose two sides land
-** at the same wrap once. *out gets at most 2 nf placements. */
+** made of facet sides (2 f + s: facet f seen from body fb[f][s]), laid
+** out by tds_torus_walk from its lowest side, each piece then moved into
+** the clip box. A facet with the same body on both sides is placed twice;
+** a facet whose two sides land at the same wrap once. *out gets at most
+** 2 nf placements. */
 static int connected(tds_ctx *ctx, tds_mesh *m, placed **out, int32_t *nout) {
   int32_t nf = m->nf;
   tds_alloc *a = &m->alloc;
@@ -330,25 +255,8 @@ static int connected(tds_ctx *ctx, tds_mesh *m, placed **out, int32_t *nout) {
     for (int32_t n0 = 0; n0 < 2 * nf; n0++) {
       tds_id f0 = n0 / 2;
       if (seen[n0] || !tds_alive(m->fflags, f0) || m->fb[f0][n0 % 2] != b) continue;
-      int32_t head = 0, tail = 0; /* one edge-connected piece of the body */
-      queue[tail++] = n0;
-      seen[n0] = 1;
-      wrap[n0] = 0;
-      while (head < tail) {
-        int32_t n = queue[head++];
-        tds_id f = n / 2;
-        for (int k = 0; k < 3; k++) {
-          int32_t g2 = across(m, f, n % 2, k, b);
-          if (g2 < 0 || seen[g2]) continue;
-          int32_t wt = tail_wrap(m, f, k, wrap[n]);
-          tds_id g = g2 / 2;
-          int kg = 0; /* g's side on the same edge */
-          while (kg < 2 && TDS_OID(m->fe[g][kg]) != TDS_OID(m->fe[f][k])) kg++;
-          seen[g2] = 1;
-          wrap[g2] = tds_wrap_mul(m, wt, tds_wrap_inv(m, tail_wrap(m, g, kg, 0)));
-          queue[tail++] = g2;
-        }
-      }
+      int32_t tail; /* one edge-connected piece of the body */
+      tds_torus_walk(m, wrap, seen, queue, n0, &tail);
       if (!tds_mesh_rotates(m)) recentre(m, queue, tail, wrap);
       for (int32_t i = 0; i < tail; i++) {
         int32_t n = queue[i];
