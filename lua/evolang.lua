@@ -1276,6 +1276,22 @@ local function place(code, line0)
   return table.concat(out)
 end
 
+-- The user attributes the surface has now (datafile DEFINEs, Lua's
+-- attribute{}): attribute names, as those a text defines (a facetedge's
+-- also without its "fe__").
+local function user_attributes()
+  local extra = {}
+  if tds and tds.attributes then
+    for _, k in ipairs { tds.vertex, tds.edge, tds.facet, tds.body } do
+      for _, a in ipairs(tds.attributes(k)) do
+        if a.user then extra[a.name] = true end
+        if a.user and a.name:sub(1, 4) == "fe__" then extra[a.name:sub(5)] = true end
+      end
+    end
+  end
+  return extra
+end
+
 -- translate(text [, line0]) -> source | nil, "LINE: message", partial
 -- partial: the source of the command lines before the error, which
 -- Evolver would have run before meeting it.
@@ -1283,17 +1299,7 @@ function M.translate(text, line0)
   line0 = line0 or 1
   local parts
   local ok, res = pcall(function()
-    -- the user attributes the surface has now (datafile DEFINEs, Lua's
-    -- attribute{}) are attribute names, as those the text defines
-    local extra = {}
-    if tds and tds.attributes then
-      for _, k in ipairs { tds.vertex, tds.edge, tds.facet, tds.body } do
-        for _, a in ipairs(tds.attributes(k)) do
-          if a.user then extra[a.name] = true end
-          if a.user and a.name:sub(1, 4) == "fe__" then extra[a.name:sub(5)] = true end -- facetedge's
-        end
-      end
-    end
+    local extra = user_attributes()
     local p = setmetatable({ text = text, toks = lex(text, line0), i = 1, nsym = 0, depth = 0, scopes = { {} },
                              elems = {}, loops = {}, extra = extra, names = {} }, P)
     -- Each input line (with its continuations) is one command for abort,
@@ -1339,15 +1345,7 @@ end
 -- does not parse (the dump then keeps it whole).
 function M.dump_read(text, value)
   local ok, res = pcall(function()
-    local extra = {}
-    if tds and tds.attributes then
-      for _, k in ipairs { tds.vertex, tds.edge, tds.facet, tds.body } do
-        for _, a in ipairs(tds.attributes(k)) do
-          if a.user then extra[a.name] = true end
-          if a.user and a.name:sub(1, 4) == "fe__" then extra[a.name:sub(5)] = true end
-        end
-      end
-    end
+    local extra = user_attributes()
     local p = setmetatable({ text = text, toks = lex(text, 1), i = 1, nsym = 0, depth = 0, scopes = { {} },
                              elems = {}, loops = {}, extra = extra, names = {} }, P)
     local out, seen = {}, {}
