@@ -149,7 +149,7 @@ static int place(tds_ctx *ctx, tds_mesh *m, const placed *pl, int32_t npl, int32
     }
   }
   for (tds_id e = 0; e < ne; e++) bare[e] = tds_alive(m->eflags, e) && m->eside[e] == TDS_NONE;
-  memcpy(ofb, m->fb, (size_t)nf * sizeof *ofb);
+  if (nf) memcpy(ofb, m->fb, (size_t)nf * sizeof *ofb); /* m->fb is NULL without facets */
   if (src)
     for (tds_id f = 0; f < nf + npl; f++) src[1][f] = f < nf && tds_alive(m->fflags, f) ? f : -1;
   for (int32_t i = 0; i < npl; i++) {
